@@ -1,0 +1,18 @@
+#pragma once
+// Logging through spdlog: one logger per process, named after the process role, writing to
+// the console and (once the output folder is known) to a log file.
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <string>
+
+namespace fsi::common {
+
+/// Sets the default logger: "[time] [role] [level] message" on stderr.
+void setup_logging(const std::string &role, bool verbose = false);
+
+/// Adds a log file (truncated) to the default logger.
+void add_log_file(const std::filesystem::path &file);
+
+} // namespace fsi::common
