@@ -4,6 +4,7 @@
 // the HDF5 datasets [n_points, 3] and of packed Protobuf arrays).
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace fsi {
 

@@ -1,0 +1,52 @@
+#pragma once
+// The typed configuration of a case (the folder's case.yaml), parsed once and strictly.
+
+#include "StructureConfig.hpp"
+#include "CollisionConfig.hpp"
+
+#include <filesystem>
+
+namespace fsi::structure {
+
+struct RunConfig {
+  double end_time_s = 1.0;
+  double time_step_s = 1e-4;
+  double output_interval_s = 0.01;
+  std::string output_directory = "output";
+  double progress_interval_s = 5.0;
+
+  template <class V> void visit(V &v) {
+    v.number("end_time_s", end_time_s, common::Range::positive("s"), "Simulated time to reach.");
+    v.number("time_step_s", time_step_s, common::Range::positive("s"),
+             "Time step Delta t (rule of section 2.2: Delta s / Delta t >= 100 m/s).");
+    v.number("output_interval_s", output_interval_s, common::Range::positive("s"),
+             "Simulated time between saved steps (rounded to whole steps).");
+    v.text("output_directory", output_directory, "Results folder, relative to the case folder.");
+    v.number("progress_interval_s", progress_interval_s, common::Range::positive("s"),
+             "Wall-clock time between progress lines in the log.");
+  }
+};
+
+struct CaseConfig {
+  RunConfig run;
+  Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
+  std::optional<CollisionConfig> collisions;
+  std::vector<StructureConfig> structures;
+
+  template <class V> void visit(V &v) {
+    v.section("run", run, "Time stepping and output.");
+    v.vec3("gravity_m_per_s2", gravity_m_per_s2, "m/s^2", "Gravitational acceleration g.");
+    v.optional_section("collisions", collisions, "Rigid surfaces and the collision model of Eq. (11).");
+    v.list("structures", structures, "Flexible structures of the scene (at least one).");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      validate(v);
+  }
+
+  /// Reads and validates `case_dir/case.yaml`; throws common::ConfigError.
+  static CaseConfig load(const std::filesystem::path &case_dir);
+
+private:
+  void validate(common::ConfigReader &v) const;
+};
+
+} // namespace fsi::structure

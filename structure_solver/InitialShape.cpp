@@ -1,0 +1,35 @@
+#include "InitialShape.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fsi::structure {
+
+Frame make_frame(const Vec3 &s1_direction, const Vec3 &s2_direction) {
+  if (s1_direction.norm() == 0.0)
+    throw std::invalid_argument("the s1 direction is the zero vector");
+  const Vec3 e1 = s1_direction.normalized();
+  Vec3 e2 = s2_direction - s2_direction.dot(e1) * e1;
+  if (e2.norm() < 1e-9 * std::max(1.0, s2_direction.norm()))
+    throw std::invalid_argument("the s2 direction is parallel to s1 (or zero)");
+  e2.normalize();
+  return {e1, e2, e1.cross(e2)};
+}
+
+PointArray initial_shape(const LagrangianGrid &grid, const Vec3 &origin_m, const Frame &frame,
+                         double curvature_1_per_m) {
+  PointArray x(grid.n_points(), 3);
+  const double k = curvature_1_per_m;
+  for (int i1 = 0; i1 < grid.n1(); ++i1) {
+    const double s1 = i1 * grid.ds1();
+    const double along = std::abs(k) < 1e-12 ? s1 : std::sin(k * s1) / k;
+    const double across = std::abs(k) < 1e-12 ? 0.5 * k * s1 * s1 : (1.0 - std::cos(k * s1)) / k;
+    for (int i2 = 0; i2 < grid.n2(); ++i2) {
+      const double s2 = grid.is_filament() ? 0.0 : i2 * grid.ds2();
+      x.row(grid.index(i1, i2)) = (origin_m + along * frame.e1 + s2 * frame.e2 + across * frame.normal).transpose();
+    }
+  }
+  return x;
+}
+
+} // namespace fsi::structure

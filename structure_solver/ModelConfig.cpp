@@ -1,0 +1,21 @@
+#include "ModelConfig.hpp"
+
+#include "LagrangianSheet.hpp"
+#include "common/MotionFactory.hpp"
+
+namespace fsi::structure {
+
+void fill_shared_setup(SheetSetup &setup, const InitialStateConfig &initial, const SolverConfig &solver,
+                       const std::optional<common::MotionConfig> &clamp_motion, const BuildContext &context) {
+  setup.initial_velocity_m_per_s = initial.velocity_m_per_s;
+  setup.curved_rest_state = initial.curved_rest_state;
+  if (clamp_motion)
+    setup.clamp_motion = common::make_motion(*clamp_motion, context.gravity_m_per_s2.norm());
+  setup.gravity_m_per_s2 = context.gravity_m_per_s2;
+  setup.time_step_s = context.time_step_s;
+  setup.linear_solver = solver.linear_solver;
+  setup.time_scheme = solver.time_scheme;
+  setup.max_stretch_ratio = solver.max_stretch_ratio;
+}
+
+} // namespace fsi::structure

@@ -1,0 +1,85 @@
+#pragma once
+// Type-erased configuration of one structure model. Each model declares its keys in a
+// `template <class V> void visit_keys(V&)` and derives from ModelConfigBase<Self>, which
+// forwards the three configuration visitors (reader, emitter, documentation) to it.
+
+#include "SemiImplicitSystem.hpp"
+#include "StructureModel.hpp"
+#include "common/ConfigDocWriter.hpp"
+#include "common/ConfigEmitter.hpp"
+#include "common/ConfigReader.hpp"
+#include "common/MotionConfig.hpp"
+
+#include <memory>
+
+namespace fsi::structure {
+
+/// What a model needs from the case to build itself.
+struct BuildContext {
+  std::string name;
+  Vec3 gravity_m_per_s2 = Vec3::Zero();
+  double time_step_s = 1e-4;
+};
+
+class ModelConfig {
+public:
+  virtual ~ModelConfig() = default;
+  virtual void visit(common::ConfigReader &v) = 0;
+  virtual void visit(common::ConfigEmitter &v) = 0;
+  virtual void visit(common::ConfigDocWriter &v) = 0;
+  virtual std::unique_ptr<StructureModel> build(const BuildContext &context) const = 0;
+};
+
+template <class Derived> class ModelConfigBase : public ModelConfig {
+public:
+  void visit(common::ConfigReader &v) override { self().visit_keys(v); }
+  void visit(common::ConfigEmitter &v) override { self().visit_keys(v); }
+  void visit(common::ConfigDocWriter &v) override { self().visit_keys(v); }
+
+private:
+  Derived &self() { return static_cast<Derived &>(*this); }
+};
+
+/// Numerical settings shared by the sheet-like models.
+struct SolverConfig {
+  LinearSolver linear_solver = LinearSolver::automatic;
+  TimeScheme time_scheme = TimeScheme::paper;
+  double max_stretch_ratio = 1.5;
+
+  template <class V> void visit(V &v) {
+    v.choice("linear_solver", linear_solver,
+             {{"auto", LinearSolver::automatic}, {"cg", LinearSolver::conjugate_gradient}, {"direct", LinearSolver::direct}},
+             "Solver of Eq. (4): Jacobi-preconditioned CG (fast for small dt), sparse LDLT (any dt), or CG "
+             "falling back to LDLT.");
+    v.choice("time_scheme", time_scheme, {{"paper", TimeScheme::paper}, {"energy_conserving", TimeScheme::energy_conserving}},
+             "'paper': Eq. (4) as printed (slightly dissipative); 'energy_conserving': elastic force on the mean "
+             "of X^{n+1} and X^{n-1}.");
+    v.number("max_stretch_ratio", max_stretch_ratio, common::Range{.min = 1.0, .min_exclusive = true, .unit = "1"},
+             "Stop the run (diverged) when an edge stretches beyond this ratio of its rest length.");
+  }
+};
+
+/// Initial state shared by the sheet-like models.
+struct InitialStateConfig {
+  Vec3 velocity_m_per_s = Vec3::Zero();
+  double curvature_1_per_m = 0.0;
+  bool curved_rest_state = false;
+
+  template <class V> void visit(V &v) {
+    v.vec3("velocity_m_per_s", velocity_m_per_s, "m/s", "Uniform initial velocity.");
+    v.number("curvature_1_per_m", curvature_1_per_m, common::Range::any("1/m"),
+             "Pre-curvature: lines along s1 start as circular arcs of this curvature (0: flat/straight).");
+    v.flag("curved_rest_state", curved_rest_state,
+           "Bending rest state is the initial (pre-curved) shape instead of flat (small-rotation approximation).");
+  }
+};
+
+} // namespace fsi::structure
+
+namespace fsi::structure {
+struct SheetSetup;
+/// Copies the settings every sheet-like model shares (initial state, solver, clamp motion,
+/// gravity, time step) into a setup.
+void fill_shared_setup(SheetSetup &setup, const InitialStateConfig &initial, const SolverConfig &solver,
+                       const std::optional<common::MotionConfig> &clamp_motion, const BuildContext &context);
+} // namespace fsi::structure

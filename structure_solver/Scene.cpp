@@ -1,0 +1,82 @@
+#include "Scene.hpp"
+
+#include "structure_solver/collision/BoxSurface.hpp"
+#include "structure_solver/collision/CylinderSurface.hpp"
+#include "structure_solver/collision/PlaneSurface.hpp"
+#include "structure_solver/collision/TriangleMeshSurface.hpp"
+#include "common/MotionFactory.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace fsi::structure {
+
+namespace {
+
+std::unique_ptr<collision::RigidSurface> make_surface(const SurfaceConfig &c) {
+  using namespace collision;
+  if (c.plane)
+    return std::make_unique<PlaneSurface>(c.plane->point_m, c.plane->normal);
+  if (c.box)
+    return std::make_unique<BoxSurface>(c.box->min_m, c.box->max_m);
+  if (c.cylinder)
+    return std::make_unique<CylinderSurface>(c.cylinder->axis_start_m, c.cylinder->axis_end_m, c.cylinder->radius_m);
+  const auto side = c.mesh->fluid_side == FluidSide::inside ? TriangleMeshSurface::FluidSide::inside
+                                                             : TriangleMeshSurface::FluidSide::outside;
+  return std::make_unique<TriangleMeshSurface>(c.mesh->file.string(), side);
+}
+
+} // namespace
+
+Scene::Scene(const CaseConfig &config) {
+  for (const auto &entry : config.structures) {
+    const BuildContext context{entry.name, config.gravity_m_per_s2, config.run.time_step_s};
+    structures_.push_back(entry.parameters->build(context));
+    spdlog::info("structure '{}': model {}, {} x {} points, spacing {:.4g} m", entry.name, entry.model,
+                 structures_.back()->grid_shape().first, structures_.back()->grid_shape().second,
+                 structures_.back()->lagrangian_spacing_m());
+    zero_loads_.push_back(PointArray::Zero(structures_.back()->n_points(), 3));
+  }
+  if (config.collisions)
+    build_collisions(*config.collisions, config.gravity_m_per_s2.norm());
+  else
+    spdlog::info("collisions: none (no rigid surfaces, no collision search)");
+}
+
+void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per_s2) {
+  if (!config.surfaces.empty()) {
+    collisions_ = std::make_unique<collision::CollisionSet>(config.threshold_m, config.target_distance_m);
+    for (const auto &surface : config.surfaces) {
+      auto motion = surface.motion ? common::make_motion(*surface.motion, gravity_m_per_s2)
+                                   : std::make_shared<const common::StaticPose>();
+      collisions_->add_surface(make_surface(surface), std::move(motion));
+    }
+    spdlog::info("collisions: {}", collisions_->describe());
+  }
+  self_collisions_.resize(structures_.size());
+  if (config.self_collision)
+    for (std::size_t i = 0; i < structures_.size(); ++i)
+      self_collisions_[i] = std::make_unique<collision::SelfCollision>(
+          structures_[i]->positions_m(), config.threshold_m, config.target_distance_m);
+}
+
+void Scene::advance() {
+  last_corrections_ = 0;
+  for (std::size_t i = 0; i < structures_.size(); ++i) {
+    structures_[i]->advance(zero_loads_[i]); // Eq. (4): gravity only, no fluid
+    correct_collisions(*structures_[i], i);  // Eq. (11)
+  }
+}
+
+void Scene::correct_collisions(StructureModel &structure, std::size_t index) {
+  const bool self = index < self_collisions_.size() && self_collisions_[index];
+  if (!collisions_ && !self)
+    return;
+  structure.correct_positions([&](PointArray &x) {
+    if (self)
+      last_corrections_ += self_collisions_[index]->correct(x);
+    if (collisions_)
+      last_corrections_ += collisions_->correct(x, structure.time_s()).n_points_corrected;
+  });
+}
+
+} // namespace fsi::structure

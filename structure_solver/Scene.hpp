@@ -1,0 +1,39 @@
+#pragma once
+// A structure-only scene: the flexible structures of a case, the rigid surfaces they collide
+// with, and one time step of the algorithm of section 2.3 without fluid:
+// solve Eq. (4) for every structure, then correct positions for collisions (Eq. 11).
+
+#include "CaseConfig.hpp"
+#include "structure_solver/collision/CollisionSet.hpp"
+#include "structure_solver/collision/SelfCollision.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace fsi::structure {
+
+class Scene {
+public:
+  explicit Scene(const CaseConfig &config);
+
+  /// One step for every structure (no fluid load): Eq. (4), then Eq. (11).
+  void advance();
+
+  double time_s() const { return structures_.front()->time_s(); }
+  const std::vector<std::unique_ptr<StructureModel>> &structures() const { return structures_; }
+  bool has_collisions() const { return collisions_ != nullptr; }
+  /// Points corrected by collisions in the last step (all structures).
+  std::size_t last_corrections() const { return last_corrections_; }
+
+private:
+  void build_collisions(const CollisionConfig &config, double gravity_m_per_s2);
+  void correct_collisions(StructureModel &structure, std::size_t index);
+
+  std::vector<std::unique_ptr<StructureModel>> structures_;
+  std::unique_ptr<collision::CollisionSet> collisions_;
+  std::vector<std::unique_ptr<collision::SelfCollision>> self_collisions_;
+  std::vector<PointArray> zero_loads_;
+  std::size_t last_corrections_ = 0;
+};
+
+} // namespace fsi::structure

@@ -1,0 +1,217 @@
+#include "SemiImplicitSystem.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace fsi::structure {
+
+/// Positions in the value array of the sparse matrix, precomputed once per pattern.
+struct SemiImplicitSystem::Slots {
+  std::vector<std::array<int, 4>> tension;  ///< aa, ab, ba, bb
+  std::vector<std::array<int, 16>> shear;   ///< 4 x 4, row-major
+  Eigen::VectorXd bending_values;           ///< constant bending Hessian, by slot
+  std::vector<int> diagonal;                ///< per point
+  std::vector<std::array<int, 3>> free_row_prescribed_col; ///< slot, row, col
+  std::vector<int> prescribed_off_diagonal; ///< slots zeroed in prescribed rows/columns
+  std::vector<int> constant_bending_terms;  ///< bending terms with a ghost or rest constant
+};
+
+SemiImplicitSystem::SemiImplicitSystem(const ElasticTerms &terms, const Eigen::VectorXd &point_measure,
+                                       double mass_per_measure, double damping_per_measure,
+                                       std::vector<bool> prescribed, LinearSolver solver, TimeScheme scheme)
+    : terms_(terms), measure_(point_measure), rho_(mass_per_measure), lambda_(damping_per_measure),
+      prescribed_(std::move(prescribed)), solver_kind_(solver),
+      theta_(scheme == TimeScheme::paper ? 1.0 : 0.5), direct_active_(solver == LinearSolver::direct),
+      slots_(std::make_unique<Slots>()) {
+  build_pattern();
+}
+
+SemiImplicitSystem::~SemiImplicitSystem() = default;
+
+void SemiImplicitSystem::build_pattern() {
+  const auto n = static_cast<int>(measure_.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  const auto couple = [&](const int *points, int count) {
+    for (int r = 0; r < count; ++r)
+      for (int c = 0; c < count; ++c)
+        entries.emplace_back(points[r], points[c], 0.0);
+  };
+  for (int i = 0; i < n; ++i)
+    entries.emplace_back(i, i, 0.0);
+  for (const auto &t : terms_.tension()) {
+    const int p[2] = {t.a, t.b};
+    couple(p, 2);
+  }
+  for (const auto &t : terms_.shear())
+    couple(t.points.data(), 4);
+  for (const auto &t : terms_.bending())
+    couple(t.points.data(), t.n_points);
+  matrix_.resize(n, n);
+  matrix_.setFromTriplets(entries.begin(), entries.end());
+  matrix_.makeCompressed();
+  hessian_ = matrix_;
+
+  const auto slot = [&](int row, int col) {
+    const int *begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
+    const int *end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
+  };
+  Slots &s = *slots_;
+  for (int i = 0; i < n; ++i)
+    s.diagonal.push_back(slot(i, i));
+  for (const auto &t : terms_.tension())
+    s.tension.push_back({slot(t.a, t.a), slot(t.a, t.b), slot(t.b, t.a), slot(t.b, t.b)});
+  for (const auto &t : terms_.shear()) {
+    std::array<int, 16> slots{};
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        slots[4 * r + c] = slot(t.points[r], t.points[c]);
+    s.shear.push_back(slots);
+  }
+  s.bending_values = Eigen::VectorXd::Zero(matrix_.nonZeros());
+  const double zeta = terms_.bending_rigidity();
+  for (std::size_t k = 0; k < terms_.bending().size(); ++k) {
+    const auto &t = terms_.bending()[k];
+    for (int r = 0; r < t.n_points; ++r)
+      for (int c = 0; c < t.n_points; ++c)
+        s.bending_values[slot(t.points[r], t.points[c])] += zeta * t.weight * t.coef[r] * t.coef[c];
+    if (!t.ghost_body.isZero() || !t.rest.isZero())
+      s.constant_bending_terms.push_back(static_cast<int>(k));
+  }
+  for (int col = 0; col < n; ++col)
+    for (int k = matrix_.outerIndexPtr()[col]; k < matrix_.outerIndexPtr()[col + 1]; ++k) {
+      const int row = matrix_.innerIndexPtr()[k];
+      if (row == col || !(prescribed_[row] || prescribed_[col]))
+        continue;
+      s.prescribed_off_diagonal.push_back(k);
+      if (!prescribed_[row])
+        s.free_row_prescribed_col.push_back({k, row, col});
+    }
+}
+
+void SemiImplicitSystem::fill_values(const PointArray &x, double dt) {
+  const Slots &s = *slots_;
+  double *h = hessian_.valuePtr();
+  Eigen::Map<Eigen::VectorXd>(h, hessian_.nonZeros()) = s.bending_values;
+  for (std::size_t k = 0; k < s.tension.size(); ++k) {
+    const auto &t = terms_.tension()[k];
+    const double v = terms_.sigma(t, x) * t.measure * t.inv_ds_squared;
+    h[s.tension[k][0]] += v, h[s.tension[k][1]] -= v, h[s.tension[k][2]] -= v, h[s.tension[k][3]] += v;
+  }
+  for (std::size_t k = 0; k < s.shear.size(); ++k) {
+    const auto &t = terms_.shear()[k];
+    const double v = terms_.sigma(t, x) * t.measure;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        h[s.shear[k][4 * r + c]] += v * (t.coef_a[r] * t.coef_b[c] + t.coef_b[r] * t.coef_a[c]);
+  }
+  Eigen::Map<Eigen::VectorXd> a(matrix_.valuePtr(), matrix_.nonZeros());
+  a = theta_ * dt * dt * Eigen::Map<const Eigen::VectorXd>(h, hessian_.nonZeros());
+  for (std::size_t i = 0; i < s.diagonal.size(); ++i)
+    a[s.diagonal[i]] += (rho_ + 0.5 * dt * lambda_) * measure_[static_cast<Eigen::Index>(i)];
+}
+
+void SemiImplicitSystem::assemble_rhs(const StepInputs &in, Eigen::MatrixX3d &rhs) const {
+  const double dt = in.dt_s;
+  const Eigen::VectorXd now = 2.0 * rho_ * measure_;
+  const Eigen::VectorXd prev = (rho_ - 0.5 * dt * lambda_) * measure_;
+  rhs = now.asDiagonal() * *in.x_now - prev.asDiagonal() * *in.x_prev + dt * dt * *in.nodal_load_n;
+  if (theta_ < 1.0)
+    rhs -= (1.0 - theta_) * dt * dt * (hessian_ * *in.x_prev);
+  const double zeta = terms_.bending_rigidity();
+  for (const int k : slots_->constant_bending_terms) { // ghost/rest constants: -zeta w coef (R c - rest)
+    const auto &t = terms_.bending()[static_cast<std::size_t>(k)];
+    const Vec3 c = in.clamp_rotation_next * t.ghost_body - t.rest;
+    for (int r = 0; r < t.n_points; ++r)
+      rhs.row(t.points[r]) -= dt * dt * zeta * t.weight * t.coef[r] * c.transpose();
+  }
+}
+
+void SemiImplicitSystem::apply_prescribed(const PointArray &prescribed_next, Eigen::MatrixX3d &rhs) {
+  double *a = matrix_.valuePtr();
+  for (const auto &[k, row, col] : slots_->free_row_prescribed_col)
+    rhs.row(row) -= a[k] * prescribed_next.row(col);
+  for (const int k : slots_->prescribed_off_diagonal)
+    a[k] = 0.0;
+  // A prescribed row keeps its own diagonal (mass scale), so the system stays well scaled.
+  for (std::size_t i = 0; i < prescribed_.size(); ++i)
+    if (prescribed_[i]) {
+      const auto row = static_cast<Eigen::Index>(i);
+      rhs.row(row) = a[slots_->diagonal[i]] * prescribed_next.row(row);
+    }
+}
+
+int SemiImplicitSystem::solve(const StepInputs &in, PointArray &x_next) {
+  fill_values(*in.x_now, in.dt_s);
+  Eigen::MatrixX3d rhs;
+  assemble_rhs(in, rhs);
+  apply_prescribed(*in.prescribed_next, rhs);
+  Eigen::MatrixX3d x = 2.0 * *in.x_now - *in.x_prev; // warm start: constant-velocity guess
+  int iterations = 0;
+  if (!direct_active_) {
+    iterations = solve_cg(rhs, x);
+    if (iterations < 0) {
+      if (solver_kind_ == LinearSolver::conjugate_gradient)
+        throw std::runtime_error("the conjugate-gradient solve of Eq. (4) did not converge; the system may be "
+                                 "indefinite (strong compression): use solver.linear_solver: direct");
+      spdlog::info("linear solver: conjugate gradient did not converge, switching to the direct (LDLT) solver");
+      direct_active_ = true;
+    }
+  }
+  if (direct_active_)
+    solve_direct(rhs, x);
+  x_next = x;
+  return std::max(iterations, 0);
+}
+
+int SemiImplicitSystem::solve_cg(const Eigen::MatrixX3d &b, Eigen::MatrixX3d &x) const {
+  // Jacobi-preconditioned conjugate gradients on the three coordinates at once (one matrix
+  // traversal per iteration). Returns the iteration count, or -1 without convergence.
+  const Eigen::VectorXd inv_diag = matrix_.diagonal().cwiseInverse();
+  // Stop when the preconditioned residual (about the position error, m) is at round-off level
+  // relative to the size of the structure's coordinates.
+  const double tolerance_m = 1e-12 * std::max(x.cwiseAbs().maxCoeff(), 1e-3);
+  Eigen::MatrixX3d r = b - matrix_ * x;
+  Eigen::MatrixX3d z = inv_diag.asDiagonal() * r;
+  Eigen::MatrixX3d p = z;
+  Eigen::Array3d rz = (r.array() * z.array()).colwise().sum();
+  constexpr int max_iterations = 400;
+  for (int it = 0; it < max_iterations; ++it) {
+    const Eigen::Array3d error_m = z.cwiseAbs().colwise().maxCoeff().transpose();
+    if ((error_m <= tolerance_m).all())
+      return it;
+    const Eigen::MatrixX3d q = matrix_ * p;
+    const Eigen::Array3d pq = (p.array() * q.array()).colwise().sum();
+    Eigen::Array3d alpha = Eigen::Array3d::Zero();
+    for (int c = 0; c < 3; ++c) {
+      if (error_m[c] <= tolerance_m)
+        continue; // this coordinate has converged
+      if (!(pq[c] > 0.0))
+        return -1; // not positive definite
+      alpha[c] = rz[c] / pq[c];
+    }
+    x += p * alpha.matrix().asDiagonal();
+    r -= q * alpha.matrix().asDiagonal();
+    z = inv_diag.asDiagonal() * r;
+    const Eigen::Array3d rz_new = (r.array() * z.array()).colwise().sum();
+    const Eigen::Array3d beta = (rz > 0.0).select(rz_new / rz, 0.0);
+    p = z + p * beta.matrix().asDiagonal();
+    rz = rz_new;
+  }
+  return -1;
+}
+
+void SemiImplicitSystem::solve_direct(const Eigen::MatrixX3d &rhs, Eigen::MatrixX3d &x) {
+  if (!ldlt_analysed_) {
+    ldlt_.analyzePattern(matrix_);
+    ldlt_analysed_ = true;
+  }
+  ldlt_.factorize(matrix_);
+  if (ldlt_.info() != Eigen::Success)
+    throw std::runtime_error("the LDLT factorisation of Eq. (4) failed (singular system)");
+  x = ldlt_.solve(rhs);
+}
+
+} // namespace fsi::structure

@@ -1,0 +1,75 @@
+#pragma once
+// One time step of the motion equation, Eq. (4), multiplied through by the point measures A:
+//
+//   [(rho1 + dt lambda/2) A + theta dt^2 H(X^n)] X^{n+1}
+//        = A [2 rho1 X^n - (rho1 - dt lambda/2) X^{n-1}] - (1-theta) dt^2 H X^{n-1}
+//          + dt^2 (L^n - b(t^{n+1}))
+//
+// H is the Hessian of the elastic energy with the tension coefficients sigma frozen at X^n
+// (semi-implicit: -K of Eq. 4), b the constant part of the clamped-edge ghost terms, L the
+// nodal loads (rho1 g - F_fsi + F_c, integrated over each point's measure). theta = 1 is the
+// paper's scheme (first-order dissipative); theta = 1/2 applies H to the average of X^{n+1}
+// and X^{n-1} and conserves the energy of the linearised system exactly.
+// The sparse pattern is built and analysed once; each step only refills the values and solves
+// for the three coordinates together (one matrix, three right-hand sides).
+
+#include "ElasticTerms.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <memory>
+#include <vector>
+
+namespace fsi::structure {
+
+enum class LinearSolver { automatic, conjugate_gradient, direct };
+enum class TimeScheme { paper, energy_conserving };
+
+struct StepInputs {
+  const PointArray *x_now;
+  const PointArray *x_prev;
+  const PointArray *nodal_load_n; ///< N per point
+  const PointArray *prescribed_next; ///< positions of prescribed points at t^{n+1} (others ignored)
+  Eigen::Matrix3d clamp_rotation_next = Eigen::Matrix3d::Identity();
+  double dt_s = 0.0;
+};
+
+class SemiImplicitSystem {
+public:
+  SemiImplicitSystem(const ElasticTerms &terms, const Eigen::VectorXd &point_measure, double mass_per_measure,
+                     double damping_per_measure, std::vector<bool> prescribed, LinearSolver solver, TimeScheme scheme);
+  ~SemiImplicitSystem();
+
+  /// Solves for X^{n+1}; returns the number of CG iterations (0 for the direct solver).
+  int solve(const StepInputs &in, PointArray &x_next);
+
+  const Eigen::SparseMatrix<double> &matrix() const { return matrix_; }
+  bool using_direct_solver() const { return direct_active_; }
+
+private:
+  struct Slots;
+  void build_pattern();
+  void fill_values(const PointArray &x_now, double dt);
+  void assemble_rhs(const StepInputs &in, Eigen::MatrixX3d &rhs) const;
+  void apply_prescribed(const PointArray &prescribed_next, Eigen::MatrixX3d &rhs);
+  int solve_cg(const Eigen::MatrixX3d &rhs, Eigen::MatrixX3d &x) const;
+  void solve_direct(const Eigen::MatrixX3d &rhs, Eigen::MatrixX3d &x);
+  Eigen::MatrixX3d frozen_hessian_times(const PointArray &x) const;
+
+  const ElasticTerms &terms_;
+  Eigen::VectorXd measure_;
+  double rho_, lambda_;
+  std::vector<bool> prescribed_;
+  LinearSolver solver_kind_;
+  double theta_;
+  bool direct_active_ = false;
+
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::SparseMatrix<double> hessian_; ///< frozen H of the current step (for theta < 1)
+  std::unique_ptr<Slots> slots_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  bool ldlt_analysed_ = false;
+};
+
+} // namespace fsi::structure

@@ -1,0 +1,60 @@
+#pragma once
+// The interface every structure model implements (membrane, filament, ...). A model owns its
+// Lagrangian points and advances them one time step given nodal loads; the scene applies
+// collisions (Eq. 11) through correct_positions().
+
+#include "common/Types.hpp"
+
+#include <functional>
+#include <string>
+
+namespace fsi::structure {
+
+struct StructureEnergy {
+  double kinetic_j = 0.0;
+  double elastic_j = 0.0;   ///< tension + bending
+  double potential_j = 0.0; ///< gravitational, -sum m g.X
+  double total() const { return kinetic_j + elastic_j + potential_j; }
+};
+
+class StructureModel {
+public:
+  virtual ~StructureModel() = default;
+
+  virtual const std::string &name() const = 0;
+  /// Registry name of the model ("membrane", "filament").
+  virtual std::string model() const = 0;
+  /// Grid shape (n1, n2); n2 == 1 for filaments. Points are row-major over (s1, s2).
+  virtual std::pair<int, int> grid_shape() const = 0;
+  int n_points() const { return grid_shape().first * grid_shape().second; }
+
+  virtual double time_s() const = 0;
+  virtual const PointArray &positions_m() const = 0;
+  virtual const PointArray &velocities_m_per_s() const = 0;
+  /// Measure (area m^2 or length m) carried by each point: force density x measure = force.
+  virtual const Eigen::VectorXd &point_measures() const = 0;
+  /// Smallest Lagrangian spacing Delta s (m), for the rule Delta s / Delta t >= 100 m/s.
+  virtual double lagrangian_spacing_m() const = 0;
+
+  /// Advances to t + dt under gravity and the given load density (force per unit measure,
+  /// N/m^2 or N/m; e.g. -F_fsi of Eq. 3). Returns linear-solver iterations (diagnostics).
+  virtual int advance(const PointArray &load_density) = 0;
+
+  /// Applies a position correction (collisions, Eq. 11) to X^{n+1}; prescribed points stay.
+  virtual void correct_positions(const std::function<void(PointArray &)> &correction) = 0;
+
+  /// Puts the model back to a saved state (positions and velocities at the current time);
+  /// used to write the last good state after a divergence.
+  virtual void restore_state(const PointArray &x_m, const PointArray &v_m_per_s, double time_s) = 0;
+
+  virtual StructureEnergy energy() const = 0;
+  virtual double max_stretch_ratio() const = 0;
+  /// The configured guard: the run stops when max_stretch_ratio() exceeds it.
+  virtual double stretch_limit() const = 0;
+  /// Index of the point that best explains a divergence (non-finite or most stretched).
+  virtual int worst_point() const = 0;
+  /// "(i1, i2) = (3, 7)": a point's grid coordinates, for messages.
+  virtual std::string describe_point(int index) const = 0;
+};
+
+} // namespace fsi::structure

@@ -1,0 +1,158 @@
+#include "StructureRun.hpp"
+
+#include "common/ConfigEmitter.hpp"
+#include "common/ConfigError.hpp"
+#include "common/Logging.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <fstream>
+
+namespace fsi::structure {
+
+namespace {
+std::atomic<int> stop_signal{0};
+extern "C" void on_stop_signal(int signal) { stop_signal = signal; }
+
+std::string format_duration(double seconds) {
+  char text[32];
+  if (seconds < 120)
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+  else
+    std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(seconds) / 60, static_cast<int>(seconds) % 60);
+  return text;
+}
+} // namespace
+
+StructureRun::StructureRun(CaseConfig config, std::filesystem::path case_dir)
+    : config_(std::move(config)), case_dir_(std::move(case_dir)),
+      output_dir_(case_dir_ / config_.run.output_directory) {
+  config_yaml_ = common::to_yaml(config_);
+}
+
+StructureRun::~StructureRun() = default;
+
+std::vector<std::string> StructureRun::time_step_warnings(const Scene &scene, double time_step_s) {
+  std::vector<std::string> warnings;
+  for (const auto &s : scene.structures()) {
+    const double ratio = s->lagrangian_spacing_m() / time_step_s;
+    if (ratio < 100.0)
+      warnings.push_back("structure '" + s->name() + "': Delta s / Delta t = " + std::to_string(ratio) +
+                         " m/s is below 100 m/s, the stability rule of section 2.2 (Delta s = " +
+                         std::to_string(s->lagrangian_spacing_m()) + " m); reduce run.time_step_s below " +
+                         std::to_string(s->lagrangian_spacing_m() / 100.0) + " s if the run diverges.");
+  }
+  return warnings;
+}
+
+void StructureRun::open_results() {
+  std::filesystem::create_directories(output_dir_);
+  std::ofstream(output_dir_ / "config.effective.yaml") << config_yaml_ << "\n";
+  results_ = std::make_unique<output::ResultsWriter>(output_dir_ / "structure.h5", output_dir_ / "structure.xdmf",
+                                                     output::RunMetadata{config_yaml_, FSI_VERSION});
+  for (const auto &s : scene_->structures())
+    results_->add_structure({s->name(), s->model(), s->grid_shape().first, s->grid_shape().second});
+}
+
+void StructureRun::write_state(long step) {
+  output::StepRecord record{step, scene_->time_s(), {}};
+  for (const auto &s : scene_->structures()) {
+    const StructureEnergy e = s->energy();
+    record.structures.push_back(
+        {&s->positions_m(), &s->velocities_m_per_s(), s->max_stretch_ratio(), e.kinetic_j, e.elastic_j, e.potential_j});
+  }
+  results_->write_step(record);
+  last_written_step_ = step;
+}
+
+std::optional<Divergence> StructureRun::find_divergence(long step) const {
+  for (const auto &s : scene_->structures()) {
+    const bool finite = s->positions_m().allFinite();
+    const double stretch = finite ? s->max_stretch_ratio() : NAN;
+    if (finite && stretch <= s->stretch_limit())
+      continue;
+    const int point = s->worst_point();
+    std::string message = "step " + std::to_string(step) + " (t = " + std::to_string(scene_->time_s()) +
+                          " s): structure '" + s->name() + "', " + s->describe_point(point) + ": ";
+    message += finite ? "stretch ratio " + std::to_string(stretch) + " exceeds solver.max_stretch_ratio = " +
+                            std::to_string(s->stretch_limit())
+                      : "position is not finite";
+    message += ". Likely cause: the time step is too large for the stiffness (tension coefficient) or the "
+               "Lagrangian spacing; reduce run.time_step_s (rule Delta s / Delta t >= 100 m/s) or the tension "
+               "coefficient, or use solver.time_scheme: paper.";
+    return Divergence{message};
+  }
+  return std::nullopt;
+}
+
+void StructureRun::report_progress(long step, long n_steps, bool force) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!force && std::chrono::duration<double>(now - last_progress_).count() < config_.run.progress_interval_s)
+    return;
+  last_progress_ = now;
+  const double wall = std::chrono::duration<double>(now - start_).count();
+  const double eta = step > 0 ? wall * static_cast<double>(n_steps - step) / static_cast<double>(step) : 0.0;
+  spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step", step, n_steps, scene_->time_s(),
+               100.0 * static_cast<double>(step) / static_cast<double>(n_steps), format_duration(wall),
+               format_duration(eta), step > 0 ? 1e3 * wall / static_cast<double>(step) : 0.0);
+}
+
+void StructureRun::stop_with(const std::string &status, long last_good_step) {
+  const double last_good_time = static_cast<double>(last_good_step) * config_.run.time_step_s;
+  for (std::size_t i = 0; i < scene_->structures().size(); ++i)
+    scene_->structures()[i]->restore_state(last_good_x_[i], last_good_v_[i], last_good_time);
+  if (last_written_step_ != last_good_step)
+    write_state(last_good_step);
+  results_->set_status(status);
+}
+
+int StructureRun::run() {
+  std::filesystem::create_directories(output_dir_);
+  common::add_log_file(output_dir_ / "structure.log");
+  spdlog::info("case {}: effective configuration\n{}", case_dir_.string(), config_yaml_);
+  scene_ = std::make_unique<Scene>(config_);
+  for (const auto &warning : time_step_warnings(*scene_, config_.run.time_step_s))
+    spdlog::warn("{}", warning);
+  open_results();
+  const double dt = config_.run.time_step_s;
+  const long n_steps = std::lround(config_.run.end_time_s / dt);
+  const long output_every = std::max(1L, std::lround(config_.run.output_interval_s / dt));
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  start_ = last_progress_ = std::chrono::steady_clock::now();
+  write_state(0);
+  last_good_x_.resize(scene_->structures().size());
+  last_good_v_.resize(scene_->structures().size());
+  for (long step = 1; step <= n_steps; ++step) {
+    for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
+      last_good_x_[i] = scene_->structures()[i]->positions_m();
+      last_good_v_[i] = scene_->structures()[i]->velocities_m_per_s();
+    }
+    scene_->advance();
+    if (const auto divergence = find_divergence(step)) {
+      spdlog::error("diverged at {}", divergence->message);
+      stop_with("diverged: " + divergence->message, step - 1);
+      spdlog::error("the last good state (step {}) is in {}", step - 1, results_->h5_path().string());
+      return common::exit_code_run_failed;
+    }
+    if (stop_signal != 0) {
+      write_state(step);
+      results_->set_status("interrupted");
+      spdlog::warn("interrupted by signal {} at step {}; results so far are in {}", int(stop_signal), step,
+                   results_->h5_path().string());
+      return 130;
+    }
+    if (step % output_every == 0 || step == n_steps)
+      write_state(step);
+    report_progress(step, n_steps, step == n_steps);
+  }
+  results_->set_status("completed");
+  spdlog::info("completed: {} saved steps in {} (open {} in ParaView)", results_->n_saved(),
+               results_->h5_path().string(), (output_dir_ / "structure.xdmf").string());
+  return 0;
+}
+
+} // namespace fsi::structure
