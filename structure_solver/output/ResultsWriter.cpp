@@ -1,0 +1,155 @@
+#include "structure_solver/output/ResultsWriter.hpp"
+
+#include "structure_solver/output/H5Attributes.hpp"
+#include "structure_solver/output/H5Error.hpp"
+#include "structure_solver/output/H5FileAccess.hpp"
+#include "structure_solver/output/ResultsPaths.hpp"
+
+#include <ctime>
+#include <stdexcept>
+
+namespace fsi::structure::output {
+namespace {
+
+constexpr hsize_t scalar_rows_per_chunk = 1024;
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+H5Handle create_file(const std::filesystem::path &h5_path) {
+  silence_hdf5_error_printing();
+  const std::string what = "cannot create the results file '" + h5_path.string() + "'";
+  const H5Handle access = file_access_without_locking(what);
+  return H5Handle::file(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), what);
+}
+
+std::string prefixed(const std::filesystem::path &h5_path, const std::string &message) {
+  return "results file '" + h5_path.string() + "': " + message;
+}
+
+} // namespace
+
+ResultsWriter::ResultsWriter(std::filesystem::path h5_path, std::filesystem::path xdmf_path,
+                             RunMetadata meta)
+    : h5_path_(std::move(h5_path)), file_(create_file(h5_path_)) {
+  try {
+    write_root_attributes(meta);
+    structures_group_ = H5Handle::group(
+        H5Gcreate2(file_.get(), paths::structures_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        "cannot create group /structures");
+    time_s_ = std::make_unique<ExtendableDataset>(
+        file_.get(), paths::time_s, ExtendableDataset::ElementType::float64, std::vector<hsize_t>{},
+        scalar_rows_per_chunk, "s");
+    step_ = std::make_unique<ExtendableDataset>(file_.get(), paths::step,
+                                                ExtendableDataset::ElementType::int64,
+                                                std::vector<hsize_t>{}, scalar_rows_per_chunk, "1");
+    flush();
+  } catch (const std::runtime_error &error) {
+    throw std::runtime_error(prefixed(h5_path_, error.what()));
+  }
+  xdmf_ = std::make_unique<XdmfWriter>(std::move(xdmf_path), h5_path_);
+}
+
+ResultsWriter::~ResultsWriter() = default;
+
+void ResultsWriter::add_structure(const StructureLayout &layout) {
+  throw_if_failed();
+  if (n_saved_ > 0) {
+    throw std::logic_error(
+        prefixed(h5_path_, "structure '" + layout.name + "' added after the first step"));
+  }
+  for (const StructureSeries &existing : structures_) {
+    if (existing.layout().name == layout.name) {
+      throw std::invalid_argument(
+          prefixed(h5_path_, "structure '" + layout.name + "' added twice"));
+    }
+  }
+  const Connectivity connectivity = connectivity_of(layout);
+  try {
+    structures_.emplace_back(structures_group_.get(), layout, connectivity);
+    xdmf_->add_structure(layout, connectivity);
+    flush();
+  } catch (const std::runtime_error &error) {
+    fail(error);
+  }
+}
+
+void ResultsWriter::write_step(const StepRecord &record) {
+  throw_if_failed();
+  check_record(record);
+  try {
+    append_rows(record);
+    flush();
+    ++n_saved_;
+    xdmf_->append_step(record.time_s);
+  } catch (const std::runtime_error &error) {
+    fail(error);
+  }
+}
+
+void ResultsWriter::set_status(const std::string &status) {
+  try {
+    write_string_attribute(file_.get(), "status", status);
+    flush();
+  } catch (const std::runtime_error &error) {
+    throw std::runtime_error(prefixed(h5_path_, error.what()));
+  }
+}
+
+void ResultsWriter::write_root_attributes(const RunMetadata &meta) {
+  write_string_attribute(file_.get(), "units", "SI");
+  write_string_attribute(file_.get(), "config_yaml", meta.config_yaml);
+  write_string_attribute(file_.get(), "code_version", meta.code_version);
+  write_string_attribute(file_.get(), "status", "running");
+  write_string_attribute(file_.get(), "created_utc", utc_now_iso8601());
+}
+
+void ResultsWriter::check_record(const StepRecord &record) const {
+  if (record.structures.size() != structures_.size()) {
+    throw std::invalid_argument(prefixed(h5_path_, "step " + std::to_string(record.step) + " has " +
+                                                       std::to_string(record.structures.size()) +
+                                                       " structure states, the file has " +
+                                                       std::to_string(structures_.size()) +
+                                                       " structures"));
+  }
+  for (std::size_t i = 0; i < structures_.size(); ++i) {
+    try {
+      structures_[i].check(record.structures[i]);
+    } catch (const std::invalid_argument &error) {
+      throw std::invalid_argument(prefixed(h5_path_, error.what()));
+    }
+  }
+}
+
+/// Per-structure rows first and /time_s last: a reader that trusts the length of /time_s
+/// never sees a partly written step.
+void ResultsWriter::append_rows(const StepRecord &record) {
+  for (std::size_t i = 0; i < structures_.size(); ++i) {
+    structures_[i].append(record.structures[i]);
+  }
+  const std::int64_t step = record.step;
+  step_->append_row(&step);
+  time_s_->append_row(&record.time_s);
+}
+
+void ResultsWriter::flush() { check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush"); }
+
+void ResultsWriter::throw_if_failed() const {
+  if (!failure_.empty()) {
+    throw std::runtime_error("results file '" + h5_path_.string() +
+                             "' is unusable after an earlier error: " + failure_);
+  }
+}
+
+void ResultsWriter::fail(const std::exception &error) {
+  failure_ = error.what();
+  throw std::runtime_error(prefixed(h5_path_, error.what()));
+}
+
+} // namespace fsi::structure::output
