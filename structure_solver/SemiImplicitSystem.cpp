@@ -7,6 +7,11 @@
 
 namespace fsi::structure {
 
+namespace {
+/// In `auto` mode, more CG iterations than this in one step switch to the direct solver.
+constexpr int cg_iteration_budget = 60;
+} // namespace
+
 /// Positions in the value array of the sparse matrix, precomputed once per pattern.
 struct SemiImplicitSystem::Slots {
   std::vector<std::array<int, 4>> tension;  ///< aa, ab, ba, bb
@@ -152,7 +157,12 @@ int SemiImplicitSystem::solve(const StepInputs &in, PointArray &x_next) {
   int iterations = 0;
   if (!direct_active_) {
     iterations = solve_cg(rhs, x);
-    if (iterations < 0) {
+    if (iterations > cg_iteration_budget && solver_kind_ == LinearSolver::automatic) {
+      spdlog::info("linear solver: conjugate gradient needed {} iterations (stiff system for this time step), "
+                   "switching to the direct (LDLT) solver",
+                   iterations);
+      direct_active_ = true;
+    } else if (iterations < 0) {
       if (solver_kind_ == LinearSolver::conjugate_gradient)
         throw std::runtime_error("the conjugate-gradient solve of Eq. (4) did not converge; the system may be "
                                  "indefinite (strong compression): use solver.linear_solver: direct");
@@ -170,11 +180,12 @@ int SemiImplicitSystem::solve_cg(const Eigen::MatrixX3d &b, Eigen::MatrixX3d &x)
   // Jacobi-preconditioned conjugate gradients on the three coordinates at once (one matrix
   // traversal per iteration). Returns the iteration count, or -1 without convergence.
   const Eigen::VectorXd inv_diag = matrix_.diagonal().cwiseInverse();
-  // Stop when the preconditioned residual (about the position error, m) is at round-off level
-  // relative to the size of the structure's coordinates.
-  const double tolerance_m = 1e-12 * std::max(x.cwiseAbs().maxCoeff(), 1e-3);
   Eigen::MatrixX3d r = b - matrix_ * x;
   Eigen::MatrixX3d z = inv_diag.asDiagonal() * r;
+  // Stop when the preconditioned residual has dropped by 1e-10 from that of the warm start
+  // (the constant-velocity guess), or reached round-off relative to the coordinates.
+  const double round_off_m = 1e-15 * std::max(x.cwiseAbs().maxCoeff(), 1e-3);
+  const double tolerance_m = std::max(1e-10 * z.cwiseAbs().maxCoeff(), round_off_m);
   Eigen::MatrixX3d p = z;
   Eigen::Array3d rz = (r.array() * z.array()).colwise().sum();
   constexpr int max_iterations = 400;

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# fsi: the one entry point. Installs missing Debian packages, configures and builds with
+# CMake (Release), then runs a case, validates it, runs the tests or the benchmarks.
+#
+#   ./fsi run CASE_DIR        build, then run the case (results in CASE_DIR/output/)
+#   ./fsi check CASE_DIR      validate a case without running it
+#   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
+#   ./fsi bench [structure]   run the benchmarks
+#   ./fsi schema              print the case-file reference (Markdown)
+#
+# Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
+# FSI_SANITIZE=0 skips the sanitizer pass of './fsi test'.
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+BUILD=${FSI_BUILD_DIR:-$ROOT/build}
+JOBS=${FSI_JOBS:-$(nproc)}
+PACKAGES=(cmake ninja-build g++ ccache git pkg-config libeigen3-dev libspdlog-dev libfmt-dev libhdf5-dev
+          libyaml-cpp-dev libcli11-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libnanoflann-dev
+          libgtest-dev libgmock-dev libbenchmark-dev python3-h5py python3-matplotlib python3-numpy)
+
+say() { printf 'fsi: %s\n' "$*" >&2; }
+die() { printf 'fsi: error: %s\n' "$*" >&2; exit 2; }
+
+ensure_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  say "installing Debian packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq >/dev/null
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# build DIR [extra cmake args...]: configure once, then build quietly (log in DIR/build.log).
+build() {
+  local dir=$1; shift
+  if [ ! -f "$dir/build.ninja" ]; then
+    mkdir -p "$dir"
+    cmake -S "$ROOT" -B "$dir" -G Ninja "$@" >"$dir/configure.log" 2>&1 ||
+      { cat "$dir/configure.log" >&2; die "CMake configuration failed (log: $dir/configure.log)"; }
+  fi
+  if ninja -C "$dir" -n 2>/dev/null | grep -q "no work to do"; then return 0; fi
+  say "building in $dir (log: $dir/build.log)"
+  if ! cmake --build "$dir" -j "$JOBS" >"$dir/build.log" 2>&1; then
+    grep -E "error|Error" -A3 "$dir/build.log" | head -60 >&2
+    die "build failed (full log: $dir/build.log)"
+  fi
+}
+
+prepare() { ensure_packages; build "$BUILD" -DCMAKE_BUILD_TYPE=Release; }
+
+cmd_run() {
+  [ $# -ge 1 ] || die "usage: ./fsi run CASE_DIR"
+  prepare
+  "$BUILD/bin/fsi-structure" "$@"
+}
+
+cmd_check() {
+  [ $# -ge 1 ] || die "usage: ./fsi check CASE_DIR"
+  prepare
+  "$BUILD/bin/fsi-structure" --check "$@"
+}
+
+cmd_test() {
+  prepare
+  ctest --test-dir "$BUILD" --output-on-failure -j "$JOBS" --timeout 900 -LE sanitize-skip
+  if [ "${FSI_SANITIZE:-1}" != "0" ]; then
+    say "sanitizer pass (AddressSanitizer + UndefinedBehaviorSanitizer) of the structure tests"
+    build "$ROOT/build-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSI_SANITIZE=ON -DFSI_BUILD_BENCH=OFF
+    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 FSI_SANITIZED=1 \
+      ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS" -L structure --timeout 1800
+  fi
+}
+
+cmd_bench() {
+  prepare
+  local which=${1:-structure}
+  case "$which" in
+    structure) "$BUILD/bin/bench_structure" --benchmark_counters_tabular=true ;;
+    *) die "unknown benchmark '$which' (available: structure)" ;;
+  esac
+}
+
+case "${1:-help}" in
+  run) shift; cmd_run "$@" ;;
+  check) shift; cmd_check "$@" ;;
+  test) shift; cmd_test "$@" ;;
+  bench) shift; cmd_bench "$@" ;;
+  schema) prepare; "$BUILD/bin/fsi-structure" --schema ;;
+  build) prepare ;;
+  help|-h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, check, test, bench, schema, build, help)" ;;
+esac

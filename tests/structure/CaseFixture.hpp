@@ -1,0 +1,44 @@
+#pragma once
+// Test support: writes a case.yaml into a fresh temporary folder and builds the scene
+// through the real parser, so tests exercise the same path as `fsi-structure CASE_DIR`.
+
+#include "structure_solver/CaseConfig.hpp"
+#include "structure_solver/LagrangianSheet.hpp"
+#include "structure_solver/Scene.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace fsi::structure::testing {
+
+inline std::filesystem::path make_case_dir(const std::string &yaml) {
+  static std::mt19937_64 rng(std::random_device{}());
+  const auto dir = std::filesystem::temp_directory_path() / ("fsi-test-" + std::to_string(rng()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "case.yaml") << yaml;
+  return dir;
+}
+
+inline CaseConfig load_case(const std::string &yaml) { return CaseConfig::load(make_case_dir(yaml)); }
+
+inline LagrangianSheet &sheet(const Scene &scene, std::size_t index = 0) {
+  return dynamic_cast<LagrangianSheet &>(*scene.structures().at(index));
+}
+
+/// Times at which `signal` crosses zero upward (linear interpolation between samples).
+inline std::vector<double> upward_crossings(const std::vector<double> &time, const std::vector<double> &signal) {
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < signal.size(); ++i)
+    if (signal[i - 1] < 0.0 && signal[i] >= 0.0)
+      crossings.push_back(time[i - 1] + (time[i] - time[i - 1]) * (-signal[i - 1]) / (signal[i] - signal[i - 1]));
+  return crossings;
+}
+
+/// Mean period from upward zero crossings (needs at least two).
+inline double mean_period(const std::vector<double> &crossings) {
+  return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+}
+
+} // namespace fsi::structure::testing
