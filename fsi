@@ -57,7 +57,15 @@ prepare() { ensure_packages; build "$BUILD" -DCMAKE_BUILD_TYPE=Release; }
 cmd_run() {
   [ $# -ge 1 ] || die "usage: ./fsi run CASE_DIR"
   prepare
-  "$BUILD/bin/fsi-structure" "$@"
+  local case_dir=${!#} status=0
+  "$BUILD/bin/fsi-structure" "$@" || status=$?
+  local results="$case_dir/output/structure.h5"
+  if [ "$status" -le 1 ] && [ -f "$results" ]; then
+    if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$case_dir/output/summary.png" 2>/dev/null; then
+      say "picture: $case_dir/output/summary.png"
+    fi
+  fi
+  return "$status"
 }
 
 cmd_check() {

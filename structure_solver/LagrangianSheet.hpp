@@ -8,6 +8,7 @@
 #include "StructureModel.hpp"
 #include "common/RigidMotion.hpp"
 
+#include <cmath>
 #include <memory>
 
 namespace fsi::structure {
@@ -47,6 +48,9 @@ public:
   const PointArray &velocities_m_per_s() const override { return v_; }
   const Eigen::VectorXd &point_measures() const override { return measure_; }
   double lagrangian_spacing_m() const override { return setup_.grid.min_spacing_m(); }
+  double tension_wave_speed_m_per_s() const override {
+    return std::sqrt(2.0 * setup_.tension_coefficient / setup_.mass_per_measure);
+  }
 
   int advance(const PointArray &load_density) override;
   void correct_positions(const std::function<void(PointArray &)> &correction) override;

@@ -35,6 +35,10 @@ public:
   virtual const Eigen::VectorXd &point_measures() const = 0;
   /// Smallest Lagrangian spacing Delta s (m), for the rule Delta s / Delta t >= 100 m/s.
   virtual double lagrangian_spacing_m() const = 0;
+  /// Speed of stretching waves, sqrt(2 phi / rho_1) (m/s). The tension coefficients are
+  /// frozen at X^n in Eq. (4), so stretching is explicit: the step is stable for about
+  /// Delta s / Delta t >= this speed (measured: see the closing note of issue 2).
+  virtual double tension_wave_speed_m_per_s() const = 0;
 
   /// Advances to t + dt under gravity and the given load density (force per unit measure,
   /// N/m^2 or N/m; e.g. -F_fsi of Eq. 3). Returns linear-solver iterations (diagnostics).

@@ -38,12 +38,19 @@ StructureRun::~StructureRun() = default;
 std::vector<std::string> StructureRun::time_step_warnings(const Scene &scene, double time_step_s) {
   std::vector<std::string> warnings;
   for (const auto &s : scene.structures()) {
-    const double ratio = s->lagrangian_spacing_m() / time_step_s;
-    if (ratio < 100.0)
-      warnings.push_back("structure '" + s->name() + "': Delta s / Delta t = " + std::to_string(ratio) +
-                         " m/s is below 100 m/s, the stability rule of section 2.2 (Delta s = " +
-                         std::to_string(s->lagrangian_spacing_m()) + " m); reduce run.time_step_s below " +
-                         std::to_string(s->lagrangian_spacing_m() / 100.0) + " s if the run diverges.");
+    const double ds = s->lagrangian_spacing_m(), ratio = ds / time_step_s;
+    const double wave_speed = s->tension_wave_speed_m_per_s();
+    if (ratio < wave_speed)
+      warnings.push_back(fmt::format(
+          "structure '{}': Delta s / Delta t = {:.4g} m/s is below the stretching-wave speed sqrt(2 phi / rho_1) = "
+          "{:.4g} m/s: the semi-implicit step of Eq. (4) is expected to diverge. Use run.time_step_s <= {:.3g} s, or "
+          "a smaller tension coefficient, or a coarser Lagrangian grid.",
+          s->name(), ratio, wave_speed, ds / wave_speed));
+    else if (ratio < 100.0)
+      warnings.push_back(fmt::format(
+          "structure '{}': Delta s / Delta t = {:.4g} m/s is below 100 m/s, the rule of section 2.2 (Delta s = "
+          "{:.4g} m); it stays above the stretching-wave speed {:.4g} m/s, so the step should be stable.",
+          s->name(), ratio, ds, wave_speed));
   }
   return warnings;
 }

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Regenerates the case-file reference in README.md (between the case-reference markers) from
+# the declarations the parser uses (`fsi-structure --schema`). A test fails when it is stale.
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BIN=${1:-$ROOT/build/bin/fsi-structure}
+schema=$(mktemp)
+"$BIN" --schema >"$schema"
+/usr/bin/python3 - "$ROOT/README.md" "$schema" <<'PY'
+import sys
+readme_path, schema_path = sys.argv[1], sys.argv[2]
+begin, end = "<!-- case-reference:begin -->\n", "<!-- case-reference:end -->"
+text = open(readme_path).read()
+head, rest = text.split(begin, 1)
+_, tail = rest.split(end, 1)
+open(readme_path, "w").write(head + begin + open(schema_path).read() + end + tail)
+PY
+rm -f "$schema"

@@ -1,0 +1,111 @@
+#include "structure_solver/collision/CollisionSet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace fsi::structure::collision {
+namespace {
+
+/// A point already at d_c (up to round-off, e.g. just corrected with d_t = d_c) is not
+/// corrected again.
+constexpr double kSettledTolerance_m = 1e-12;
+
+} // namespace
+
+double CorrectionStats::deepest_penetration_m() const {
+  return std::max(0.0, -min_signed_distance_m);
+}
+
+CollisionSet::CollisionSet(double threshold_m, double target_distance_m, int max_passes)
+    : threshold_m_(threshold_m), target_distance_m_(target_distance_m), max_passes_(max_passes) {
+  if (!(threshold_m > 0.0) || !std::isfinite(threshold_m)) {
+    throw std::invalid_argument("collision threshold_m = " + std::to_string(threshold_m) +
+                                " must be positive (the paper uses two Eulerian cell widths).");
+  }
+  if (!(target_distance_m >= threshold_m) || !std::isfinite(target_distance_m)) {
+    throw std::invalid_argument("collision target_distance_m = " +
+                                std::to_string(target_distance_m) +
+                                " must be at least threshold_m = " + std::to_string(threshold_m) +
+                                ", or corrected points would be corrected again.");
+  }
+  if (max_passes < 1) {
+    throw std::invalid_argument("collision max_passes = " + std::to_string(max_passes) +
+                                " must be at least 1.");
+  }
+}
+
+void CollisionSet::add_surface(std::unique_ptr<RigidSurface> surface,
+                               std::shared_ptr<const common::RigidMotion> motion) {
+  if (!surface || !motion) {
+    throw std::invalid_argument("CollisionSet::add_surface needs a surface and a motion.");
+  }
+  surface->prepare_culling(threshold_m_);
+  bodies_.push_back({std::move(surface), std::move(motion)});
+}
+
+CorrectionStats CollisionSet::correct(PointArray &positions_m, double time_s) const {
+  CorrectionStats stats;
+  const auto n_points = static_cast<std::size_t>(positions_m.rows());
+  if (bodies_.empty() || n_points == 0) {
+    return stats;
+  }
+  // The first pass checks every point; later passes only the points moved in the pass
+  // before (a point that did not move keeps the distances it was checked with).
+  std::vector<Eigen::Index> active(n_points);
+  for (std::size_t i = 0; i < n_points; ++i) active[i] = static_cast<Eigen::Index>(i);
+  std::vector<char> was_corrected(n_points, 0), moved(n_points, 0);
+  for (int pass = 0; pass < max_passes_ && !active.empty(); ++pass) {
+    for (const Body &body : bodies_) {
+      correct_against(body, positions_m, time_s, active, moved, was_corrected, stats);
+    }
+    ++stats.n_passes;
+    std::vector<Eigen::Index> next;
+    for (Eigen::Index i : active) {
+      if (moved[static_cast<std::size_t>(i)]) next.push_back(i);
+      moved[static_cast<std::size_t>(i)] = 0;
+    }
+    active = std::move(next);
+  }
+  stats.n_points_corrected =
+      static_cast<std::size_t>(std::count(was_corrected.begin(), was_corrected.end(), 1));
+  return stats;
+}
+
+void CollisionSet::correct_against(const Body &body, PointArray &positions_m, double time_s,
+                                   const std::vector<Eigen::Index> &active,
+                                   std::vector<char> &moved, std::vector<char> &was_corrected,
+                                   CorrectionStats &stats) const {
+  const Eigen::Isometry3d body_to_world = body.motion->pose_at(time_s);
+  const Eigen::Isometry3d world_to_body = body_to_world.inverse();
+  const Eigen::Matrix3d rotation = body_to_world.linear();
+  const double trigger_m = threshold_m_ - kSettledTolerance_m;
+  for (Eigen::Index i : active) {
+    const Vec3 world_m = positions_m.row(i).transpose();
+    if (!world_m.allFinite()) continue;
+    const Vec3 body_m = world_to_body * world_m;
+    if (!body.surface->may_be_within(body_m, threshold_m_)) continue;
+    const SurfaceDistance d = body.surface->distance(body_m);
+    if (!(d.signed_distance_m < trigger_m)) continue;
+    // Eq. 11: X_c = X + n_w (d_t - eps_c), with n_w rotated from the body to the world.
+    const Vec3 shift_m =
+        rotation * (d.normal_into_fluid * (target_distance_m_ - d.signed_distance_m));
+    positions_m.row(i) += shift_m.transpose();
+    stats.min_signed_distance_m = std::min(stats.min_signed_distance_m, d.signed_distance_m);
+    was_corrected[static_cast<std::size_t>(i)] = 1;
+    moved[static_cast<std::size_t>(i)] = 1;
+    ++stats.n_corrections;
+  }
+}
+
+std::string CollisionSet::describe() const {
+  std::string text = "collision: d_c = " + std::to_string(threshold_m_) + " m, d_t = " +
+                     std::to_string(target_distance_m_) + " m, " +
+                     std::to_string(bodies_.size()) + " surface(s)";
+  for (const Body &body : bodies_) {
+    text += "\n  " + body.surface->describe() + (body.motion->is_static() ? " (static)" : " (moving)");
+  }
+  return text;
+}
+
+} // namespace fsi::structure::collision

@@ -1,0 +1,70 @@
+#pragma once
+// The collision model of Sec. 2.5: rigid surfaces, each following its own prescribed motion,
+// and the correction of Eq. 11 applied to the Lagrangian points of a sheet.
+
+#include "common/RigidMotion.hpp"
+#include "common/Types.hpp"
+#include "structure_solver/collision/RigidSurface.hpp"
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi::structure::collision {
+
+/// What one call of CollisionSet::correct() did.
+struct CorrectionStats {
+  std::size_t n_points_corrected = 0; ///< distinct points moved at least once
+  std::size_t n_corrections = 0;      ///< point moves, summed over surfaces and passes
+  std::size_t n_passes = 0;           ///< passes over all surfaces that were run
+  /// Most negative signed distance met by a corrected point (m); +infinity when none.
+  double min_signed_distance_m = std::numeric_limits<double>::infinity();
+
+  /// Deepest penetration into a solid (m): max(0, -min_signed_distance_m).
+  double deepest_penetration_m() const;
+};
+
+class CollisionSet {
+public:
+  /// threshold_m is d_c, target_distance_m is d_t of Eq. 11; max_passes bounds the repeated
+  /// passes that settle points near two surfaces (a corner). Throws std::invalid_argument
+  /// unless 0 < threshold_m <= target_distance_m and max_passes >= 1.
+  CollisionSet(double threshold_m, double target_distance_m, int max_passes = 4);
+
+  /// Adds a surface that follows `motion` (body frame -> world). Prepares its culling data
+  /// for the threshold. Throws std::invalid_argument for a null surface or motion.
+  void add_surface(std::unique_ptr<RigidSurface> surface,
+                   std::shared_ptr<const common::RigidMotion> motion);
+
+  /// Eq. 11: every point closer than d_c to a surface (or inside it) is moved along the wall
+  /// normal to distance d_t. Surfaces are applied in turn and the pass repeated until no point
+  /// moves (at most max_passes). Non-finite points are left alone.
+  CorrectionStats correct(PointArray &positions_m, double time_s) const;
+
+  std::size_t n_surfaces() const { return bodies_.size(); }
+  double threshold_m() const { return threshold_m_; }
+  double target_distance_m() const { return target_distance_m_; }
+  /// One line per surface, for the log.
+  std::string describe() const;
+
+private:
+  struct Body {
+    std::unique_ptr<RigidSurface> surface;
+    std::shared_ptr<const common::RigidMotion> motion;
+  };
+
+  /// Applies Eq. 11 for one surface to the points listed in `active`; marks the points it
+  /// moves in `moved` and `was_corrected`.
+  void correct_against(const Body &body, PointArray &positions_m, double time_s,
+                       const std::vector<Eigen::Index> &active, std::vector<char> &moved,
+                       std::vector<char> &was_corrected, CorrectionStats &stats) const;
+
+  double threshold_m_;
+  double target_distance_m_;
+  int max_passes_;
+  std::vector<Body> bodies_;
+};
+
+} // namespace fsi::structure::collision

@@ -1,0 +1,147 @@
+// Behaviour a user relies on, through the real executable: bad input gives one clear error,
+// exit code 2 and no results; a diverging run stops with exit code 1, a message naming the
+// step, the point and the likely cause, and the last good state on disk; `--check` validates
+// without running; the README's case reference is the one generated from the declarations.
+
+#include "CaseFixture.hpp"
+#include "structure_solver/SchemaDoc.hpp"
+#include "structure_solver/output/ResultsReader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace fsi::structure {
+namespace {
+
+struct Outcome {
+  int exit_code;
+  std::string output;
+};
+
+Outcome run_solver(const std::string &arguments) {
+  const std::string command = std::string(FSI_STRUCTURE_EXE) + " " + arguments + " 2>&1";
+  FILE *pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe))
+    output += buffer.data();
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
+}
+
+const char *valid_case = R"(run: {end_time_s: 0.01, time_step_s: 1.0e-4, output_interval_s: 0.005}
+gravity_m_per_s2: [0, 0, -9.81]
+structures:
+  - name: sheet
+    model: membrane
+    size_m: [0.1, 0.05]
+    n_points: [11, 6]
+    material:
+      mass_per_area_kg_per_m2: 0.08
+    edges: {s1_min: clamped}
+)";
+
+std::string with(const std::string &from, const std::string &to) {
+  std::string yaml = valid_case;
+  const auto at = yaml.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return yaml.replace(at, from.size(), to);
+}
+
+void expect_bad_input(const std::string &yaml, const std::string &expected_message) {
+  const auto dir = testing::make_case_dir(yaml);
+  const Outcome out = run_solver(dir.string());
+  EXPECT_EQ(out.exit_code, 2) << out.output;
+  EXPECT_NE(out.output.find(expected_message), std::string::npos) << out.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "output" / "structure.h5")) << "a rejected case wrote results";
+}
+
+TEST(RunBehaviour, UnknownKeyIsRejectedWithASuggestion) {
+  expect_bad_input(with("mass_per_area_kg_per_m2", "mass_per_aera_kg_per_m2"),
+                   "unknown key 'structures[0].material.mass_per_aera_kg_per_m2'. Did you mean 'mass_per_area_kg_per_m2'?");
+}
+
+TEST(RunBehaviour, UnknownModelListsTheValidModels) {
+  expect_bad_input(with("model: membrane", "model: membrain"), "Did you mean 'membrane'? Valid models: membrane, filament");
+}
+
+TEST(RunBehaviour, NegativeDensityIsOutOfRange) {
+  expect_bad_input(with("mass_per_area_kg_per_m2: 0.08", "mass_per_area_kg_per_m2: -0.08"),
+                   "mass_per_area_kg_per_m2 = -0.08 is out of range: allowed > 0 kg/m^2");
+}
+
+TEST(RunBehaviour, ImpossibleTimeStepIsRejected) {
+  expect_bad_input(with("time_step_s: 1.0e-4", "time_step_s: 0"), "time_step_s = 0 is out of range");
+  expect_bad_input(with("end_time_s: 0.01", "end_time_s: 1.0e-6"), "end_time_s must be at least one time step");
+}
+
+TEST(RunBehaviour, MissingMeshFileIsNamed) {
+  expect_bad_input(std::string(valid_case) + "collisions:\n  surfaces:\n    - mesh: {file: impeller.stl}\n",
+                   "impeller.stl': file not found");
+}
+
+TEST(RunBehaviour, MalformedYamlAndWrongTypesAreRejected) {
+  expect_bad_input(with("n_points: [11, 6]", "n_points: [11, 6"), "not valid YAML");
+  expect_bad_input(with("n_points: [11, 6]", "n_points: eleven"), "must be a list of two integers");
+  expect_bad_input(with("{s1_min: clamped}", "{s1_min: glued}"), "'glued' is not one of: free, pinned, clamped");
+}
+
+TEST(RunBehaviour, MissingCaseFolderIsBadInput) {
+  const Outcome out = run_solver("/nonexistent/case");
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.output.find("not a case folder"), std::string::npos) << out.output;
+}
+
+TEST(RunBehaviour, CheckValidatesWithoutRunning) {
+  const auto dir = testing::make_case_dir(valid_case);
+  const Outcome out = run_solver("--check " + dir.string());
+  EXPECT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_NE(out.output.find("is valid"), std::string::npos) << out.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "output"));
+}
+
+TEST(RunBehaviour, CompletedRunWritesResultsAndEffectiveConfiguration) {
+  const auto dir = testing::make_case_dir(valid_case);
+  const Outcome out = run_solver(dir.string());
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  output::ResultsReader results(dir / "output" / "structure.h5");
+  EXPECT_EQ(results.n_saved(), 3); // t = 0, 0.005, 0.01
+  EXPECT_EQ(results.string_attribute("/", "status"), "completed");
+  EXPECT_TRUE(std::filesystem::exists(dir / "output" / "structure.xdmf"));
+  std::ifstream effective(dir / "output" / "config.effective.yaml");
+  std::stringstream text;
+  text << effective.rdbuf();
+  EXPECT_NE(text.str().find("damping_kg_per_m2_s: 0"), std::string::npos) << "defaults must be echoed";
+}
+
+TEST(RunBehaviour, DivergenceStopsWithStepPointCauseAndLastGoodState) {
+  // phi = 1e5 N/m with rho_1 = 0.08 kg/m^2: tension wave speed sqrt(2 phi / rho_1) = 1600 m/s,
+  // far beyond Delta s / Delta t = 100 m/s: the semi-implicit tension step is unstable.
+  const std::string yaml = with("mass_per_area_kg_per_m2: 0.08",
+                                "mass_per_area_kg_per_m2: 0.08\n      coefficients: {tension_coefficient_n_per_m: 1.0e5}");
+  const auto dir = testing::make_case_dir(yaml);
+  const Outcome out = run_solver(dir.string());
+  EXPECT_EQ(out.exit_code, 1) << out.output;
+  EXPECT_NE(out.output.find("diverged at step"), std::string::npos) << out.output;
+  EXPECT_NE(out.output.find("(i1, i2) = "), std::string::npos) << out.output;
+  EXPECT_NE(out.output.find("Likely cause: the time step is too large"), std::string::npos) << out.output;
+  output::ResultsReader results(dir / "output" / "structure.h5");
+  EXPECT_EQ(results.string_attribute("/", "status").rfind("diverged: step ", 0), 0u);
+  const PointArray last = results.position_m("sheet", results.n_saved() - 1);
+  EXPECT_TRUE(last.allFinite());
+}
+
+TEST(RunBehaviour, ReadmeHoldsTheGeneratedCaseReference) {
+  std::ifstream readme(std::string(FSI_SOURCE_DIR) + "/README.md");
+  std::stringstream text;
+  text << readme.rdbuf();
+  EXPECT_NE(text.str().find(case_schema_markdown()), std::string::npos)
+      << "README.md's case reference is stale: regenerate it with ./fsi schema (see scripts/update_readme_schema.sh)";
+}
+
+} // namespace
+} // namespace fsi::structure
