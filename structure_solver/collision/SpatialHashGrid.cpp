@@ -9,7 +9,9 @@ namespace fsi::structure::collision {
 
 std::size_t SpatialHashGrid::CellKeyHash::operator()(const CellKey &key) const {
   // Large primes (Teschner et al. 2003) mixing the three cell coordinates.
-  return static_cast<std::size_t>(key.x * 73856093LL ^ key.y * 19349663LL ^ key.z * 83492791LL);
+  const auto x = static_cast<std::uint64_t>(key.x), y = static_cast<std::uint64_t>(key.y),
+             z = static_cast<std::uint64_t>(key.z);
+  return static_cast<std::size_t>(x * 73856093ULL ^ y * 19349663ULL ^ z * 83492791ULL);
 }
 
 SpatialHashGrid::SpatialHashGrid(const PointArray &points_m, double cell_size_m)

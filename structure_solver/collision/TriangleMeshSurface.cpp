@@ -85,6 +85,7 @@ struct TriangleMeshSurface::Impl {
   }
   /// Inside test using the voxel grid when it knows the answer.
   bool is_inside(const Vec3 &p) const;
+  Kernel::Triangle_3 triangle_of(Mesh::Face_index face) const;
   std::vector<VoxelSideGrid::Triangle> triangles() const;
   /// Closest surface point and its face, starting from the grid's hint when there is one.
   Tree::Point_and_primitive_id closest(const Vec3 &p) const;
@@ -99,6 +100,7 @@ void TriangleMeshSurface::Impl::build_queries() {
   }
   volume_m3 = PMP::volume(mesh);
   tree = std::make_unique<Tree>(faces(mesh).first, faces(mesh).second, mesh);
+  tree->build();
   tree->accelerate_distance_queries();
   side_of = std::make_unique<SideOf>(*tree);
 }
@@ -121,16 +123,18 @@ bool TriangleMeshSurface::Impl::is_inside(const Vec3 &p) const {
   return is_inside_exact(p);
 }
 
+Kernel::Triangle_3 TriangleMeshSurface::Impl::triangle_of(Mesh::Face_index face) const {
+  const auto h = mesh.halfedge(face);
+  return {mesh.point(mesh.source(h)), mesh.point(mesh.target(h)),
+          mesh.point(mesh.target(mesh.next(h)))};
+}
+
 std::vector<VoxelSideGrid::Triangle> TriangleMeshSurface::Impl::triangles() const {
-  std::vector<VoxelSideGrid::Triangle> result;
-  result.reserve(mesh.number_of_faces());
+  // Indexed like the faces, so that the grid's hint indices are face indices.
+  std::vector<VoxelSideGrid::Triangle> result(mesh.number_of_faces());
   for (auto f : mesh.faces()) {
-    VoxelSideGrid::Triangle corners;
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
-      corners[k++] = to_vec3(mesh.point(v));
-    }
-    result.push_back(corners);
+    const Kernel::Triangle_3 t = triangle_of(f);
+    result[static_cast<std::size_t>(f)] = {to_vec3(t[0]), to_vec3(t[1]), to_vec3(t[2])};
   }
   return result;
 }
@@ -140,10 +144,7 @@ Tree::Point_and_primitive_id TriangleMeshSurface::Impl::closest(const Vec3 &p) c
   const std::int32_t hint = grid ? grid->hint_triangle_at(p) : -1;
   if (hint < 0) return tree->closest_point_and_primitive(query);
   const Mesh::Face_index face(static_cast<Mesh::size_type>(hint));
-  const auto h = mesh.halfedge(face);
-  const Kernel::Triangle_3 triangle(mesh.point(mesh.source(h)), mesh.point(mesh.target(h)),
-                                    mesh.point(mesh.target(mesh.next(h))));
-  const Point on_hint = Kernel::Construct_projected_point_3()(triangle, query);
+  const Point on_hint = Kernel::Construct_projected_point_3()(triangle_of(face), query);
   return tree->closest_point_and_primitive(query, {on_hint, face});
 }
 

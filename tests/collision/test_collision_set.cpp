@@ -1,0 +1,178 @@
+// CollisionSet (Eq. 11): parameters are validated, the correction matches the closed form on
+// a plane, and after correct() no point of a random cloud (deep-inside points included) is
+// inside or closer than the threshold to a static or a rotating mesh, checked with the
+// brute-force oracle in the body frame.
+
+#include "BruteForceMesh.hpp"
+#include "TestGeometry.hpp"
+
+#include "structure_solver/collision/BoxSurface.hpp"
+#include "structure_solver/collision/CollisionSet.hpp"
+#include "structure_solver/collision/CylinderSurface.hpp"
+#include "structure_solver/collision/PlaneSurface.hpp"
+#include "structure_solver/collision/TriangleMeshSurface.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+namespace fsi::structure::collision {
+namespace {
+
+using FluidSide = TriangleMeshSurface::FluidSide;
+using testing::BruteForceMesh;
+
+/// Rotation at a constant rate about an axis through a point (test-local RigidMotion).
+class ConstantRotation final : public common::RigidMotion {
+public:
+  ConstantRotation(const Vec3 &centre_m, const Vec3 &axis, double rate_rad_per_s)
+      : centre_m_(centre_m), axis_(axis.normalized()), rate_rad_per_s_(rate_rad_per_s) {}
+  Eigen::Isometry3d pose_at(double time_s) const override {
+    return Eigen::Translation3d(centre_m_) * Eigen::AngleAxisd(rate_rad_per_s_ * time_s, axis_) *
+           Eigen::Translation3d(-centre_m_);
+  }
+
+private:
+  Vec3 centre_m_;
+  Vec3 axis_;
+  double rate_rad_per_s_;
+};
+
+std::shared_ptr<const common::RigidMotion> at_rest() {
+  return std::make_shared<common::StaticPose>();
+}
+
+TEST(CollisionSet, RejectsInvalidParametersWithTheirNames) {
+  try {
+    CollisionSet bad(0.0, 1.0);
+    FAIL() << "no error raised";
+  } catch (const std::invalid_argument &error) {
+    EXPECT_NE(std::string(error.what()).find("threshold_m"), std::string::npos);
+  }
+  try {
+    CollisionSet bad(0.02, 0.01);
+    FAIL() << "no error raised";
+  } catch (const std::invalid_argument &error) {
+    EXPECT_NE(std::string(error.what()).find("target_distance_m"), std::string::npos);
+  }
+  EXPECT_THROW(CollisionSet(0.01, 0.02, 0), std::invalid_argument);
+}
+
+TEST(CollisionSet, WithoutSurfacesLeavesPointsAlone) {
+  const CollisionSet empty(0.01, 0.02);
+  PointArray points = testing::to_point_array(testing::random_points_around(testing::test_icosphere(), 100, 0.1, 1));
+  const PointArray before = points;
+  const CorrectionStats stats = empty.correct(points, 0.0);
+  EXPECT_EQ(stats.n_points_corrected, 0u);
+  EXPECT_EQ(points, before);
+}
+
+TEST(CollisionSet, PlaneCorrectionFollowsEquation11) {
+  CollisionSet set(0.01, 0.015);
+  set.add_surface(std::make_unique<PlaneSurface>(Vec3(0, 0, 0), Vec3(0, 0, 1)), at_rest());
+  PointArray points(4, 3);
+  points << 0.1, 0.2, 0.005, // within d_c: to d_t
+      0.3, 0.4, -0.2,        // deep below the wall: to d_t
+      0.5, 0.6, 0.012,       // between d_c and d_t: Eq. 11 leaves it
+      0.7, 0.8, 1.0;         // far
+  const CorrectionStats stats = set.correct(points, 0.0);
+  EXPECT_EQ(stats.n_points_corrected, 2u);
+  EXPECT_NEAR(stats.min_signed_distance_m, -0.2, 1e-15);
+  EXPECT_NEAR(stats.deepest_penetration_m(), 0.2, 1e-15);
+  PointArray expected(4, 3);
+  expected << 0.1, 0.2, 0.015, 0.3, 0.4, 0.015, 0.5, 0.6, 0.012, 0.7, 0.8, 1.0;
+  EXPECT_LT((points - expected).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+/// Distance from p to the nearest wall of the unit box [0, 1]^3 after correcting p.
+double nearest_wall_after_correction(const Vec3 &p, double threshold_m, double target_m) {
+  CollisionSet set(threshold_m, target_m);
+  set.add_surface(std::make_unique<BoxSurface>(Vec3(0, 0, 0), Vec3(1, 1, 1)), at_rest());
+  PointArray points = p.transpose();
+  set.correct(points, 0.0);
+  const Vec3 q = points.row(0).transpose();
+  return std::min(q.minCoeff(), (Vec3::Ones() - q).minCoeff());
+}
+
+TEST(CollisionSet, PointOutsideABoxCornerEndsInsideBeyondThresholdFromEveryWall) {
+  // Pushed along the corner diagonal to d_t, it sits d_t / sqrt(3) from each wall: beyond d_c
+  // when d_t = 2 d_c (done in one pass), below it when d_t = d_c (later passes finish).
+  EXPECT_NEAR(nearest_wall_after_correction(Vec3(1.1, 1.1, 1.1), 0.01, 0.02), 0.02 / std::sqrt(3.0), 1e-12);
+  EXPECT_GE(nearest_wall_after_correction(Vec3(1.1, 1.1, 1.1), 0.02, 0.02), 0.02 - 1e-12);
+  EXPECT_GE(nearest_wall_after_correction(Vec3(0.001, 0.003, 0.002), 0.02, 0.02), 0.02 - 1e-12);
+}
+
+TEST(CollisionSet, PointsBetweenFloorAndPoleClearBoth) {
+  const double threshold_m = 0.01;
+  CollisionSet set(threshold_m, threshold_m);
+  set.add_surface(std::make_unique<PlaneSurface>(Vec3(0, 0, 0), Vec3(0, 0, 1)), at_rest());
+  set.add_surface(std::make_unique<CylinderSurface>(Vec3(0, 0, -1), Vec3(0, 0, 1), 0.1), at_rest());
+  const PlaneSurface floor(Vec3(0, 0, 0), Vec3(0, 0, 1));
+  const CylinderSurface pole(Vec3(0, 0, -1), Vec3(0, 0, 1), 0.1);
+  PointArray points = testing::to_point_array(testing::random_points_around(testing::test_icosphere(), 3000, 0.0, 2));
+  points.col(2) *= 0.05; // flatten the cloud onto the floor
+  points.leftCols(2) *= 0.3;
+  set.correct(points, 0.0);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Vec3 p = points.row(i).transpose();
+    ASSERT_GE(floor.distance(p).signed_distance_m, threshold_m - 1e-9) << p.transpose();
+    ASSERT_GE(pole.distance(p).signed_distance_m, threshold_m - 1e-9) << p.transpose();
+  }
+}
+
+/// Corrects a random cloud (many points deep inside) against `soup` moving with `motion` and
+/// checks every point with the oracle in the body frame.
+void expect_cloud_cleared(const TriangleSoup &soup, FluidSide side,
+                          const std::shared_ptr<const common::RigidMotion> &motion, double time_s,
+                          double threshold_m, double target_m) {
+  CollisionSet set(threshold_m, target_m);
+  set.add_surface(TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, side), motion);
+  const Eigen::Isometry3d pose = motion->pose_at(time_s);
+  PointArray points(0, 3);
+  points = testing::to_point_array(testing::random_points_around(soup, 4000, 0.1, 21));
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    points.row(i) = (pose * Vec3(points.row(i).transpose())).transpose();
+  }
+  const PointArray before = points;
+  const CorrectionStats stats = set.correct(points, time_s);
+  EXPECT_GT(stats.n_points_corrected, 100u);
+  const BruteForceMesh oracle(soup);
+  const bool fluid_outside = side == FluidSide::outside;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Vec3 body_m = pose.inverse() * Vec3(points.row(i).transpose());
+    const double eps_m = oracle.signed_distance(body_m, fluid_outside);
+    const bool moved = points.row(i) != before.row(i);
+    ASSERT_GE(eps_m, (moved ? target_m : threshold_m) - 1e-9) << "point " << i << " at t = " << time_s;
+  }
+}
+
+TEST(CollisionSet, StaticSphereCloudEndsOutsideAtTargetDistance) {
+  expect_cloud_cleared(testing::test_icosphere(), FluidSide::outside, at_rest(), 0.0, 0.02, 0.03);
+}
+
+TEST(CollisionSet, StaticTorusCloudEndsOutsideAtThreshold) {
+  expect_cloud_cleared(testing::test_torus(), FluidSide::outside, at_rest(), 0.0, 0.02, 0.02);
+}
+
+TEST(CollisionSet, CasingCloudEndsInsideTheCasing) {
+  expect_cloud_cleared(testing::test_icosphere(), FluidSide::inside, at_rest(), 0.0, 0.02, 0.02);
+}
+
+TEST(CollisionSet, RotatingTorusCloudIsClearedAtSeveralTimes) {
+  const auto spin = std::make_shared<ConstantRotation>(Vec3(0.2, 0.0, 0.1), Vec3(1, 0.3, 0.2), 2.5);
+  for (double time_s : {0.0, 0.37, 1.1, 2.9}) {
+    expect_cloud_cleared(testing::test_torus(), FluidSide::outside, spin, time_s, 0.015, 0.015);
+  }
+}
+
+TEST(CollisionSet, DescribeListsEverySurface) {
+  CollisionSet set(0.01, 0.02);
+  set.add_surface(std::make_unique<PlaneSurface>(Vec3(0, 0, 0), Vec3(0, 0, 1)), at_rest());
+  set.add_surface(std::make_unique<BoxSurface>(Vec3(-1, -1, -1), Vec3(1, 1, 1)), at_rest());
+  EXPECT_EQ(set.n_surfaces(), 2u);
+  EXPECT_NE(set.describe().find("plane"), std::string::npos);
+  EXPECT_NE(set.describe().find("box"), std::string::npos);
+}
+
+} // namespace
+} // namespace fsi::structure::collision

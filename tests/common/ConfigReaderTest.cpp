@@ -1,0 +1,73 @@
+// The strict configuration reader: spelling suggestions, ranges, types, nested paths with
+// file and line in every message, and the YAML echo of the effective configuration.
+
+#include "common/ConfigEmitter.hpp"
+#include "common/ConfigReader.hpp"
+#include "common/DidYouMean.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fsi::common {
+namespace {
+
+struct Inner {
+  double length_m = 1.0;
+  template <class V> void visit(V &v) { v.number("length_m", length_m, Range::positive("m"), "A length."); }
+};
+
+struct Outer {
+  int count = 3;
+  Inner inner;
+  std::vector<Inner> items;
+  template <class V> void visit(V &v) {
+    v.integer("count", count, Range::at_least(1, "1"), "A count.");
+    v.section("inner", inner, "Nested.");
+    v.list("items", items, "A list.");
+  }
+};
+
+std::string error_of(const std::string &yaml) {
+  try {
+    ConfigReader reader(YAML::Load(yaml), "case.yaml");
+    Outer config;
+    config.visit(reader);
+    reader.finish();
+  } catch (const ConfigError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DidYouMean, SuggestsTheClosestNameOnlyWhenClose) {
+  EXPECT_EQ(closest_match("lenght_m", {"length_m", "count"}), "length_m");
+  EXPECT_EQ(closest_match("zzzzzz", {"length_m", "count"}), "");
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+}
+
+TEST(ConfigReader, ReportsUnknownNestedKeysWithPathLineAndSuggestion) {
+  const std::string message = error_of("count: 2\ninner:\n  lenght_m: 2\n");
+  EXPECT_NE(message.find("case.yaml:3: unknown key 'inner.lenght_m'. Did you mean 'length_m'?"), std::string::npos)
+      << message;
+}
+
+TEST(ConfigReader, ReportsRangeAndTypeErrorsWithTheListIndex) {
+  EXPECT_NE(error_of("items:\n  - length_m: 1\n  - length_m: -2\n")
+                .find("items[1].length_m = -2 is out of range: allowed > 0 m"),
+            std::string::npos);
+  EXPECT_NE(error_of("count: many\n").find("count = 'many' is not a valid value"), std::string::npos);
+  EXPECT_NE(error_of("count: 0\n").find("count = 0 is out of range"), std::string::npos);
+  EXPECT_EQ(error_of("count: 2\ninner: {length_m: 0.5}\nitems: [{length_m: 3}]\n"), "");
+}
+
+TEST(ConfigEmitter, EchoesEveryKeyIncludingDefaults) {
+  Outer config;
+  config.items.resize(1);
+  const std::string yaml = to_yaml(config);
+  const YAML::Node echoed = YAML::Load(yaml);
+  EXPECT_EQ(echoed["count"].as<int>(), 3);
+  EXPECT_DOUBLE_EQ(echoed["inner"]["length_m"].as<double>(), 1.0);
+  EXPECT_EQ(echoed["items"].size(), 1u);
+}
+
+} // namespace
+} // namespace fsi::common
