@@ -22,8 +22,8 @@ struct Outcome {
   std::string output;
 };
 
-Outcome run_solver(const std::string &arguments) {
-  const std::string command = std::string(FSI_STRUCTURE_EXE) + " " + arguments + " 2>&1";
+Outcome run_solver_with_prefix(const std::string &prefix, const std::string &arguments) {
+  const std::string command = prefix + std::string(FSI_STRUCTURE_EXE) + " " + arguments + " 2>&1";
   FILE *pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 4096> buffer{};
@@ -32,6 +32,8 @@ Outcome run_solver(const std::string &arguments) {
   const int status = pclose(pipe);
   return {WEXITSTATUS(status), output};
 }
+
+Outcome run_solver(const std::string &arguments) { return run_solver_with_prefix("", arguments); }
 
 const char *valid_case = R"(run: {end_time_s: 0.01, time_step_s: 1.0e-4, output_interval_s: 0.005}
 gravity_m_per_s2: [0, 0, -9.81]
@@ -133,6 +135,18 @@ TEST(RunBehaviour, DivergenceStopsWithStepPointCauseAndLastGoodState) {
   EXPECT_EQ(results.string_attribute("/", "status").rfind("diverged: step ", 0), 0u);
   const PointArray last = results.position_m("sheet", results.n_saved() - 1);
   EXPECT_TRUE(last.allFinite());
+}
+
+TEST(RunBehaviour, InterruptKeepsTheResultsSoFarAndSaysSo) {
+  // 400k steps would take minutes; SIGINT after 1 s must stop it with exit code 130, the
+  // steps so far in the file and status "interrupted".
+  const auto dir = testing::make_case_dir(with("end_time_s: 0.01", "end_time_s: 40.0"));
+  const Outcome out = run_solver_with_prefix("timeout --preserve-status -s INT 1 ", dir.string());
+  EXPECT_EQ(out.exit_code, 130) << out.output;
+  output::ResultsReader results(dir / "output" / "structure.h5");
+  EXPECT_EQ(results.string_attribute("/", "status"), "interrupted");
+  EXPECT_GE(results.n_saved(), 2);
+  EXPECT_TRUE(results.position_m("sheet", results.n_saved() - 1).allFinite());
 }
 
 TEST(RunBehaviour, ReadmeHoldsTheGeneratedCaseReference) {
