@@ -36,7 +36,7 @@ std::unique_ptr<StructureModel> FilamentConfig::build(const BuildContext &contex
   // initial_shape bends toward e1 x e2; choose e2 so that this normal is bend_direction.
   const Frame frame{bent.e1, bent.e2.cross(bent.e1), bent.e2};
   SheetSetup setup{context.name, "filament", grid, initial_shape(grid, origin_m, frame, initial.curvature_1_per_m)};
-  fill_shared_setup(setup, initial, solver, clamp_motion, context);
+  fill_shared_setup(setup, *this, context);
   setup.edges.s1_min = ends.start;
   setup.edges.s1_max = ends.end;
   setup.mass_per_measure = linear_density_kg_per_m;

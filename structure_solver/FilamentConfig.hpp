@@ -18,7 +18,7 @@ struct FilamentEnds {
   }
 };
 
-class FilamentConfig final : public ModelConfigBase<FilamentConfig> {
+class FilamentConfig final : public ModelConfigBase<FilamentConfig>, public SharedSheetKeys {
 public:
   double length_m = 1.0;
   int n_points = 41;
@@ -30,9 +30,6 @@ public:
   double bending_rigidity_n_m2 = 1e-6;
   double damping_kg_per_m_s = 0.0;
   FilamentEnds ends;
-  std::optional<common::MotionConfig> clamp_motion;
-  InitialStateConfig initial;
-  SolverConfig solver;
 
   template <class V> void visit_keys(V &v) {
     v.number("length_m", length_m, common::Range::positive("m"), "Filament length L.");
@@ -50,10 +47,7 @@ public:
     v.number("damping_kg_per_m_s", damping_kg_per_m_s, common::Range::non_negative("kg/(m s)"),
              "lambda: structural damping of Eq. (4).");
     v.section("ends", ends, "Boundary condition of each end: free, pinned or clamped.");
-    v.optional_section("clamp_motion", clamp_motion,
-                       "Rigid motion followed by pinned/clamped ends (and applied to the initial shape).");
-    v.section("initial", initial, "Initial state.");
-    v.section("solver", solver, "Numerical settings.");
+    visit_shared(v);
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       validate(v);
   }

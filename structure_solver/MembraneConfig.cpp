@@ -32,7 +32,7 @@ std::unique_ptr<StructureModel> MembraneConfig::build(const BuildContext &contex
   LagrangianGrid grid(n_points[0], n_points[1], size_m[0], size_m[1]);
   const Frame frame = make_frame(s1_direction, s2_direction);
   SheetSetup setup{context.name, "membrane", grid, initial_shape(grid, origin_m, frame, initial.curvature_1_per_m)};
-  fill_shared_setup(setup, initial, solver, clamp_motion, context);
+  fill_shared_setup(setup, *this, context);
   setup.edges = edges.conditions;
   setup.mass_per_measure = material.mass_per_area_kg_per_m2;
   setup.tension_coefficient = material.tension_coefficient();

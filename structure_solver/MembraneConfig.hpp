@@ -63,7 +63,7 @@ struct SheetEdges {
   }
 };
 
-class MembraneConfig final : public ModelConfigBase<MembraneConfig> {
+class MembraneConfig final : public ModelConfigBase<MembraneConfig>, public SharedSheetKeys {
 public:
   Eigen::Vector2d size_m{0.1, 0.1};
   Eigen::Vector2i n_points{26, 26};
@@ -72,9 +72,6 @@ public:
   Vec3 s2_direction{0.0, 1.0, 0.0};
   SheetMaterial material;
   SheetEdges edges;
-  std::optional<common::MotionConfig> clamp_motion;
-  InitialStateConfig initial;
-  SolverConfig solver;
 
   template <class V> void visit_keys(V &v) {
     v.vec2("size_m", size_m, common::Range::positive("m"), "Sheet lengths [L1, L2] along s1 and s2.");
@@ -84,10 +81,7 @@ public:
     v.vec3("s2_direction", s2_direction, "1", "Direction of s2 (made orthogonal to s1).");
     v.section("material", material, "Mass, stiffness and damping.");
     v.section("edges", edges, "Boundary condition of each edge: free, pinned or clamped.");
-    v.optional_section("clamp_motion", clamp_motion,
-                       "Rigid motion followed by pinned/clamped edges (and applied to the initial shape).");
-    v.section("initial", initial, "Initial state.");
-    v.section("solver", solver, "Numerical settings.");
+    visit_shared(v);
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       validate(v);
   }

@@ -5,8 +5,8 @@
 
 namespace fsi::structure {
 
-void fill_shared_setup(SheetSetup &setup, const InitialStateConfig &initial, const SolverConfig &solver,
-                       const std::optional<common::MotionConfig> &clamp_motion, const BuildContext &context) {
+void fill_shared_setup(SheetSetup &setup, const SharedSheetKeys &keys, const BuildContext &context) {
+  const auto &[clamp_motion, initial, solver] = keys;
   setup.initial_velocity_m_per_s = initial.velocity_m_per_s;
   setup.curved_rest_state = initial.curved_rest_state;
   if (clamp_motion)

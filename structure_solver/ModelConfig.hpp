@@ -77,9 +77,23 @@ struct InitialStateConfig {
 } // namespace fsi::structure
 
 namespace fsi::structure {
+
+/// Keys every sheet-like model shares, declared after the model's own keys.
+struct SharedSheetKeys {
+  std::optional<common::MotionConfig> clamp_motion;
+  InitialStateConfig initial;
+  SolverConfig solver;
+
+  template <class V> void visit_shared(V &v) {
+    v.optional_section("clamp_motion", clamp_motion,
+                       "Rigid motion followed by the pinned/clamped points (and applied to the initial shape).");
+    v.section("initial", initial, "Initial state.");
+    v.section("solver", solver, "Numerical settings.");
+  }
+};
+
 struct SheetSetup;
-/// Copies the settings every sheet-like model shares (initial state, solver, clamp motion,
-/// gravity, time step) into a setup.
-void fill_shared_setup(SheetSetup &setup, const InitialStateConfig &initial, const SolverConfig &solver,
-                       const std::optional<common::MotionConfig> &clamp_motion, const BuildContext &context);
+/// Copies the shared settings (initial state, solver, clamp motion, gravity, time step).
+void fill_shared_setup(SheetSetup &setup, const SharedSheetKeys &keys, const BuildContext &context);
+
 } // namespace fsi::structure
