@@ -118,7 +118,7 @@ void SemiImplicitSystem::fill_values(const PointArray &x, double dt) {
     a[s.diagonal[i]] += (rho_ + 0.5 * dt * lambda_) * measure_[static_cast<Eigen::Index>(i)];
 }
 
-void SemiImplicitSystem::assemble_rhs(const StepInputs &in, Eigen::MatrixX3d &rhs) const {
+void SemiImplicitSystem::assemble_rhs(const StepInputs &in, PointArray &rhs) const {
   const double dt = in.dt_s;
   const Eigen::VectorXd now = 2.0 * rho_ * measure_;
   const Eigen::VectorXd prev = (rho_ - 0.5 * dt * lambda_) * measure_;
@@ -134,7 +134,7 @@ void SemiImplicitSystem::assemble_rhs(const StepInputs &in, Eigen::MatrixX3d &rh
   }
 }
 
-void SemiImplicitSystem::apply_prescribed(const PointArray &prescribed_next, Eigen::MatrixX3d &rhs) {
+void SemiImplicitSystem::apply_prescribed(const PointArray &prescribed_next, PointArray &rhs) {
   double *a = matrix_.valuePtr();
   for (const auto &[k, row, col] : slots_->free_row_prescribed_col)
     rhs.row(row) -= a[k] * prescribed_next.row(col);
@@ -150,10 +150,10 @@ void SemiImplicitSystem::apply_prescribed(const PointArray &prescribed_next, Eig
 
 int SemiImplicitSystem::solve(const StepInputs &in, PointArray &x_next) {
   fill_values(*in.x_now, in.dt_s);
-  Eigen::MatrixX3d rhs;
+  PointArray rhs;
   assemble_rhs(in, rhs);
   apply_prescribed(*in.prescribed_next, rhs);
-  Eigen::MatrixX3d x = 2.0 * *in.x_now - *in.x_prev; // warm start: constant-velocity guess
+  PointArray x = 2.0 * *in.x_now - *in.x_prev; // warm start: constant-velocity guess
   int iterations = 0;
   if (!direct_active_) {
     iterations = solve_cg(rhs, x);
@@ -176,24 +176,24 @@ int SemiImplicitSystem::solve(const StepInputs &in, PointArray &x_next) {
   return std::max(iterations, 0);
 }
 
-int SemiImplicitSystem::solve_cg(const Eigen::MatrixX3d &b, Eigen::MatrixX3d &x) const {
+int SemiImplicitSystem::solve_cg(const PointArray &b, PointArray &x) const {
   // Jacobi-preconditioned conjugate gradients on the three coordinates at once (one matrix
   // traversal per iteration). Returns the iteration count, or -1 without convergence.
   const Eigen::VectorXd inv_diag = matrix_.diagonal().cwiseInverse();
-  Eigen::MatrixX3d r = b - matrix_ * x;
-  Eigen::MatrixX3d z = inv_diag.asDiagonal() * r;
+  PointArray r = b - matrix_ * x;
+  PointArray z = inv_diag.asDiagonal() * r;
   // Stop when the preconditioned residual has dropped by 1e-10 from that of the warm start
   // (the constant-velocity guess), or reached round-off relative to the coordinates.
   const double round_off_m = 1e-15 * std::max(x.cwiseAbs().maxCoeff(), 1e-3);
   const double tolerance_m = std::max(1e-10 * z.cwiseAbs().maxCoeff(), round_off_m);
-  Eigen::MatrixX3d p = z;
+  PointArray p = z;
   Eigen::Array3d rz = (r.array() * z.array()).colwise().sum();
   constexpr int max_iterations = 400;
   for (int it = 0; it < max_iterations; ++it) {
     const Eigen::Array3d error_m = z.cwiseAbs().colwise().maxCoeff().transpose();
     if ((error_m <= tolerance_m).all())
       return it;
-    const Eigen::MatrixX3d q = matrix_ * p;
+    const PointArray q = matrix_ * p;
     const Eigen::Array3d pq = (p.array() * q.array()).colwise().sum();
     Eigen::Array3d alpha = Eigen::Array3d::Zero();
     for (int c = 0; c < 3; ++c) {
@@ -214,7 +214,7 @@ int SemiImplicitSystem::solve_cg(const Eigen::MatrixX3d &b, Eigen::MatrixX3d &x)
   return -1;
 }
 
-void SemiImplicitSystem::solve_direct(const Eigen::MatrixX3d &rhs, Eigen::MatrixX3d &x) {
+void SemiImplicitSystem::solve_direct(const PointArray &rhs, PointArray &x) {
   if (!ldlt_analysed_) {
     ldlt_.analyzePattern(matrix_);
     ldlt_analysed_ = true;

@@ -51,11 +51,10 @@ private:
   struct Slots;
   void build_pattern();
   void fill_values(const PointArray &x_now, double dt);
-  void assemble_rhs(const StepInputs &in, Eigen::MatrixX3d &rhs) const;
-  void apply_prescribed(const PointArray &prescribed_next, Eigen::MatrixX3d &rhs);
-  int solve_cg(const Eigen::MatrixX3d &rhs, Eigen::MatrixX3d &x) const;
-  void solve_direct(const Eigen::MatrixX3d &rhs, Eigen::MatrixX3d &x);
-  Eigen::MatrixX3d frozen_hessian_times(const PointArray &x) const;
+  void assemble_rhs(const StepInputs &in, PointArray &rhs) const;
+  void apply_prescribed(const PointArray &prescribed_next, PointArray &rhs);
+  int solve_cg(const PointArray &rhs, PointArray &x) const;
+  void solve_direct(const PointArray &rhs, PointArray &x);
 
   const ElasticTerms &terms_;
   Eigen::VectorXd measure_;

@@ -1,6 +1,7 @@
 // fsi-structure: the standalone membrane/filament solver.
 //   fsi-structure CASE_DIR            run the case (structure only: gravity, motions, collisions)
 //   fsi-structure --check CASE_DIR    validate the case and exit
+//   fsi-structure -o DIR CASE_DIR     write the results to DIR instead of run.output_directory
 //   fsi-structure --schema            print the case-file reference (Markdown)
 // Exit codes: 0 success, 1 run failed (diverged), 2 bad input, 130 interrupted.
 
@@ -33,9 +34,11 @@ int check_case(const std::filesystem::path &case_dir) {
 int main(int argc, char **argv) {
   CLI::App app{"fsi-structure: membrane and filament solver with collisions (standalone, no fluid)"};
   std::string case_dir;
+  std::string output_dir;
   bool check = false, schema = false, verbose = false;
   app.add_option("case_dir", case_dir, "Case folder holding case.yaml");
   app.add_flag("--check", check, "Validate the case without running it");
+  app.add_option("-o,--output-dir", output_dir, "Results folder (overrides run.output_directory)");
   app.add_flag("--schema", schema, "Print the case-file reference as Markdown");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
   try {
@@ -55,7 +58,10 @@ int main(int argc, char **argv) {
   try {
     if (check)
       return check_case(case_dir);
-    fsi::structure::StructureRun run(fsi::structure::CaseConfig::load(case_dir), case_dir);
+    auto config = fsi::structure::CaseConfig::load(case_dir);
+    if (!output_dir.empty())
+      config.run.output_directory = std::filesystem::absolute(output_dir).string();
+    fsi::structure::StructureRun run(std::move(config), case_dir);
     return run.run();
   } catch (const fsi::common::ConfigError &e) {
     spdlog::error("{}", e.what());
