@@ -57,12 +57,17 @@ prepare() { ensure_packages; build "$BUILD" -DCMAKE_BUILD_TYPE=Release; }
 cmd_run() {
   [ $# -ge 1 ] || die "usage: ./fsi run CASE_DIR"
   prepare
-  local case_dir=${!#} status=0
+  local case_dir=${!#} status=0 out="" prev=""
+  for a in "$@"; do
+    case "$prev" in -o|--output-dir) out=$a ;; esac
+    prev=$a
+  done
   "$BUILD/bin/fsi-structure" "$@" || status=$?
-  local results="$case_dir/output/structure.h5"
+  out=${out:-$case_dir/output}
+  local results="$out/structure.h5"
   if [ "$status" -le 1 ] && [ -f "$results" ]; then
-    if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$case_dir/output/summary.png" 2>/dev/null; then
-      say "picture: $case_dir/output/summary.png"
+    if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$out/summary.png" 2>/dev/null; then
+      say "picture: $out/summary.png"
     fi
   fi
   return "$status"
