@@ -24,10 +24,10 @@ CollisionSet::CollisionSet(double threshold_m, double target_distance_m, int max
                                 " must be positive (the paper uses two Eulerian cell widths).");
   }
   if (!(target_distance_m >= threshold_m) || !std::isfinite(target_distance_m)) {
-    throw std::invalid_argument("collision target_distance_m = " +
-                                std::to_string(target_distance_m) +
-                                " must be at least threshold_m = " + std::to_string(threshold_m) +
-                                ", or corrected points would be corrected again.");
+    throw std::invalid_argument(
+        "collision target_distance_m = " + std::to_string(target_distance_m) +
+        " must be at least threshold_m = " + std::to_string(threshold_m) +
+        ", or corrected points would be corrected again.");
   }
   if (max_passes < 1) {
     throw std::invalid_argument("collision max_passes = " + std::to_string(max_passes) +
@@ -53,7 +53,8 @@ CorrectionStats CollisionSet::correct(PointArray &positions_m, double time_s) co
   // The first pass checks every point; later passes only the points moved in the pass
   // before (a point that did not move keeps the distances it was checked with).
   std::vector<Eigen::Index> active(n_points);
-  for (std::size_t i = 0; i < n_points; ++i) active[i] = static_cast<Eigen::Index>(i);
+  for (std::size_t i = 0; i < n_points; ++i)
+    active[i] = static_cast<Eigen::Index>(i);
   std::vector<char> was_corrected(n_points, 0), moved(n_points, 0);
   for (int pass = 0; pass < max_passes_ && !active.empty(); ++pass) {
     for (const Body &body : bodies_) {
@@ -62,7 +63,8 @@ CorrectionStats CollisionSet::correct(PointArray &positions_m, double time_s) co
     ++stats.n_passes;
     std::vector<Eigen::Index> next;
     for (Eigen::Index i : active) {
-      if (moved[static_cast<std::size_t>(i)]) next.push_back(i);
+      if (moved[static_cast<std::size_t>(i)])
+        next.push_back(i);
       moved[static_cast<std::size_t>(i)] = 0;
     }
     active = std::move(next);
@@ -82,11 +84,14 @@ void CollisionSet::correct_against(const Body &body, PointArray &positions_m, do
   const double trigger_m = threshold_m_ - kSettledTolerance_m;
   for (Eigen::Index i : active) {
     const Vec3 world_m = positions_m.row(i).transpose();
-    if (!world_m.allFinite()) continue;
+    if (!world_m.allFinite())
+      continue;
     const Vec3 body_m = world_to_body * world_m;
-    if (!body.surface->may_be_within(body_m, threshold_m_)) continue;
+    if (!body.surface->may_be_within(body_m, threshold_m_))
+      continue;
     const SurfaceDistance d = body.surface->distance(body_m);
-    if (!(d.signed_distance_m < trigger_m)) continue;
+    if (!(d.signed_distance_m < trigger_m))
+      continue;
     // Eq. 11: X_c = X + n_w (d_t - eps_c), with n_w rotated from the body to the world.
     const Vec3 shift_m =
         rotation * (d.normal_into_fluid * (target_distance_m_ - d.signed_distance_m));
@@ -99,11 +104,12 @@ void CollisionSet::correct_against(const Body &body, PointArray &positions_m, do
 }
 
 std::string CollisionSet::describe() const {
-  std::string text = "collision: d_c = " + std::to_string(threshold_m_) + " m, d_t = " +
-                     std::to_string(target_distance_m_) + " m, " +
+  std::string text = "collision: d_c = " + std::to_string(threshold_m_) +
+                     " m, d_t = " + std::to_string(target_distance_m_) + " m, " +
                      std::to_string(bodies_.size()) + " surface(s)";
   for (const Body &body : bodies_) {
-    text += "\n  " + body.surface->describe() + (body.motion->is_static() ? " (static)" : " (moving)");
+    text +=
+        "\n  " + body.surface->describe() + (body.motion->is_static() ? " (static)" : " (moving)");
   }
   return text;
 }

@@ -9,8 +9,7 @@
 
 namespace fsi::structure::collision {
 
-CylinderSurface::CylinderSurface(const Vec3 &axis_start_m, const Vec3 &axis_end_m,
-                                 double radius_m)
+CylinderSurface::CylinderSurface(const Vec3 &axis_start_m, const Vec3 &axis_end_m, double radius_m)
     : axis_start_m_(axis_start_m), axis_end_m_(axis_end_m), radius_m_(radius_m) {
   const double length_m = (axis_end_m - axis_start_m).norm();
   if (!(length_m > 0.0) || !std::isfinite(length_m)) {

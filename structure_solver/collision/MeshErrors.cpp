@@ -9,8 +9,7 @@ MeshFileNotFoundError::MeshFileNotFoundError(const std::string &path)
     : MeshError(path, "collision mesh file '" + path +
                           "' does not exist; check the path in the case configuration.") {}
 
-MeshFileUnreadableError::MeshFileUnreadableError(const std::string &path,
-                                                 const std::string &reason)
+MeshFileUnreadableError::MeshFileUnreadableError(const std::string &path, const std::string &reason)
     : MeshError(path, "collision mesh file '" + path + "' cannot be used: " + reason +
                           "; export it again as ASCII or binary STL.") {}
 

@@ -23,11 +23,11 @@ UnitSphereMesh make_icosahedron() {
   m.vertices = {{-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0},
                 {0, -1, phi}, {0, 1, phi}, {0, -1, -phi}, {0, 1, -phi},
                 {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
-  for (Vec3 &v : m.vertices) v.normalize();
-  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-             {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-             {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-             {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (Vec3 &v : m.vertices)
+    v.normalize();
+  m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   return m;
 }
 
@@ -37,7 +37,8 @@ void subdivide(UnitSphereMesh &m) {
   auto midpoint = [&](int a, int b) {
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     const auto found = midpoint_of.find(key);
-    if (found != midpoint_of.end()) return found->second;
+    if (found != midpoint_of.end())
+      return found->second;
     m.vertices.push_back((m.vertices[a] + m.vertices[b]).normalized());
     const int index = static_cast<int>(m.vertices.size()) - 1;
     midpoint_of.emplace(key, index);
@@ -72,8 +73,10 @@ TriangleSoup make_icosphere(const Vec3 &centre_m, double radius_m, int n_subdivi
     throw std::invalid_argument("make_icosphere: need radius_m > 0 and 0 <= n_subdivisions <= 8.");
   }
   UnitSphereMesh m = make_icosahedron();
-  for (int level = 0; level < n_subdivisions; ++level) subdivide(m);
-  for (Vec3 &v : m.vertices) v = centre_m + radius_m * v;
+  for (int level = 0; level < n_subdivisions; ++level)
+    subdivide(m);
+  for (Vec3 &v : m.vertices)
+    v = centre_m + radius_m * v;
   return to_soup(m.vertices, m.faces);
 }
 

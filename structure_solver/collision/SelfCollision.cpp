@@ -31,14 +31,16 @@ SelfCollision::SelfCollision(const PointArray &rest_positions_m, double threshol
   const auto n_points = static_cast<std::size_t>(rest_positions_m.rows());
   offsets_.assign(n_points + 1, 0);
   const double exclusion_m = exclusion_factor * target_distance_m;
-  if (exclusion_m <= 0.0 || n_points == 0) return;
+  if (exclusion_m <= 0.0 || n_points == 0)
+    return;
   const SpatialHashGrid grid(rest_positions_m_, exclusion_m);
   const auto pairs = grid.pairs_within(exclusion_m); // sorted by i, then j
   for (const auto &[i, j] : pairs) {
     ++offsets_[static_cast<std::size_t>(i) + 1];
     excluded_partners_.push_back(j);
   }
-  for (std::size_t i = 0; i < n_points; ++i) offsets_[i + 1] += offsets_[i];
+  for (std::size_t i = 0; i < n_points; ++i)
+    offsets_[i + 1] += offsets_[i];
 }
 
 bool SelfCollision::is_excluded(Eigen::Index i, Eigen::Index j) const {
@@ -50,7 +52,8 @@ bool SelfCollision::is_excluded(Eigen::Index i, Eigen::Index j) const {
 Vec3 SelfCollision::separation_direction(const PointArray &positions_m, Eigen::Index i,
                                          Eigen::Index j) const {
   const Vec3 current = (positions_m.row(j) - positions_m.row(i)).transpose();
-  if (current.norm() > 0.0) return current.normalized();
+  if (current.norm() > 0.0)
+    return current.normalized();
   const Vec3 rest = (rest_positions_m_.row(j) - rest_positions_m_.row(i)).transpose();
   return rest.norm() > 0.0 ? Vec3(rest.normalized()) : Vec3::UnitX();
 }
@@ -61,15 +64,18 @@ std::size_t SelfCollision::correct(PointArray &positions_m) const {
                                 std::to_string(positions_m.rows()) + " points, the sheet has " +
                                 std::to_string(rest_positions_m_.rows()) + ".");
   }
-  if (positions_m.rows() < 2) return 0;
+  if (positions_m.rows() < 2)
+    return 0;
   const SpatialHashGrid grid(positions_m, threshold_m_);
   const auto candidates = grid.pairs_within(threshold_m_);
   std::size_t n_corrected = 0;
   for (const auto &[i, j] : candidates) {
-    if (is_excluded(i, j)) continue;
+    if (is_excluded(i, j))
+      continue;
     // Positions may have moved in an earlier pair: measure again.
     const double distance_m = (positions_m.row(j) - positions_m.row(i)).norm();
-    if (!(distance_m < threshold_m_ - kSettledTolerance_m)) continue;
+    if (!(distance_m < threshold_m_ - kSettledTolerance_m))
+      continue;
     const Vec3 half_shift_m =
         0.5 * (target_distance_m_ - distance_m) * separation_direction(positions_m, i, j);
     positions_m.row(i) -= half_shift_m.transpose();

@@ -22,7 +22,8 @@ SpatialHashGrid::SpatialHashGrid(const PointArray &points_m, double cell_size_m)
   std::vector<std::pair<CellKey, Eigen::Index>> keyed;
   keyed.reserve(static_cast<std::size_t>(points_m.rows()));
   for (Eigen::Index i = 0; i < points_m.rows(); ++i) {
-    if (points_m.row(i).allFinite()) keyed.push_back({key_of(i), i});
+    if (points_m.row(i).allFinite())
+      keyed.push_back({key_of(i), i});
   }
   std::sort(keyed.begin(), keyed.end(), [](const auto &a, const auto &b) {
     return std::tie(a.first.x, a.first.y, a.first.z, a.second) <
@@ -32,7 +33,8 @@ SpatialHashGrid::SpatialHashGrid(const PointArray &points_m, double cell_size_m)
   for (std::size_t k = 0; k < keyed.size(); ++k) {
     sorted_points_.push_back(keyed[k].second);
     auto [range, inserted] = cell_ranges_.try_emplace(keyed[k].first, k, k + 1);
-    if (!inserted) range->second.second = k + 1;
+    if (!inserted)
+      range->second.second = k + 1;
   }
 }
 
@@ -65,7 +67,8 @@ std::vector<SpatialHashGrid::IndexPair> SpatialHashGrid::pairs_within(double rad
 void SpatialHashGrid::collect_partners(Eigen::Index i, const CellKey &key, double radius_sq_m2,
                                        std::vector<IndexPair> &pairs) const {
   const auto found = cell_ranges_.find(key);
-  if (found == cell_ranges_.end()) return;
+  if (found == cell_ranges_.end())
+    return;
   for (std::size_t k = found->second.first; k < found->second.second; ++k) {
     const Eigen::Index j = sorted_points_[k];
     if (j > i && (points_m_.row(j) - points_m_.row(i)).squaredNorm() < radius_sq_m2) {

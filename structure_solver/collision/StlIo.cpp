@@ -138,7 +138,8 @@ std::string encode_binary(const TriangleSoup &soup) {
   out.append(reinterpret_cast<const char *>(&n_triangles), sizeof n_triangles);
   for (Eigen::Index t = 0; t < soup.triangles.rows(); ++t) {
     const Vec3 n = facet_normal(soup, t);
-    for (int k = 0; k < 3; ++k) append_float(out, static_cast<float>(n[k]));
+    for (int k = 0; k < 3; ++k)
+      append_float(out, static_cast<float>(n[k]));
     for (int corner = 0; corner < 3; ++corner) {
       for (int k = 0; k < 3; ++k) {
         append_float(out, static_cast<float>(soup.vertices_m(soup.triangles(t, corner), k)));
@@ -173,8 +174,8 @@ TriangleSoup read_stl(const std::string &path) {
   if (bytes.empty()) {
     throw MeshFileUnreadableError(path, "the file is empty");
   }
-  const std::vector<Corner> corners = looks_binary(bytes) ? parse_binary(bytes)
-                                                          : parse_ascii(bytes, path);
+  const std::vector<Corner> corners =
+      looks_binary(bytes) ? parse_binary(bytes) : parse_ascii(bytes, path);
   if (corners.empty()) {
     throw MeshFileUnreadableError(path, "it contains no triangle");
   }

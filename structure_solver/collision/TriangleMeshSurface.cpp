@@ -9,6 +9,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -39,6 +40,40 @@ constexpr double kOnSurfaceFraction = 1e-9;
 
 Vec3 to_vec3(const Point &p) { return {p.x(), p.y(), p.z()}; }
 
+/// Enclosed volume of each connected component (m^3, by the divergence theorem: the sign
+/// depends on the component's orientation).
+std::vector<double> component_volumes_m3(Mesh &mesh) {
+  auto component_of = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:component", 0).first;
+  std::vector<double> volumes_m3(PMP::connected_components(mesh, component_of), 0.0);
+  for (auto f : mesh.faces()) {
+    const auto h = mesh.halfedge(f);
+    const Vec3 a = to_vec3(mesh.point(mesh.source(h))), b = to_vec3(mesh.point(mesh.target(h))),
+               c = to_vec3(mesh.point(mesh.target(mesh.next(h))));
+    volumes_m3[component_of[f]] += a.dot(b.cross(c)) / 6.0;
+  }
+  mesh.remove_property_map(component_of);
+  return volumes_m3;
+}
+
+/// Throws MeshDegenerateError when a connected component encloses a negligible volume (a flat
+/// closed surface); CGAL's orientation step requires every component to bound a volume.
+void check_component_volumes(Mesh &mesh, const std::string &source) {
+  Eigen::AlignedBox3d box_m;
+  for (auto v : mesh.vertices())
+    box_m.extend(to_vec3(mesh.point(v)));
+  const double diagonal_m = box_m.diagonal().norm();
+  const std::vector<double> volumes_m3 = component_volumes_m3(mesh);
+  for (std::size_t k = 0; k < volumes_m3.size(); ++k) {
+    if (std::abs(volumes_m3[k]) <= 1e-9 * diagonal_m * diagonal_m * diagonal_m) {
+      std::ostringstream reason;
+      reason << "closed component " << k + 1 << " of " << volumes_m3.size()
+             << " encloses a volume of " << std::abs(volumes_m3[k])
+             << " m^3, negligible for a mesh of size " << diagonal_m << " m";
+      throw MeshDegenerateError(source, reason.str());
+    }
+  }
+}
+
 /// Orients the soup consistently and converts it to a closed, outward-oriented mesh.
 Mesh build_oriented_mesh(const TriangleSoup &soup, const std::string &source) {
   std::vector<Point> points;
@@ -58,9 +93,11 @@ Mesh build_oriented_mesh(const TriangleSoup &soup, const std::string &source) {
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   if (!CGAL::is_closed(mesh)) { // non-manifold edges split by the orientation step
     std::size_t n_border = 0;
-    for (auto h : mesh.halfedges()) n_border += mesh.is_border(h) ? 1 : 0;
+    for (auto h : mesh.halfedges())
+      n_border += mesh.is_border(h) ? 1 : 0;
     throw MeshNotClosedError(source, n_border);
   }
+  check_component_volumes(mesh, source);
   PMP::orient_to_bound_a_volume(mesh);
   return mesh;
 }
@@ -79,7 +116,6 @@ struct TriangleMeshSurface::Impl {
   std::unique_ptr<VoxelSideGrid> grid;
 
   void build_queries();
-  void check_volume() const;
   bool is_inside_exact(const Vec3 &p) const {
     return (*side_of)(Point(p.x(), p.y(), p.z())) == CGAL::ON_BOUNDED_SIDE;
   }
@@ -92,7 +128,8 @@ struct TriangleMeshSurface::Impl {
 };
 
 void TriangleMeshSurface::Impl::build_queries() {
-  for (auto v : mesh.vertices()) box_m.extend(to_vec3(mesh.point(v)));
+  for (auto v : mesh.vertices())
+    box_m.extend(to_vec3(mesh.point(v)));
   outward_face_normals.resize(mesh.number_of_faces());
   for (auto f : mesh.faces()) {
     const auto normal = PMP::compute_face_normal(f, mesh);
@@ -105,20 +142,11 @@ void TriangleMeshSurface::Impl::build_queries() {
   side_of = std::make_unique<SideOf>(*tree);
 }
 
-void TriangleMeshSurface::Impl::check_volume() const {
-  const double diagonal_m = box_m.diagonal().norm();
-  if (!(volume_m3 > 1e-9 * diagonal_m * diagonal_m * diagonal_m)) {
-    std::ostringstream reason;
-    reason << "it encloses a volume of " << volume_m3 << " m^3, negligible for its size of "
-           << diagonal_m << " m";
-    throw MeshDegenerateError(source, reason.str());
-  }
-}
-
 bool TriangleMeshSurface::Impl::is_inside(const Vec3 &p) const {
   if (grid) {
     const VoxelState state = grid->state_at(p);
-    if (state != VoxelState::near_surface) return state == VoxelState::inside_mesh;
+    if (state != VoxelState::near_surface)
+      return state == VoxelState::inside_mesh;
   }
   return is_inside_exact(p);
 }
@@ -142,7 +170,8 @@ std::vector<VoxelSideGrid::Triangle> TriangleMeshSurface::Impl::triangles() cons
 Tree::Point_and_primitive_id TriangleMeshSurface::Impl::closest(const Vec3 &p) const {
   const Point query(p.x(), p.y(), p.z());
   const std::int32_t hint = grid ? grid->hint_triangle_at(p) : -1;
-  if (hint < 0) return tree->closest_point_and_primitive(query);
+  if (hint < 0)
+    return tree->closest_point_and_primitive(query);
   const Mesh::Face_index face(static_cast<Mesh::size_type>(hint));
   const Point on_hint = Kernel::Construct_projected_point_3()(triangle_of(face), query);
   return tree->closest_point_and_primitive(query, {on_hint, face});
@@ -159,14 +188,14 @@ TriangleMeshSurface::TriangleMeshSurface(const TriangleSoup &soup, FluidSide flu
   impl_->fluid_side = fluid_side;
   impl_->mesh = build_oriented_mesh(soup, source);
   impl_->build_queries();
-  impl_->check_volume();
 }
 
 std::unique_ptr<TriangleMeshSurface>
 TriangleMeshSurface::from_triangles(const PointArray &vertices_m, const TriangleArray &triangles,
                                     FluidSide fluid_side, const std::string &source_name) {
   const TriangleSoup soup{vertices_m, triangles};
-  return std::unique_ptr<TriangleMeshSurface>(new TriangleMeshSurface(soup, fluid_side, source_name));
+  return std::unique_ptr<TriangleMeshSurface>(
+      new TriangleMeshSurface(soup, fluid_side, source_name));
 }
 
 TriangleMeshSurface::~TriangleMeshSurface() = default;
@@ -191,14 +220,16 @@ bool TriangleMeshSurface::may_be_within(const Vec3 &point_body_m, double radius_
   const bool fluid_outside = impl_->fluid_side == FluidSide::outside;
   if (impl_->grid && radius_m <= impl_->grid->radius_m()) {
     const VoxelState state = impl_->grid->state_at(point_body_m);
-    if (state == VoxelState::near_surface) return true;
+    if (state == VoxelState::near_surface)
+      return true;
     return (state == VoxelState::outside_mesh) != fluid_outside; // far: only solid matters
   }
   return !fluid_outside || impl_->box_m.exteriorDistance(point_body_m) <= radius_m;
 }
 
 void TriangleMeshSurface::prepare_culling(double radius_m) {
-  if (impl_->grid && radius_m <= impl_->grid->radius_m()) return;
+  if (impl_->grid && radius_m <= impl_->grid->radius_m())
+    return;
   const Impl &impl = *impl_;
   impl_->grid.reset(); // the grid's own flood fill must use exact inside tests
   impl_->grid = std::make_unique<VoxelSideGrid>(

@@ -29,8 +29,8 @@ public:
   /// Builds the surface from arrays (generated meshes, tests); `source_name` stands for the
   /// file name in error messages. Same checks as the file constructor.
   static std::unique_ptr<TriangleMeshSurface>
-  from_triangles(const PointArray &vertices_m, const TriangleArray &triangles,
-                 FluidSide fluid_side, const std::string &source_name = "in-memory mesh");
+  from_triangles(const PointArray &vertices_m, const TriangleArray &triangles, FluidSide fluid_side,
+                 const std::string &source_name = "in-memory mesh");
 
   ~TriangleMeshSurface() override;
   TriangleMeshSurface(TriangleMeshSurface &&) noexcept;

@@ -12,7 +12,7 @@ namespace fsi::structure::collision {
 using TriangleArray = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 struct TriangleSoup {
-  PointArray vertices_m;  ///< n_vertices x 3 positions (m)
+  PointArray vertices_m;   ///< n_vertices x 3 positions (m)
   TriangleArray triangles; ///< n_triangles x 3 indices into vertices_m, counter-clockwise
                            ///< seen from outside for generated meshes
 };

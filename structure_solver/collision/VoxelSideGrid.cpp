@@ -14,7 +14,8 @@ VoxelSideGrid::VoxelSideGrid(const std::vector<Triangle> &triangles, double radi
     : radius_m_(std::max(radius_m, 0.0)) {
   Eigen::AlignedBox3d mesh_box;
   for (const Triangle &triangle : triangles) {
-    for (const Vec3 &corner : triangle) mesh_box.extend(corner);
+    for (const Vec3 &corner : triangle)
+      mesh_box.extend(corner);
   }
   size_grid(mesh_box, max_cells);
   // Everything starts far and outside; near cells are marked, then far cells classified.
@@ -34,7 +35,8 @@ void VoxelSideGrid::size_grid(const Eigen::AlignedBox3d &mesh_box, std::size_t m
   const double padded_volume_m3 = (mesh_box.sizes().array() + 2.0 * radius_m_).prod();
   cell_size_m_ = std::max({0.5 * radius_m_, std::cbrt(padded_volume_m3 / max_cells),
                            1e-9 * mesh_box.sizes().maxCoeff()});
-  while (fit_grid(mesh_box) > max_cells) cell_size_m_ *= 1.1;
+  while (fit_grid(mesh_box) > max_cells)
+    cell_size_m_ *= 1.1;
 }
 
 std::size_t VoxelSideGrid::fit_grid(const Eigen::AlignedBox3d &mesh_box) {
@@ -53,7 +55,8 @@ std::size_t VoxelSideGrid::fit_grid(const Eigen::AlignedBox3d &mesh_box) {
 void VoxelSideGrid::mark_near_cells(const Triangle &triangle, std::int32_t triangle_index,
                                     std::vector<float> &hint_distance_sq_m2) {
   Eigen::AlignedBox3d box;
-  for (const Vec3 &corner : triangle) box.extend(corner);
+  for (const Vec3 &corner : triangle)
+    box.extend(corner);
   const Vec3 centroid_m = (triangle[0] + triangle[1] + triangle[2]) / 3.0;
   const Vec3 normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
   // A cell is near when its centre lies within radius + half a cell diagonal of both the
@@ -61,8 +64,10 @@ void VoxelSideGrid::mark_near_cells(const Triangle &triangle, std::int32_t trian
   const double reach_m = radius_m_ + 0.5 * std::sqrt(3.0) * cell_size_m_;
   std::array<int, 3> first{}, last{};
   for (int axis = 0; axis < 3; ++axis) {
-    first[axis] = static_cast<int>(std::floor((box.min()[axis] - reach_m - origin_m_[axis]) / cell_size_m_));
-    last[axis] = static_cast<int>(std::floor((box.max()[axis] + reach_m - origin_m_[axis]) / cell_size_m_));
+    first[axis] =
+        static_cast<int>(std::floor((box.min()[axis] - reach_m - origin_m_[axis]) / cell_size_m_));
+    last[axis] =
+        static_cast<int>(std::floor((box.max()[axis] + reach_m - origin_m_[axis]) / cell_size_m_));
     first[axis] = std::clamp(first[axis], 0, n_cells_[axis] - 1);
     last[axis] = std::clamp(last[axis], 0, n_cells_[axis] - 1);
   }
@@ -70,7 +75,8 @@ void VoxelSideGrid::mark_near_cells(const Triangle &triangle, std::int32_t trian
     for (int j = first[1]; j <= last[1]; ++j) {
       for (int i = first[0]; i <= last[0]; ++i) {
         const Vec3 centre_m = cell_centre_m(i, j, k);
-        if (std::abs(normal.dot(centre_m - triangle[0])) > reach_m) continue;
+        if (std::abs(normal.dot(centre_m - triangle[0])) > reach_m)
+          continue;
         const auto cell = static_cast<std::size_t>(index(i, j, k));
         states_[cell] = VoxelState::near_surface;
         const auto distance_sq_m2 = static_cast<float>((centre_m - centroid_m).squaredNorm());
@@ -91,7 +97,8 @@ void VoxelSideGrid::flood_fill_far_cells(const std::function<bool(const Vec3 &)>
       for (int i = 0; i < n_cells_[0]; ++i) {
         const bool on_border = i == 0 || j == 0 || k == 0 || i == n_cells_[0] - 1 ||
                                j == n_cells_[1] - 1 || k == n_cells_[2] - 1;
-        if (on_border) border.push_back(index(i, j, k));
+        if (on_border)
+          border.push_back(index(i, j, k));
       }
     }
   }
@@ -101,7 +108,8 @@ void VoxelSideGrid::flood_fill_far_cells(const std::function<bool(const Vec3 &)>
     for (int j = 0; j < n_cells_[1]; ++j) {
       for (int i = 0; i < n_cells_[0]; ++i) {
         const std::int32_t cell = index(i, j, k);
-        if (visited_[cell] || states_[cell] == VoxelState::near_surface) continue;
+        if (visited_[cell] || states_[cell] == VoxelState::near_surface)
+          continue;
         const bool inside = is_inside_mesh(cell_centre_m(i, j, k));
         fill_region({cell}, inside ? VoxelState::inside_mesh : VoxelState::outside_mesh);
       }
@@ -129,9 +137,11 @@ void VoxelSideGrid::fill_region(std::vector<std::int32_t> seeds, VoxelState stat
     for (int axis = 0; axis < 3; ++axis) {
       for (int step : {-1, 1}) {
         const int next_coord = coords[axis] + step;
-        if (next_coord < 0 || next_coord >= n_cells_[axis]) continue;
+        if (next_coord < 0 || next_coord >= n_cells_[axis])
+          continue;
         const std::int32_t next = cell + step * strides[axis];
-        if (visited_[next] || states_[next] == VoxelState::near_surface) continue;
+        if (visited_[next] || states_[next] == VoxelState::near_surface)
+          continue;
         visited_[next] = 1;
         queue.push_back(next);
       }
@@ -146,7 +156,8 @@ Vec3 VoxelSideGrid::cell_centre_m(int i, int j, int k) const {
 void VoxelSideGrid::propagate_hints_inside() {
   std::vector<std::int32_t> queue;
   for (std::size_t cell = 0; cell < states_.size(); ++cell) {
-    if (states_[cell] == VoxelState::near_surface) queue.push_back(static_cast<std::int32_t>(cell));
+    if (states_[cell] == VoxelState::near_surface)
+      queue.push_back(static_cast<std::int32_t>(cell));
   }
   const std::int32_t strides[3] = {1, n_cells_[0], n_cells_[0] * n_cells_[1]};
   for (std::size_t head = 0; head < queue.size(); ++head) {
@@ -154,8 +165,10 @@ void VoxelSideGrid::propagate_hints_inside() {
     for (const std::int32_t stride : strides) {
       for (const std::int32_t next : {cell - stride, cell + stride}) {
         // Inside cells never touch the grid border, so the neighbours stay in the grid.
-        if (next < 0 || next >= static_cast<std::int32_t>(states_.size())) continue;
-        if (states_[next] != VoxelState::inside_mesh || hint_triangles_[next] >= 0) continue;
+        if (next < 0 || next >= static_cast<std::int32_t>(states_.size()))
+          continue;
+        if (states_[next] != VoxelState::inside_mesh || hint_triangles_[next] >= 0)
+          continue;
         hint_triangles_[next] = hint_triangles_[cell];
         queue.push_back(next);
       }

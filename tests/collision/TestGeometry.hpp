@@ -13,7 +13,7 @@ namespace fsi::structure::collision::testing {
 
 inline TriangleSoup test_icosphere() { return make_icosphere(Vec3(0.1, -0.2, 0.3), 0.5, 3); }
 
-inline TriangleSoup test_torus() { return make_torus(Vec3(-0.1, 0.05, 0.0), 0.6, 0.2, 48, 24); }
+inline TriangleSoup test_torus() { return make_torus(Vec3(-0.1, 0.05, 0.0), 0.6, 0.2, 36, 18); }
 
 /// Uniform random points in the soup's bounding box grown by `grow` times its size.
 inline std::vector<Vec3> random_points_around(const TriangleSoup &soup, int n_points, double grow,

@@ -51,8 +51,8 @@ TEST(BoxSurface, InsidePointsMeasureToNearestWall) {
 
 TEST(BoxSurface, OutsidePointsAreNegativeAndPointBackIn) {
   const BoxSurface channel(Vec3(0, 0, 0), Vec3(2, 1, 3));
-  expect_distance(channel, Vec3(-0.3, 0.5, 1.0), -0.3, Vec3::UnitX());        // beyond a face
-  expect_distance(channel, Vec3(-0.3, -0.4, 1.0), -0.5, Vec3(0.6, 0.8, 0.0)); // beyond an edge
+  expect_distance(channel, Vec3(-0.3, 0.5, 1.0), -0.3, Vec3::UnitX());         // beyond a face
+  expect_distance(channel, Vec3(-0.3, -0.4, 1.0), -0.5, Vec3(0.6, 0.8, 0.0));  // beyond an edge
   expect_distance(channel, Vec3(2.1, 1.2, 3.2), -0.3, Vec3(-1, -2, -2) / 3.0); // beyond a corner
 }
 
@@ -62,12 +62,12 @@ TEST(BoxSurface, RejectsInvertedCorners) {
 
 TEST(CylinderSurface, MantleCapsAndRimsMatchClosedForm) {
   const CylinderSurface pole(Vec3(0, 0, 0), Vec3(0, 0, 2), 0.5);
-  expect_distance(pole, Vec3(1.0, 0, 1), 0.5, Vec3::UnitX());          // outside the mantle
-  expect_distance(pole, Vec3(0.4, 0, 1), -0.1, Vec3::UnitX());         // inside near the mantle
-  expect_distance(pole, Vec3(0, 0.1, 1.95), -0.05, Vec3::UnitZ());     // inside near a cap
-  expect_distance(pole, Vec3(0.3, 0, 2.7), 0.7, Vec3::UnitZ());        // above the top cap
-  expect_distance(pole, Vec3(0, 0.2, -0.25), 0.25, -Vec3::UnitZ());    // below the bottom cap
-  expect_distance(pole, Vec3(0.8, 0, 2.4), 0.5, Vec3(0.6, 0, 0.8));    // beyond the top rim
+  expect_distance(pole, Vec3(1.0, 0, 1), 0.5, Vec3::UnitX());           // outside the mantle
+  expect_distance(pole, Vec3(0.4, 0, 1), -0.1, Vec3::UnitX());          // inside near the mantle
+  expect_distance(pole, Vec3(0, 0.1, 1.95), -0.05, Vec3::UnitZ());      // inside near a cap
+  expect_distance(pole, Vec3(0.3, 0, 2.7), 0.7, Vec3::UnitZ());         // above the top cap
+  expect_distance(pole, Vec3(0, 0.2, -0.25), 0.25, -Vec3::UnitZ());     // below the bottom cap
+  expect_distance(pole, Vec3(0.8, 0, 2.4), 0.5, Vec3(0.6, 0, 0.8));     // beyond the top rim
   expect_distance(pole, Vec3(0, -0.8, -0.4), 0.5, Vec3(0, -0.6, -0.8)); // beyond the bottom rim
 }
 
@@ -84,7 +84,8 @@ TEST(CylinderSurface, TiltedCylinderEqualsRotatedAxisAlignedOne) {
       Eigen::Translation3d(0.3, -1.0, 2.0) * Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized());
   const CylinderSurface upright(Vec3(0, 0, 0), Vec3(0, 0, 2), 0.5);
   const CylinderSurface tilted(placement * Vec3(0, 0, 0), placement * Vec3(0, 0, 2), 0.5);
-  for (const Vec3 &p : {Vec3(1.0, 0, 1), Vec3(0.8, 0, 2.4), Vec3(0, 0.1, 1.95), Vec3(0.1, 0.2, -3)}) {
+  for (const Vec3 &p :
+       {Vec3(1.0, 0, 1), Vec3(0.8, 0, 2.4), Vec3(0, 0.1, 1.95), Vec3(0.1, 0.2, -3)}) {
     const SurfaceDistance reference = upright.distance(p);
     expect_distance(tilted, placement * p, reference.signed_distance_m,
                     placement.linear() * reference.normal_into_fluid);

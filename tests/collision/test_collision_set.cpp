@@ -60,7 +60,8 @@ TEST(CollisionSet, RejectsInvalidParametersWithTheirNames) {
 
 TEST(CollisionSet, WithoutSurfacesLeavesPointsAlone) {
   const CollisionSet empty(0.01, 0.02);
-  PointArray points = testing::to_point_array(testing::random_points_around(testing::test_icosphere(), 100, 0.1, 1));
+  PointArray points = testing::to_point_array(
+      testing::random_points_around(testing::test_icosphere(), 100, 0.1, 1));
   const PointArray before = points;
   const CorrectionStats stats = empty.correct(points, 0.0);
   EXPECT_EQ(stats.n_points_corrected, 0u);
@@ -97,7 +98,8 @@ double nearest_wall_after_correction(const Vec3 &p, double threshold_m, double t
 TEST(CollisionSet, PointOutsideABoxCornerEndsInsideBeyondThresholdFromEveryWall) {
   // Pushed along the corner diagonal to d_t, it sits d_t / sqrt(3) from each wall: beyond d_c
   // when d_t = 2 d_c (done in one pass), below it when d_t = d_c (later passes finish).
-  EXPECT_NEAR(nearest_wall_after_correction(Vec3(1.1, 1.1, 1.1), 0.01, 0.02), 0.02 / std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(nearest_wall_after_correction(Vec3(1.1, 1.1, 1.1), 0.01, 0.02), 0.02 / std::sqrt(3.0),
+              1e-12);
   EXPECT_GE(nearest_wall_after_correction(Vec3(1.1, 1.1, 1.1), 0.02, 0.02), 0.02 - 1e-12);
   EXPECT_GE(nearest_wall_after_correction(Vec3(0.001, 0.003, 0.002), 0.02, 0.02), 0.02 - 1e-12);
 }
@@ -109,7 +111,8 @@ TEST(CollisionSet, PointsBetweenFloorAndPoleClearBoth) {
   set.add_surface(std::make_unique<CylinderSurface>(Vec3(0, 0, -1), Vec3(0, 0, 1), 0.1), at_rest());
   const PlaneSurface floor(Vec3(0, 0, 0), Vec3(0, 0, 1));
   const CylinderSurface pole(Vec3(0, 0, -1), Vec3(0, 0, 1), 0.1);
-  PointArray points = testing::to_point_array(testing::random_points_around(testing::test_icosphere(), 3000, 0.0, 2));
+  PointArray points = testing::to_point_array(
+      testing::random_points_around(testing::test_icosphere(), 3000, 0.0, 2));
   points.col(2) *= 0.05; // flatten the cloud onto the floor
   points.leftCols(2) *= 0.3;
   set.correct(points, 0.0);
@@ -120,16 +123,23 @@ TEST(CollisionSet, PointsBetweenFloorAndPoleClearBoth) {
   }
 }
 
-/// Corrects a random cloud (many points deep inside) against `soup` moving with `motion` and
-/// checks every point with the oracle in the body frame.
-void expect_cloud_cleared(const TriangleSoup &soup, FluidSide side,
-                          const std::shared_ptr<const common::RigidMotion> &motion, double time_s,
-                          double threshold_m, double target_m) {
+/// A collision set holding one mesh surface that follows `motion`.
+CollisionSet mesh_collision_set(const TriangleSoup &soup, FluidSide side,
+                                const std::shared_ptr<const common::RigidMotion> &motion,
+                                double threshold_m, double target_m) {
   CollisionSet set(threshold_m, target_m);
-  set.add_surface(TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, side), motion);
-  const Eigen::Isometry3d pose = motion->pose_at(time_s);
-  PointArray points(0, 3);
-  points = testing::to_point_array(testing::random_points_around(soup, 4000, 0.1, 21));
+  set.add_surface(TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, side),
+                  motion);
+  return set;
+}
+
+/// Corrects a random cloud (many points deep inside) placed around the mesh at time_s and
+/// checks every point with the oracle in the body frame: moved points end at d_t or more,
+/// the others at d_c or more, none inside the solid.
+void expect_cloud_cleared(const CollisionSet &set, const TriangleSoup &soup, FluidSide side,
+                          const common::RigidMotion &motion, double time_s) {
+  const Eigen::Isometry3d pose = motion.pose_at(time_s);
+  PointArray points = testing::to_point_array(testing::random_points_around(soup, 3000, 0.1, 21));
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     points.row(i) = (pose * Vec3(points.row(i).transpose())).transpose();
   }
@@ -137,31 +147,42 @@ void expect_cloud_cleared(const TriangleSoup &soup, FluidSide side,
   const CorrectionStats stats = set.correct(points, time_s);
   EXPECT_GT(stats.n_points_corrected, 100u);
   const BruteForceMesh oracle(soup);
-  const bool fluid_outside = side == FluidSide::outside;
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     const Vec3 body_m = pose.inverse() * Vec3(points.row(i).transpose());
-    const double eps_m = oracle.signed_distance(body_m, fluid_outside);
+    const double eps_m = oracle.signed_distance(body_m, side == FluidSide::outside);
     const bool moved = points.row(i) != before.row(i);
-    ASSERT_GE(eps_m, (moved ? target_m : threshold_m) - 1e-9) << "point " << i << " at t = " << time_s;
+    const double floor_m = moved ? set.target_distance_m() : set.threshold_m();
+    ASSERT_GE(eps_m, floor_m - 1e-9) << "point " << i << " at t = " << time_s;
   }
 }
 
 TEST(CollisionSet, StaticSphereCloudEndsOutsideAtTargetDistance) {
-  expect_cloud_cleared(testing::test_icosphere(), FluidSide::outside, at_rest(), 0.0, 0.02, 0.03);
+  const TriangleSoup soup = testing::test_icosphere();
+  const auto motion = at_rest();
+  const CollisionSet set = mesh_collision_set(soup, FluidSide::outside, motion, 0.02, 0.03);
+  expect_cloud_cleared(set, soup, FluidSide::outside, *motion, 0.0);
 }
 
 TEST(CollisionSet, StaticTorusCloudEndsOutsideAtThreshold) {
-  expect_cloud_cleared(testing::test_torus(), FluidSide::outside, at_rest(), 0.0, 0.02, 0.02);
+  const TriangleSoup soup = testing::test_torus();
+  const auto motion = at_rest();
+  const CollisionSet set = mesh_collision_set(soup, FluidSide::outside, motion, 0.02, 0.02);
+  expect_cloud_cleared(set, soup, FluidSide::outside, *motion, 0.0);
 }
 
 TEST(CollisionSet, CasingCloudEndsInsideTheCasing) {
-  expect_cloud_cleared(testing::test_icosphere(), FluidSide::inside, at_rest(), 0.0, 0.02, 0.02);
+  const TriangleSoup soup = testing::test_icosphere();
+  const auto motion = at_rest();
+  const CollisionSet set = mesh_collision_set(soup, FluidSide::inside, motion, 0.02, 0.02);
+  expect_cloud_cleared(set, soup, FluidSide::inside, *motion, 0.0);
 }
 
 TEST(CollisionSet, RotatingTorusCloudIsClearedAtSeveralTimes) {
+  const TriangleSoup soup = testing::test_torus();
   const auto spin = std::make_shared<ConstantRotation>(Vec3(0.2, 0.0, 0.1), Vec3(1, 0.3, 0.2), 2.5);
+  const CollisionSet set = mesh_collision_set(soup, FluidSide::outside, spin, 0.015, 0.015);
   for (double time_s : {0.0, 0.37, 1.1, 2.9}) {
-    expect_cloud_cleared(testing::test_torus(), FluidSide::outside, spin, time_s, 0.015, 0.015);
+    expect_cloud_cleared(set, soup, FluidSide::outside, *spin, time_s);
   }
 }
 

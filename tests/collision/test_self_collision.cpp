@@ -18,7 +18,8 @@ namespace {
 PointArray square_patch(int n, double spacing_m, double x0_m, double height_m) {
   PointArray patch(n * n, 3);
   for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) patch.row(i * n + j) << x0_m + i * spacing_m, j * spacing_m, height_m;
+    for (int j = 0; j < n; ++j)
+      patch.row(i * n + j) << x0_m + i * spacing_m, j * spacing_m, height_m;
   }
   return patch;
 }
@@ -33,12 +34,14 @@ TEST(SpatialHashGrid, FindsTheSamePairsAsAllPairsLoop) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> coordinate(-0.1, 0.1);
   PointArray points(2000, 3);
-  for (Eigen::Index i = 0; i < points.rows(); ++i) points.row(i) << coordinate(rng), coordinate(rng), coordinate(rng);
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    points.row(i) << coordinate(rng), coordinate(rng), coordinate(rng);
   const double radius_m = 0.012;
   std::vector<SpatialHashGrid::IndexPair> expected;
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     for (Eigen::Index j = i + 1; j < points.rows(); ++j) {
-      if ((points.row(i) - points.row(j)).norm() < radius_m) expected.emplace_back(i, j);
+      if ((points.row(i) - points.row(j)).norm() < radius_m)
+        expected.emplace_back(i, j);
     }
   }
   EXPECT_EQ(SpatialHashGrid(points, radius_m).pairs_within(radius_m), expected);
@@ -49,8 +52,10 @@ TEST(SelfCollision, FacingPatchesEndAtTargetDistanceWithPairCentroidsFixed) {
   const int n = 5;
   const double spacing_m = 0.01, threshold_m = 0.006, target_m = 0.008, gap_m = 0.004;
   // Rest: two patches side by side in one flat sheet. Now: the second folded over the first.
-  const PointArray rest = stack(square_patch(n, spacing_m, 0.0, 0.0), square_patch(n, spacing_m, 0.2, 0.0));
-  PointArray now = stack(square_patch(n, spacing_m, 0.0, 0.0), square_patch(n, spacing_m, 0.0, gap_m));
+  const PointArray rest =
+      stack(square_patch(n, spacing_m, 0.0, 0.0), square_patch(n, spacing_m, 0.2, 0.0));
+  PointArray now =
+      stack(square_patch(n, spacing_m, 0.0, 0.0), square_patch(n, spacing_m, 0.0, gap_m));
   const PointArray before = now;
   const SelfCollision self(rest, threshold_m, target_m);
   EXPECT_EQ(self.correct(now), static_cast<std::size_t>(n * n));
@@ -77,7 +82,8 @@ TEST(SelfCollision, CrumpledSheetKeepsItsCentroid) {
   PointArray now = rest;
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> fold_m(-0.01, 0.01);
-  for (Eigen::Index i = 0; i < now.rows(); ++i) now.row(i) = 0.25 * now.row(i) + Eigen::RowVector3d(fold_m(rng), fold_m(rng), fold_m(rng));
+  for (Eigen::Index i = 0; i < now.rows(); ++i)
+    now.row(i) = 0.25 * now.row(i) + Eigen::RowVector3d(fold_m(rng), fold_m(rng), fold_m(rng));
   const Eigen::RowVector3d centroid_before = now.colwise().mean();
   const SelfCollision self(rest, 0.006, 0.008);
   EXPECT_GT(self.correct(now), 0u);

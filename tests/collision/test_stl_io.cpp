@@ -29,7 +29,8 @@ protected:
     return file.string();
   }
   void TearDown() override {
-    for (const auto &file : created_) std::filesystem::remove(file);
+    for (const auto &file : created_)
+      std::filesystem::remove(file);
   }
 
 private:
@@ -41,8 +42,7 @@ Vec3 corner(const TriangleSoup &soup, Eigen::Index t, int k) {
   return soup.vertices_m.row(soup.triangles(t, k)).transpose();
 }
 
-template <typename Message>
-void expect_names_file(const Message &error, const std::string &path) {
+template <typename Message> void expect_names_file(const Message &error, const std::string &path) {
   EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
   EXPECT_EQ(error.source(), path);
 }
@@ -88,8 +88,8 @@ TEST_F(StlFile, SurfaceFromFileEqualsSurfaceFromArrays) {
   const auto from_arrays =
       TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, FluidSide::outside);
   for (const Vec3 &p : testing::random_points_around(soup, 500, 0.2, 3)) {
-    EXPECT_NEAR(from_file.distance(p).signed_distance_m,
-                from_arrays->distance(p).signed_distance_m, 1e-12);
+    EXPECT_NEAR(from_file.distance(p).signed_distance_m, from_arrays->distance(p).signed_distance_m,
+                1e-12);
   }
   EXPECT_NE(from_file.describe().find(file), std::string::npos);
 }

@@ -22,10 +22,10 @@ constexpr double kDistanceTol_m = 1e-9;
 
 /// Random points in the bounding box plus points within 2 cm of the surface.
 std::vector<Vec3> oracle_test_points(const TriangleSoup &soup, const BruteForceMesh &oracle) {
-  std::vector<Vec3> points = testing::random_points_around(soup, 2000, 0.3, 11);
+  std::vector<Vec3> points = testing::random_points_around(soup, 1500, 0.3, 11);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> offset_m(-0.02, 0.02);
-  for (const Vec3 &far : testing::random_points_around(soup, 1000, 0.3, 13)) {
+  for (const Vec3 &far : testing::random_points_around(soup, 500, 0.3, 13)) {
     const Vec3 closest = oracle.closest_point(far);
     points.push_back(closest + offset_m(rng) * (far - closest).normalized());
   }
@@ -34,7 +34,8 @@ std::vector<Vec3> oracle_test_points(const TriangleSoup &soup, const BruteForceM
 
 void expect_matches_oracle(const TriangleSoup &soup, FluidSide side, double culling_radius_m) {
   const auto surface = TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, side);
-  if (culling_radius_m > 0.0) surface->prepare_culling(culling_radius_m);
+  if (culling_radius_m > 0.0)
+    surface->prepare_culling(culling_radius_m);
   const BruteForceMesh oracle(soup);
   const bool fluid_outside = side == FluidSide::outside;
   for (const Vec3 &p : oracle_test_points(soup, oracle)) {
@@ -135,8 +136,9 @@ TEST(TriangleMeshSurface, FlatClosedMeshIsDegenerate) {
   vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
   TriangleArray triangles(2, 3);
   triangles << 0, 1, 2, 0, 2, 1;
-  EXPECT_THROW(TriangleMeshSurface::from_triangles(vertices, triangles, FluidSide::outside, "pillow"),
-               MeshDegenerateError);
+  EXPECT_THROW(
+      TriangleMeshSurface::from_triangles(vertices, triangles, FluidSide::outside, "pillow"),
+      MeshDegenerateError);
 }
 
 } // namespace
