@@ -152,19 +152,34 @@ std::string XdmfWriter::topology(const StructureEntry &structure) const {
   return xml.str();
 }
 
-/// Row `step_index` of a [n_saved, n_points, 3] dataset: start (k 0 0), stride (1 1 1),
-/// count (1 n_points 3).
+/// Row `step_index` of a [n_saved, n_points, 3] dataset, written so that both ParaView readers
+/// read it (checked with ParaView 5.11 by tests/output/ParaViewOpenTest.cpp):
+///   <DataItem Type="HyperSlab" Dimensions="1 n 3" NumberType="Float" Precision="8" Format="HDF">
+///     run.h5:/structures/s/position_m|k 0 0:1 1 1:1 n 3:N n 3
+///     <DataItem Dimensions="3 3" NumberType="Int" Format="XML">k 0 0 1 1 1 1 n 3</DataItem>
+///     <DataItem Dimensions="N n 3" ... Format="HDF">run.h5:/structures/s/position_m</DataItem>
+///   </DataItem>
+/// - Xdmf3 (the default reader) ignores `Type` on a DataItem and reads the item as a plain HDF
+///   array: its text is the Xdmf3 hyperslab form "file:dataset|start:stride:count:dataspace"
+///   (row k only). Xdmf3 cannot show a real `ItemType="HyperSlab"`: it is a lazy reference whose
+///   number type is unknown to VTK before reading ("Skipping unrecognized array type [None]").
+/// - The legacy Xdmf2 reader (XDMFReader) takes `Type` as the XDMF 2 spelling of `ItemType`,
+///   ignores the text, and selects start/stride/count from the two child items.
 std::string XdmfWriter::row_hyperslab(const StructureEntry &structure, const std::string &dataset,
                                       std::size_t step_index, const std::string &indent) const {
   const std::string row_shape = std::to_string(structure.n_points) + " 3";
+  const std::string all_rows = std::to_string(times_s_.size()) + " " + row_shape;
+  const std::string reference = hdf_reference(paths::structure_dataset(structure.name, dataset));
+  const std::string start = std::to_string(step_index) + " 0 0";
   std::ostringstream xml;
-  xml << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " << row_shape
-      << "\" Type=\"HyperSlab\">\n"
-      << indent << "  <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">" << step_index
-      << " 0 0 1 1 1 1 " << row_shape << "</DataItem>\n"
-      << indent << "  <DataItem Dimensions=\"" << times_s_.size() << " " << row_shape
-      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-      << hdf_reference(paths::structure_dataset(structure.name, dataset)) << "</DataItem>\n"
+  xml << indent << "<DataItem Type=\"HyperSlab\" Dimensions=\"1 " << row_shape
+      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">\n"
+      << indent << "  " << reference << "|" << start << ":1 1 1:1 " << row_shape << ":" << all_rows
+      << "\n"
+      << indent << "  <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">" << start
+      << " 1 1 1 1 " << row_shape << "</DataItem>\n"
+      << indent << "  <DataItem Dimensions=\"" << all_rows
+      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << reference << "</DataItem>\n"
       << indent << "</DataItem>\n";
   return xml.str();
 }

@@ -1,9 +1,17 @@
 #pragma once
-// The XDMF 3 index that lets ParaView (Xdmf3 reader) show the results file as moving sheets:
-// a temporal collection with one Grid per saved step; each step is a spatial collection with
-// one Grid per structure whose Geometry and velocity Attribute are hyperslabs (row k) of the
-// structure's `position_m` and `velocity_m_per_s` datasets. The file is rewritten whole after
-// each step through a temporary file and a rename, so it is always complete.
+// The XDMF index that lets ParaView show the results file as moving sheets: a temporal
+// collection with one Grid per saved step; each step is a spatial collection with one Grid per
+// structure whose Geometry and velocity Attribute are row k of the structure's `position_m`
+// and `velocity_m_per_s` datasets. The row is written in a form that both the default Xdmf3
+// reader and the legacy XDMFReader read (see row_hyperslab() in the .cpp). The file is
+// rewritten whole after each step through a temporary file and a rename, so it is always
+// complete.
+//
+// The HDF5 file is referenced relative to the index's folder, so the pair can be moved. Known
+// ParaView 5.11 limit: Xdmf3 resolves that reference by appending it to the index path up to
+// its last '/', so `OpenDataFile("structure.xdmf")` (bare name, no '/') looks for
+// "structure.xdmfstructure.h5"; open "./structure.xdmf" or an absolute path instead. Only an
+// absolute reference would avoid this, at the price of breaking moved or copied results.
 
 #include "structure_solver/output/ResultsRecords.hpp"
 #include "structure_solver/output/StructureTopology.hpp"

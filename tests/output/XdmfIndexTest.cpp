@@ -39,6 +39,31 @@ TEST_F(XdmfIndex, HyperslabsSelectRowKOfPositionsAndVelocities) {
   EXPECT_EQ(XdmfText(xdmf_path()).hyperslab_selections(), expected);
 }
 
+// The same rows in the form the Xdmf3 reader reads (the text of the outer item).
+TEST_F(XdmfIndex, RowItemsCarryTheXdmf3HyperslabOfRowK) {
+  {
+    ResultsWriter writer(h5_path(), xdmf_path(), sample_metadata());
+    write_sample_run(writer, 2);
+  }
+  std::vector<std::string> expected;
+  for (int k = 0; k < 2; ++k) {
+    const std::string start = std::to_string(k) + " 0 0:1 1 1:1 ";
+    for (const std::string structure : {"sheet", "fiber"}) {
+      const std::string shape = structure == "sheet" ? "12 3" : "5 3";
+      for (const std::string dataset : {"position_m", "velocity_m_per_s"}) {
+        expected.push_back("run.h5:/structures/" + structure + "/" + dataset + "|" + start +
+                           shape + ":2 " + shape);
+      }
+    }
+  }
+  const XdmfText index(xdmf_path());
+  EXPECT_EQ(index.row_references(), expected);
+  EXPECT_EQ(index.count("<DataItem Type=\"HyperSlab\" Dimensions=\"1 12 3\" NumberType=\"Float\" "
+                        "Precision=\"8\" Format=\"HDF\">"),
+            4u);
+  EXPECT_EQ(index.count("ItemType=\"HyperSlab\""), 0u) << "Xdmf3 cannot show that form";
+}
+
 TEST_F(XdmfIndex, HeavyDataIsReferencedByRelativeFileNameWithCurrentShapes) {
   {
     ResultsWriter writer(h5_path(), xdmf_path(), sample_metadata());
