@@ -22,7 +22,7 @@ MeshNotClosedError::MeshNotClosedError(const std::string &source, std::size_t n_
 
 MeshDegenerateError::MeshDegenerateError(const std::string &source, const std::string &reason)
     : MeshError(source, "collision mesh '" + source + "' is degenerate: " + reason +
-                            "; repair the mesh (remove zero-area triangles) and export it "
-                            "again.") {}
+                            "; repair it (e.g. in MeshLab) so that every triangle has an "
+                            "area and every closed part encloses a volume, then export it again.") {}
 
 } // namespace fsi::structure::collision
