@@ -53,7 +53,7 @@ public:
     std::string allowed, current;
     for (const auto &[name, enumerator] : names) {
       allowed += (allowed.empty() ? "" : ", ") + name;
-      if (enumerator == value)
+      if (enumerator == value && current.empty())
         current = name;
     }
     row(key, "choice", current, allowed, doc);

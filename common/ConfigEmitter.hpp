@@ -48,8 +48,10 @@ public:
   void choice(const std::string &key, const Enum &value,
               const std::vector<std::pair<std::string, Enum>> &names, const std::string &) {
     for (const auto &[name, enumerator] : names)
-      if (enumerator == value)
+      if (enumerator == value) { // the first name is canonical; later ones are aliases
         out_ << YAML::Key << key << YAML::Value << name;
+        return;
+      }
   }
   template <class Sub> void section(const std::string &key, Sub &sub, const std::string &) {
     out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;

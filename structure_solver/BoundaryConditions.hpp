@@ -16,7 +16,10 @@ enum class EdgeCondition { free, pinned, clamped };
 
 inline const std::vector<std::pair<std::string, EdgeCondition>> &edge_condition_names() {
   static const std::vector<std::pair<std::string, EdgeCondition>> names{
-      {"free", EdgeCondition::free}, {"pinned", EdgeCondition::pinned}, {"clamped", EdgeCondition::clamped}};
+      {"free", EdgeCondition::free},
+      {"pinned", EdgeCondition::pinned},
+      {"clamped", EdgeCondition::clamped},
+      {"fixed", EdgeCondition::pinned}}; // the paper's name for pinned
   return names;
 }
 

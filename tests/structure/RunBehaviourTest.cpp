@@ -89,7 +89,7 @@ TEST(RunBehaviour, MissingMeshFileIsNamed) {
 TEST(RunBehaviour, MalformedYamlAndWrongTypesAreRejected) {
   expect_bad_input(with("n_points: [11, 6]", "n_points: [11, 6"), "not valid YAML");
   expect_bad_input(with("n_points: [11, 6]", "n_points: eleven"), "must be a list of two integers");
-  expect_bad_input(with("{s1_min: clamped}", "{s1_min: glued}"), "'glued' is not one of: free, pinned, clamped");
+  expect_bad_input(with("{s1_min: clamped}", "{s1_min: glued}"), "'glued' is not one of: free, pinned, clamped, fixed");
 }
 
 TEST(RunBehaviour, MissingCaseFolderIsBadInput) {
