@@ -65,11 +65,13 @@ void membrane_step(benchmark::State &state) {
   auto scene = make_scene(n, collisions);
   for (int k = 0; k < 5; ++k) // warm-up: the first steps set up the solver
     scene->advance();
-  std::size_t corrected = 0;
+  std::size_t corrected = 0, iterations = 0;
   for (auto _ : state) {
     scene->advance();
     corrected += scene->last_corrections();
+    iterations += static_cast<std::size_t>(scene->last_solver_iterations());
   }
+  state.counters["cg_iterations"] = static_cast<double>(iterations) / static_cast<double>(state.iterations());
   const double points = static_cast<double>(n) * n;
   state.counters["points"] = points;
   state.counters["us_per_point"] = benchmark::Counter(points * static_cast<double>(state.iterations()),

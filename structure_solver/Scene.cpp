@@ -61,8 +61,9 @@ void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per
 
 void Scene::advance() {
   last_corrections_ = 0;
+  last_iterations_ = 0;
   for (std::size_t i = 0; i < structures_.size(); ++i) {
-    structures_[i]->advance(zero_loads_[i]); // Eq. (4): gravity only, no fluid
+    last_iterations_ += structures_[i]->advance(zero_loads_[i]); // Eq. (4): gravity only, no fluid
     correct_collisions(*structures_[i], i);  // Eq. (11)
   }
 }

@@ -24,6 +24,8 @@ public:
   bool has_collisions() const { return collisions_ != nullptr; }
   /// Points corrected by collisions in the last step (all structures).
   std::size_t last_corrections() const { return last_corrections_; }
+  /// Linear-solver (CG) iterations of the last step, summed over structures (0: direct).
+  int last_solver_iterations() const { return last_iterations_; }
 
 private:
   void build_collisions(const CollisionConfig &config, double gravity_m_per_s2);
@@ -34,6 +36,7 @@ private:
   std::vector<std::unique_ptr<collision::SelfCollision>> self_collisions_;
   std::vector<PointArray> zero_loads_;
   std::size_t last_corrections_ = 0;
+  int last_iterations_ = 0;
 };
 
 } // namespace fsi::structure

@@ -97,25 +97,39 @@ void SemiImplicitSystem::build_pattern() {
 }
 
 void SemiImplicitSystem::fill_values(const PointArray &x, double dt) {
+  // A = M_lambda + theta dt^2 H(x): the constant part (masses, damping, bending) is kept for
+  // the current dt; only the frozen tension terms change from step to step. For theta < 1
+  // the Hessian itself is also needed (H X^{n-1} on the right-hand side).
   const Slots &s = *slots_;
-  double *h = hessian_.valuePtr();
-  Eigen::Map<Eigen::VectorXd>(h, hessian_.nonZeros()) = s.bending_values;
+  if (dt != base_dt_) {
+    base_values_ = theta_ * dt * dt * s.bending_values;
+    for (std::size_t i = 0; i < s.diagonal.size(); ++i)
+      base_values_[s.diagonal[i]] += (rho_ + 0.5 * dt * lambda_) * measure_[static_cast<Eigen::Index>(i)];
+    base_dt_ = dt;
+  }
+  Eigen::Map<Eigen::VectorXd>(matrix_.valuePtr(), matrix_.nonZeros()) = base_values_;
+  add_tension_hessian(x, theta_ * dt * dt, matrix_.valuePtr());
+  if (theta_ < 1.0) {
+    Eigen::Map<Eigen::VectorXd>(hessian_.valuePtr(), hessian_.nonZeros()) = s.bending_values;
+    add_tension_hessian(x, 1.0, hessian_.valuePtr());
+  }
+}
+
+void SemiImplicitSystem::add_tension_hessian(const PointArray &x, double scale, double *values) const {
+  const Slots &s = *slots_;
   for (std::size_t k = 0; k < s.tension.size(); ++k) {
     const auto &t = terms_.tension()[k];
-    const double v = terms_.sigma(t, x) * t.measure * t.inv_ds_squared;
-    h[s.tension[k][0]] += v, h[s.tension[k][1]] -= v, h[s.tension[k][2]] -= v, h[s.tension[k][3]] += v;
+    const double v = scale * terms_.sigma(t, x) * t.measure * t.inv_ds_squared;
+    values[s.tension[k][0]] += v, values[s.tension[k][1]] -= v, values[s.tension[k][2]] -= v;
+    values[s.tension[k][3]] += v;
   }
   for (std::size_t k = 0; k < s.shear.size(); ++k) {
     const auto &t = terms_.shear()[k];
-    const double v = terms_.sigma(t, x) * t.measure;
+    const double v = scale * terms_.sigma(t, x) * t.measure;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)
-        h[s.shear[k][4 * r + c]] += v * (t.coef_a[r] * t.coef_b[c] + t.coef_b[r] * t.coef_a[c]);
+        values[s.shear[k][4 * r + c]] += v * (t.coef_a[r] * t.coef_b[c] + t.coef_b[r] * t.coef_a[c]);
   }
-  Eigen::Map<Eigen::VectorXd> a(matrix_.valuePtr(), matrix_.nonZeros());
-  a = theta_ * dt * dt * Eigen::Map<const Eigen::VectorXd>(h, hessian_.nonZeros());
-  for (std::size_t i = 0; i < s.diagonal.size(); ++i)
-    a[s.diagonal[i]] += (rho_ + 0.5 * dt * lambda_) * measure_[static_cast<Eigen::Index>(i)];
 }
 
 void SemiImplicitSystem::assemble_rhs(const StepInputs &in, PointArray &rhs) const {

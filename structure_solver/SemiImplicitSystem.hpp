@@ -51,6 +51,7 @@ private:
   struct Slots;
   void build_pattern();
   void fill_values(const PointArray &x_now, double dt);
+  void add_tension_hessian(const PointArray &x, double scale, double *values) const;
   void assemble_rhs(const StepInputs &in, PointArray &rhs) const;
   void apply_prescribed(const PointArray &prescribed_next, PointArray &rhs);
   int solve_cg(const PointArray &rhs, PointArray &x) const;
@@ -66,6 +67,8 @@ private:
 
   Eigen::SparseMatrix<double> matrix_;
   Eigen::SparseMatrix<double> hessian_; ///< frozen H of the current step (for theta < 1)
+  Eigen::VectorXd base_values_;         ///< masses, damping and bending for base_dt_
+  double base_dt_ = -1.0;
   std::unique_ptr<Slots> slots_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
   bool ldlt_analysed_ = false;
