@@ -1,0 +1,147 @@
+#include "SampleEnvelopes.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace fsi::proto::test {
+
+namespace {
+
+using Limits = std::numeric_limits<double>;
+
+const std::vector<double> tricky_values = {
+    0.1,      -0.0, 1e300,    -Limits::max(), Limits::denorm_min(), 3.141592653589793,
+    -2.5e-12, 42.0, 1.0 / 3.0};
+
+void fill(google::protobuf::RepeatedField<double> *field, std::size_t n, double offset = 0.0) {
+  for (std::size_t i = 0; i < n; ++i) {
+    field->Add(tricky_values[i % tricky_values.size()] + offset * static_cast<double>(i));
+  }
+}
+
+void fill_topology(v1::StructureTopology *topology, const char *name) {
+  topology->set_name(name);
+  topology->set_model("membrane");
+  topology->set_n1(std::numeric_limits<std::uint32_t>::max());
+  topology->set_n2(7);
+  fill(topology->mutable_point_measure(), 5, 1e-3);
+}
+
+void fill_pose(v1::RigidBodyPose *pose) {
+  pose->set_name("pôle");
+  fill(pose->mutable_rotation(), 9);
+  fill(pose->mutable_translation_m(), 3, 0.5);
+  fill(pose->mutable_angular_velocity_rad_per_s(), 3, -1.0);
+  fill(pose->mutable_linear_velocity_m_per_s(), 3, 2.0);
+}
+
+Envelope stamped(std::uint64_t step) { return make_envelope(v1::ROLE_COUPLER, step); }
+
+Envelope hello() {
+  Envelope e = make_envelope(v1::ROLE_STRUCTURE, 0);
+  auto *body = e.mutable_hello();
+  body->set_role(v1::ROLE_STRUCTURE);
+  body->set_participant_name("drapeau ✓");
+  body->set_protocol_version(current_protocol_version);
+  body->set_case_fingerprint("sha256:0123456789abcdef");
+  fill_topology(body->add_structures(), "flag");
+  fill_topology(body->add_structures(), "filament");
+  return e;
+}
+
+Envelope welcome() {
+  Envelope e = stamped(0);
+  auto *body = e.mutable_welcome();
+  body->set_time_step_s(1e-5);
+  body->set_n_steps(std::numeric_limits<std::uint64_t>::max());
+  fill_topology(body->add_structures(), "flag");
+  body->set_heartbeat_interval_s(0.25);
+  body->set_timeout_s(30.0);
+  return e;
+}
+
+Envelope interpolate_request() {
+  Envelope e = stamped(17);
+  auto *body = e.mutable_interpolate_request();
+  body->set_time_s(0.125);
+  fill_pose(body->add_rigid_bodies());
+  fill_pose(body->add_rigid_bodies());
+  fill(body->mutable_position_m(), 30, 0.01);
+  return e;
+}
+
+Envelope interpolate_reply() {
+  Envelope e = make_envelope(v1::ROLE_FLUID, 17);
+  fill(e.mutable_interpolate_reply()->mutable_velocity_m_per_s(), 30, -0.02);
+  return e;
+}
+
+Envelope fluid_advance() {
+  Envelope e = stamped(18);
+  auto *body = e.mutable_fluid_advance();
+  body->set_time_s(0.125);
+  body->set_dt_s(1e-5);
+  fill(body->mutable_position_m(), 30, 0.01);
+  fill(body->mutable_force_density_n_per_m2(), 30, 3.0);
+  return e;
+}
+
+Envelope structure_advance() {
+  Envelope e = stamped(18);
+  auto *body = e.mutable_structure_advance();
+  body->set_time_s(0.125);
+  body->set_dt_s(1e-5);
+  fill(body->mutable_load_density_n_per_m2(), 30, -3.0);
+  fill_pose(body->add_rigid_bodies());
+  return e;
+}
+
+Envelope advance_reply() {
+  Envelope e = make_envelope(v1::ROLE_STRUCTURE, 18);
+  auto *body = e.mutable_advance_reply();
+  body->set_time_s(0.12501);
+  fill(body->mutable_position_m(), 30, 0.01);
+  fill(body->mutable_velocity_m_per_s(), 30, 0.5);
+  body->set_solve_wall_s(0.003);
+  auto *load = body->add_rigid_body_loads();
+  load->set_name("pole");
+  fill(load->mutable_force_n(), 3, 1.0);
+  fill(load->mutable_torque_n_m(), 3, -1.0);
+  return e;
+}
+
+Envelope heartbeat() {
+  Envelope e = make_envelope(v1::ROLE_FLUID, 19);
+  e.mutable_heartbeat()->set_wall_time_s(1.7e9);
+  return e;
+}
+
+Envelope error_report() {
+  Envelope e = make_envelope(v1::ROLE_FLUID, 20);
+  auto *body = e.mutable_error();
+  body->set_message("fluid 'main' at step 20: the pressure solver diverged; reduce dt_s");
+  body->set_fatal(true);
+  return e;
+}
+
+Envelope shutdown() {
+  Envelope e = stamped(21);
+  auto *body = e.mutable_shutdown();
+  body->set_reason("end of run");
+  body->set_success(true);
+  return e;
+}
+
+} // namespace
+
+std::vector<Envelope> sample_envelopes() {
+  return {hello(),         welcome(),           interpolate_request(), interpolate_reply(),
+          fluid_advance(), structure_advance(), advance_reply(),       heartbeat(),
+          error_report(),  shutdown()};
+}
+
+bool same_bytes(const Envelope &a, const Envelope &b) {
+  return a.SerializeAsString() == b.SerializeAsString();
+}
+
+} // namespace fsi::proto::test
