@@ -5,7 +5,7 @@
 #   ./fsi run CASE_DIR        build, then run the case (results in CASE_DIR/output/)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
-#   ./fsi bench [structure]   run the benchmarks
+#   ./fsi bench [structure|transport]  run a benchmark
 #   ./fsi schema              print the case-file reference (Markdown)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
@@ -103,7 +103,8 @@ cmd_bench() {
   local which=${1:-structure}
   case "$which" in
     structure) "$BUILD/bin/bench_structure" --benchmark_counters_tabular=true ;;
-    *) die "unknown benchmark '$which' (available: structure)" ;;
+    transport) "$BUILD/bin/bench_transport" --benchmark_counters_tabular=true ;;
+    *) die "unknown benchmark '$which' (available: structure, transport)" ;;
   esac
 }
 
