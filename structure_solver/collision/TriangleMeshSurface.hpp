@@ -1,7 +1,12 @@
 #pragma once
 // A closed triangle mesh (an impeller, a volute casing) as a collision surface. Built once in
-// the body frame: CGAL's AABB tree answers closest-point queries, CGAL::Side_of_triangle_mesh
-// the inside test, and a VoxelSideGrid culls the points far from the surface.
+// the body frame. Near the surface (after prepare_culling), each cell of a VoxelSideGrid
+// lists the few triangles that can hold the closest point of its points (NearTriangleLists),
+// and the angle-weighted pseudo-normal of the closest feature gives the side
+// (PseudoNormals): a near query costs a handful of exact point-triangle distances. Far cells
+// are classified inside or outside once; elsewhere a BVH (TriangleBvh) finds the closest
+// triangle, and CGAL::Side_of_triangle_mesh decides the side where a pseudo-normal cannot
+// (a self-intersecting mesh, a point on the surface, a knife-thin feature).
 
 #include "structure_solver/collision/RigidSurface.hpp"
 #include "structure_solver/collision/TriangleSoup.hpp"
@@ -39,7 +44,9 @@ public:
   SurfaceDistance distance(const Vec3 &point_body_m) const override;
   std::string describe() const override;
   bool may_be_within(const Vec3 &point_body_m, double radius_m) const override;
-  /// Builds (or widens) the voxel culling grid for query radii up to radius_m.
+  /// Builds (or widens) the voxel culling grid and the per-cell candidate triangles for
+  /// query radii up to radius_m (about a second per 100k triangles when radius_m is twice
+  /// the triangle size).
   void prepare_culling(double radius_m) override;
 
   /// Exact test: is the point strictly inside the closed surface (whatever the fluid side)?

@@ -19,8 +19,7 @@ VoxelSideGrid::VoxelSideGrid(const std::vector<Triangle> &triangles, double radi
   }
   size_grid(mesh_box, max_cells);
   // Everything starts far and outside; near cells are marked, then far cells classified.
-  states_.assign(static_cast<std::size_t>(n_cells_[0]) * n_cells_[1] * n_cells_[2],
-                 VoxelState::outside_mesh);
+  states_.assign(layout_.n_cells(), VoxelState::outside_mesh);
   hint_triangles_.assign(states_.size(), -1);
   std::vector<float> hint_distance_sq_m2(states_.size(), std::numeric_limits<float>::max());
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -33,23 +32,14 @@ VoxelSideGrid::VoxelSideGrid(const std::vector<Triangle> &triangles, double radi
 void VoxelSideGrid::size_grid(const Eigen::AlignedBox3d &mesh_box, std::size_t max_cells) {
   // Cells no smaller than half the radius keep the near marking of each triangle cheap.
   const double padded_volume_m3 = (mesh_box.sizes().array() + 2.0 * radius_m_).prod();
-  cell_size_m_ = std::max({0.5 * radius_m_, std::cbrt(padded_volume_m3 / max_cells),
-                           1e-9 * mesh_box.sizes().maxCoeff()});
-  while (fit_grid(mesh_box) > max_cells)
-    cell_size_m_ *= 1.1;
-}
-
-std::size_t VoxelSideGrid::fit_grid(const Eigen::AlignedBox3d &mesh_box) {
+  double cell_size_m = std::max({0.5 * radius_m_, std::cbrt(padded_volume_m3 / max_cells),
+                                 1e-9 * mesh_box.sizes().maxCoeff()});
   // Two spare cells beyond radius_m on each side: the border layer is never near.
-  const double margin_m = radius_m_ + 2.0 * cell_size_m_;
-  origin_m_ = mesh_box.min().array() - margin_m;
-  std::size_t n_total = 1;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double span_m = mesh_box.sizes()[axis] + 2.0 * margin_m;
-    n_cells_[axis] = std::max(3, static_cast<int>(std::ceil(span_m / cell_size_m_)));
-    n_total *= static_cast<std::size_t>(n_cells_[axis]);
+  layout_ = VoxelLayout(mesh_box, radius_m_ + 2.0 * cell_size_m, cell_size_m);
+  while (layout_.n_cells() > max_cells) {
+    cell_size_m *= 1.1;
+    layout_ = VoxelLayout(mesh_box, radius_m_ + 2.0 * cell_size_m, cell_size_m);
   }
-  return n_total;
 }
 
 void VoxelSideGrid::mark_near_cells(const Triangle &triangle, std::int32_t triangle_index,
@@ -61,23 +51,15 @@ void VoxelSideGrid::mark_near_cells(const Triangle &triangle, std::int32_t trian
   const Vec3 normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
   // A cell is near when its centre lies within radius + half a cell diagonal of both the
   // triangle's bounding box and its plane (both contain the triangle: conservative).
-  const double reach_m = radius_m_ + 0.5 * std::sqrt(3.0) * cell_size_m_;
-  std::array<int, 3> first{}, last{};
-  for (int axis = 0; axis < 3; ++axis) {
-    first[axis] =
-        static_cast<int>(std::floor((box.min()[axis] - reach_m - origin_m_[axis]) / cell_size_m_));
-    last[axis] =
-        static_cast<int>(std::floor((box.max()[axis] + reach_m - origin_m_[axis]) / cell_size_m_));
-    first[axis] = std::clamp(first[axis], 0, n_cells_[axis] - 1);
-    last[axis] = std::clamp(last[axis], 0, n_cells_[axis] - 1);
-  }
-  for (int k = first[2]; k <= last[2]; ++k) {
-    for (int j = first[1]; j <= last[1]; ++j) {
-      for (int i = first[0]; i <= last[0]; ++i) {
-        const Vec3 centre_m = cell_centre_m(i, j, k);
+  const double reach_m = radius_m_ + layout_.half_diagonal_m();
+  const VoxelLayout::CellRange range = layout_.cells_covering(box, reach_m);
+  for (int k = range.first[2]; k <= range.last[2]; ++k) {
+    for (int j = range.first[1]; j <= range.last[1]; ++j) {
+      for (int i = range.first[0]; i <= range.last[0]; ++i) {
+        const Vec3 centre_m = layout_.centre_m(i, j, k);
         if (std::abs(normal.dot(centre_m - triangle[0])) > reach_m)
           continue;
-        const auto cell = static_cast<std::size_t>(index(i, j, k));
+        const auto cell = static_cast<std::size_t>(layout_.index(i, j, k));
         states_[cell] = VoxelState::near_surface;
         const auto distance_sq_m2 = static_cast<float>((centre_m - centroid_m).squaredNorm());
         if (distance_sq_m2 < hint_distance_sq_m2[cell]) { // keep the closest triangle centroid
@@ -90,37 +72,32 @@ void VoxelSideGrid::mark_near_cells(const Triangle &triangle, std::int32_t trian
 }
 
 void VoxelSideGrid::flood_fill_far_cells(const std::function<bool(const Vec3 &)> &is_inside_mesh) {
+  const std::array<int, 3> &n_cells = layout_.n_cells_per_axis();
   visited_.assign(states_.size(), 0);
   std::vector<std::int32_t> border;
-  for (int k = 0; k < n_cells_[2]; ++k) {
-    for (int j = 0; j < n_cells_[1]; ++j) {
-      for (int i = 0; i < n_cells_[0]; ++i) {
-        const bool on_border = i == 0 || j == 0 || k == 0 || i == n_cells_[0] - 1 ||
-                               j == n_cells_[1] - 1 || k == n_cells_[2] - 1;
-        if (on_border)
-          border.push_back(index(i, j, k));
+  for (int k = 0; k < n_cells[2]; ++k) {
+    for (int j = 0; j < n_cells[1]; ++j) {
+      for (int i = 0; i < n_cells[0]; ++i) {
+        if (layout_.on_border(i, j, k))
+          border.push_back(layout_.index(i, j, k));
       }
     }
   }
   fill_region(border, VoxelState::outside_mesh);
   // Enclosed far regions: one exact side test decides each whole region.
-  for (int k = 0; k < n_cells_[2]; ++k) {
-    for (int j = 0; j < n_cells_[1]; ++j) {
-      for (int i = 0; i < n_cells_[0]; ++i) {
-        const std::int32_t cell = index(i, j, k);
-        if (visited_[cell] || states_[cell] == VoxelState::near_surface)
-          continue;
-        const bool inside = is_inside_mesh(cell_centre_m(i, j, k));
-        fill_region({cell}, inside ? VoxelState::inside_mesh : VoxelState::outside_mesh);
-      }
-    }
+  for (std::int32_t cell = 0; cell < static_cast<std::int32_t>(states_.size()); ++cell) {
+    if (visited_[cell] || states_[cell] == VoxelState::near_surface)
+      continue;
+    const bool inside = is_inside_mesh(layout_.centre_m(cell));
+    fill_region({cell}, inside ? VoxelState::inside_mesh : VoxelState::outside_mesh);
   }
   visited_.clear();
   visited_.shrink_to_fit();
 }
 
 void VoxelSideGrid::fill_region(std::vector<std::int32_t> seeds, VoxelState state) {
-  const std::int32_t strides[3] = {1, n_cells_[0], n_cells_[0] * n_cells_[1]};
+  const std::array<int, 3> &n_cells = layout_.n_cells_per_axis();
+  const std::int32_t strides[3] = {1, n_cells[0], n_cells[0] * n_cells[1]};
   std::vector<std::int32_t> queue;
   for (std::int32_t seed : seeds) {
     if (!visited_[seed] && states_[seed] != VoxelState::near_surface) {
@@ -131,13 +108,11 @@ void VoxelSideGrid::fill_region(std::vector<std::int32_t> seeds, VoxelState stat
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::int32_t cell = queue[head];
     states_[cell] = state;
-    std::int32_t rest = cell;
-    const int coords[3] = {rest % n_cells_[0], (rest / n_cells_[0]) % n_cells_[1],
-                           rest / (n_cells_[0] * n_cells_[1])};
+    const std::array<int, 3> coords = layout_.coordinates(cell);
     for (int axis = 0; axis < 3; ++axis) {
       for (int step : {-1, 1}) {
         const int next_coord = coords[axis] + step;
-        if (next_coord < 0 || next_coord >= n_cells_[axis])
+        if (next_coord < 0 || next_coord >= n_cells[axis])
           continue;
         const std::int32_t next = cell + step * strides[axis];
         if (visited_[next] || states_[next] == VoxelState::near_surface)
@@ -149,17 +124,14 @@ void VoxelSideGrid::fill_region(std::vector<std::int32_t> seeds, VoxelState stat
   }
 }
 
-Vec3 VoxelSideGrid::cell_centre_m(int i, int j, int k) const {
-  return origin_m_ + cell_size_m_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
-}
-
 void VoxelSideGrid::propagate_hints_inside() {
   std::vector<std::int32_t> queue;
   for (std::size_t cell = 0; cell < states_.size(); ++cell) {
     if (states_[cell] == VoxelState::near_surface)
       queue.push_back(static_cast<std::int32_t>(cell));
   }
-  const std::int32_t strides[3] = {1, n_cells_[0], n_cells_[0] * n_cells_[1]};
+  const std::array<int, 3> &n_cells = layout_.n_cells_per_axis();
+  const std::int32_t strides[3] = {1, n_cells[0], n_cells[0] * n_cells[1]};
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::int32_t cell = queue[head];
     for (const std::int32_t stride : strides) {
@@ -176,25 +148,13 @@ void VoxelSideGrid::propagate_hints_inside() {
   }
 }
 
-std::int64_t VoxelSideGrid::cell_of(const Vec3 &point_m) const {
-  int cell[3];
-  for (int axis = 0; axis < 3; ++axis) {
-    const double scaled = (point_m[axis] - origin_m_[axis]) / cell_size_m_;
-    if (!(scaled >= 0.0 && scaled < n_cells_[axis])) {
-      return -1; // beyond the grid, or NaN
-    }
-    cell[axis] = static_cast<int>(scaled);
-  }
-  return index(cell[0], cell[1], cell[2]);
-}
-
 VoxelState VoxelSideGrid::state_at(const Vec3 &point_m) const {
-  const std::int64_t cell = cell_of(point_m);
+  const std::int64_t cell = layout_.cell_of(point_m);
   return cell < 0 ? VoxelState::outside_mesh : states_[static_cast<std::size_t>(cell)];
 }
 
 std::int32_t VoxelSideGrid::hint_triangle_at(const Vec3 &point_m) const {
-  const std::int64_t cell = cell_of(point_m);
+  const std::int64_t cell = layout_.cell_of(point_m);
   return cell < 0 ? -1 : hint_triangles_[static_cast<std::size_t>(cell)];
 }
 

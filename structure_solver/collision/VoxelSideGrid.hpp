@@ -8,6 +8,7 @@
 // closest-point search.
 
 #include "common/Types.hpp"
+#include "structure_solver/collision/VoxelLayout.hpp"
 
 #include <Eigen/Geometry>
 
@@ -36,35 +37,32 @@ public:
   /// State of the cell holding the point; outside_mesh beyond the grid (the grid extends
   /// more than radius_m past the mesh's bounding box).
   VoxelState state_at(const Vec3 &point_m) const;
+  /// State of a cell by its flat index in layout().
+  VoxelState state_of_cell(std::int32_t cell) const {
+    return states_[static_cast<std::size_t>(cell)];
+  }
 
   /// Index (into the constructor's list) of a triangle near the point's cell, -1 if the
   /// point is outside the grid or in a far-outside cell.
   std::int32_t hint_triangle_at(const Vec3 &point_m) const;
 
   double radius_m() const { return radius_m_; }
-  double cell_size_m() const { return cell_size_m_; }
+  double cell_size_m() const { return layout_.cell_size_m(); }
+  const VoxelLayout &layout() const { return layout_; }
   std::size_t n_near_cells() const;
 
 private:
   void size_grid(const Eigen::AlignedBox3d &mesh_box, std::size_t max_cells);
-  /// Sets origin and cell counts for the current cell size; returns the number of cells.
-  std::size_t fit_grid(const Eigen::AlignedBox3d &mesh_box);
   void mark_near_cells(const Triangle &triangle, std::int32_t triangle_index,
                        std::vector<float> &hint_distance_sq_m2);
   /// Gives every inside cell the hint of the nearest near cell (breadth-first from them).
   void propagate_hints_inside();
-  /// Flat index of the point's cell, -1 outside the grid (or NaN).
-  std::int64_t cell_of(const Vec3 &point_m) const;
   void flood_fill_far_cells(const std::function<bool(const Vec3 &)> &is_inside_mesh);
   /// Breadth-first fill of the far cells connected to the seeds with `state`.
   void fill_region(std::vector<std::int32_t> seeds, VoxelState state);
-  std::int32_t index(int i, int j, int k) const { return i + n_cells_[0] * (j + n_cells_[1] * k); }
-  Vec3 cell_centre_m(int i, int j, int k) const;
 
   double radius_m_;
-  double cell_size_m_ = 0.0;
-  Vec3 origin_m_ = Vec3::Zero();
-  std::array<int, 3> n_cells_{0, 0, 0};
+  VoxelLayout layout_;
   std::vector<VoxelState> states_;
   std::vector<std::int32_t> hint_triangles_;
   std::vector<std::uint8_t> visited_;
