@@ -1,11 +1,13 @@
 #include "LagrangianSheet.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fsi::structure {
 
 LagrangianSheet::LagrangianSheet(SheetSetup setup)
-    : setup_(std::move(setup)), measure_(setup_.grid.point_measures()), prescribed_(prescribed_points()) {
+    : setup_(std::move(setup)), measure_(setup_.grid.point_measures()), prescribed_(prescribed_points()),
+      has_prescribed_(std::find(prescribed_.begin(), prescribed_.end(), true) != prescribed_.end()) {
   terms_ = std::make_unique<ElasticTerms>(setup_.grid, setup_.edges, setup_.shape_body_m, setup_.tension_coefficient,
                                           setup_.bending_rigidity, setup_.curved_rest_state);
   system_ = std::make_unique<SemiImplicitSystem>(*terms_, measure_, setup_.mass_per_measure,
@@ -57,7 +59,8 @@ int LagrangianSheet::advance(const PointArray &load_density) {
   // Nodal loads: (rho_1 g + load density) integrated over each point's measure.
   const Eigen::RowVector3d weight_density = setup_.mass_per_measure * setup_.gravity_m_per_s2.transpose();
   load_ = measure_.asDiagonal() * (load_density.rowwise() + weight_density);
-  const PointArray prescribed_next = prescribed_positions(time_s_ + dt);
+  // Prescribed positions are only needed (and only computed) when some points are pinned or clamped.
+  const PointArray prescribed_next = has_prescribed_ ? prescribed_positions(time_s_ + dt) : PointArray();
   StepInputs in{&x_, &x_prev_, &load_, &prescribed_next, clamp_rotation(time_s_ + dt), dt};
   PointArray x_next;
   const int iterations = system_->solve(in, x_next);
@@ -69,6 +72,8 @@ int LagrangianSheet::advance(const PointArray &load_density) {
 }
 
 void LagrangianSheet::restore_prescribed(double time_s) {
+  if (!has_prescribed_)
+    return;
   const PointArray prescribed = prescribed_positions(time_s);
   for (int i = 0; i < x_.rows(); ++i)
     if (prescribed_[static_cast<std::size_t>(i)])

@@ -76,6 +76,7 @@ private:
   SheetSetup setup_;
   Eigen::VectorXd measure_;
   std::vector<bool> prescribed_;
+  bool has_prescribed_;
   std::unique_ptr<ElasticTerms> terms_;
   std::unique_ptr<SemiImplicitSystem> system_;
   PointArray x_, x_prev_, v_, load_;
