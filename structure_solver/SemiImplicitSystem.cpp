@@ -56,7 +56,8 @@ void SemiImplicitSystem::build_pattern() {
   matrix_.resize(n, n);
   matrix_.setFromTriplets(entries.begin(), entries.end());
   matrix_.makeCompressed();
-  hessian_ = matrix_;
+  if (theta_ < 1.0)
+    hessian_ = matrix_; // same pattern; only the energy-conserving scheme needs H itself
 
   const auto slot = [&](int row, int col) {
     const int *begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
@@ -134,9 +135,8 @@ void SemiImplicitSystem::add_tension_hessian(const PointArray &x, double scale, 
 
 void SemiImplicitSystem::assemble_rhs(const StepInputs &in, PointArray &rhs) const {
   const double dt = in.dt_s;
-  const Eigen::VectorXd now = 2.0 * rho_ * measure_;
-  const Eigen::VectorXd prev = (rho_ - 0.5 * dt * lambda_) * measure_;
-  rhs = now.asDiagonal() * *in.x_now - prev.asDiagonal() * *in.x_prev + dt * dt * *in.nodal_load_n;
+  rhs = measure_.asDiagonal() * (2.0 * rho_ * *in.x_now - (rho_ - 0.5 * dt * lambda_) * *in.x_prev);
+  rhs += dt * dt * *in.nodal_load_n;
   if (theta_ < 1.0)
     rhs -= (1.0 - theta_) * dt * dt * (hessian_ * *in.x_prev);
   const double zeta = terms_.bending_rigidity();
