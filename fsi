@@ -2,7 +2,10 @@
 # fsi: the one entry point. Installs missing Debian packages, configures and builds with
 # CMake (Release), then runs a case, validates it, runs the tests or the benchmarks.
 #
-#   ./fsi run CASE_DIR        build, then run the case (results in CASE_DIR/output/)
+#   ./fsi run [-o DIR] [-v] CASE_DIR  build, then run the case (results in CASE_DIR/output/):
+#                             the structure solver alone, or the coupler and its participants
+#   ./fsi run --participant coupler|structure|fluid CASE_DIR
+#                             start only that process (several machines; see README)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi bench [structure|transport]  run a benchmark
@@ -60,18 +63,24 @@ build() {
 
 prepare() { ensure_packages; build "$BUILD" -DCMAKE_BUILD_TYPE=Release; }
 
+# The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
+# and starts them; the picture is drawn where the structure ran.
 cmd_run() {
-  [ $# -ge 1 ] || die "usage: ./fsi run CASE_DIR"
+  [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--participant NAME] CASE_DIR"
   prepare
-  local case_dir=${!#} status=0 out="" prev=""
+  local launch=(/usr/bin/python3 "$ROOT/scripts/fsi_launch.py" --bin-dir "$BUILD/bin")
+  local status=0 out="" participant="" prev=""
   for a in "$@"; do
-    case "$prev" in -o|--output-dir) out=$a ;; esac
+    case "$prev" in --participant) participant=$a ;; esac
+    case "$a" in --participant=*) participant=${a#--participant=} ;; esac
     prev=$a
   done
-  "$BUILD/bin/fsi-structure" "$@" || status=$?
-  out=${out:-$case_dir/output}
+  "${launch[@]}" "$@" || status=$?
+  [ "$status" -le 1 ] || return "$status"
+  [ -z "$participant" ] || [ "$participant" = structure ] || return "$status"
+  out=$("${launch[@]}" --print-output-dir "$@" 2>/dev/null) || return "$status"
   local results="$out/structure.h5"
-  if [ "$status" -le 1 ] && [ -f "$results" ]; then
+  if [ -n "$out" ] && [ -f "$results" ]; then
     if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$out/summary.png" 2>/dev/null; then
       say "picture: $out/summary.png"
     fi
@@ -115,6 +124,6 @@ case "${1:-help}" in
   bench) shift; cmd_bench "$@" ;;
   schema) prepare; "$BUILD/bin/fsi-structure" --schema ;;
   build) prepare ;;
-  help|-h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//' ;;
+  help|-h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//' ;;
   *) die "unknown command '$1' (commands: run, check, test, bench, schema, build, help)" ;;
 esac

@@ -1,0 +1,427 @@
+#!/usr/bin/python3
+"""fsi_launch.py: starts the processes of one case (the launcher behind `./fsi run`).
+
+    fsi_launch.py --bin-dir DIR [-o DIR] [-v] CASE_DIR
+    fsi_launch.py --bin-dir DIR --participant NAME [--endpoint E] [-o DIR] CASE_DIR
+    fsi_launch.py --bin-dir DIR --print-output-dir [-o DIR] CASE_DIR
+
+It asks `fsi-coupler --plan` which processes the scene needs.
+- Structure only: runs `fsi-structure CASE_DIR [-o DIR] [-v]` in its place (exec).
+- Coupled: starts the coupler, waits for it to write `<output>/coupler.endpoint`, then starts
+  the participants with `--endpoint` set to it. The coupler's output is shown in full; the
+  participants' lines only from warning level up (all of them with -v), prefixed with
+  `[name]`. Everything each process prints is also kept in `<output>/logs/<name>.console`.
+  SIGINT and SIGTERM received by the launcher are forwarded to every child still running.
+  When a process fails, the others get 15 s to stop on their own, then SIGTERM, then SIGKILL
+  5 s later. Exit code: 0 when all succeeded, else that of the first process that failed
+  (130 when interrupted).
+- --participant NAME: runs only that process of the plan (exec), for starting the processes by
+  hand on several machines; participants then read `coupling.endpoint` from the case file
+  unless --endpoint is given.
+
+Exit codes: 0 success, 1 run failed, 2 bad input (bad case, unknown option, missing build),
+130 interrupted. Python standard library only (Debian's /usr/bin/python3).
+
+Environment (mostly for tests): FSI_ENDPOINT_TIMEOUT_S (default 30), FSI_STOP_GRACE_S
+(default 15), FSI_KILL_GRACE_S (default 5).
+"""
+
+import argparse
+import collections
+import os
+import re
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+EXIT_OK, EXIT_RUN_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+POLL_S = 0.05
+SHOWN_LEVELS = {"warning", "warn", "error", "err", "critical"}
+ANSI = re.compile(rb"\x1b\[[0-9;]*[A-Za-z]")
+SPDLOG_LEVEL = re.compile(rb"^\[[^\]]*\] \[[^\]]*\] \[([A-Za-z]+)\]")
+PRINT_LOCK = threading.Lock()  # one line at a time on the console, from every thread
+
+
+class UserError(Exception):
+    """An error the user can fix: printed as one line, no traceback."""
+
+    def __init__(self, message, code=EXIT_BAD_INPUT):
+        super().__init__(message)
+        self.code = code
+
+
+def say(message):
+    with PRINT_LOCK:
+        sys.stderr.write("fsi: %s\n" % message)
+        sys.stderr.flush()
+
+
+def env_seconds(name, default):
+    value = os.environ.get(name)
+    if not value:
+        return default
+    try:
+        seconds = float(value)
+    except ValueError:
+        raise UserError("%s must be a number of seconds, not '%s'" % (name, value))
+    if seconds < 0:
+        raise UserError("%s must not be negative" % name)
+    return seconds
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        raise UserError(message)
+
+
+def parse_args(argv):
+    parser = ArgumentParser(
+        prog="fsi run", allow_abbrev=False,
+        description="Run a case: the structure solver alone, or the coupler and its participants.")
+    parser.add_argument("--bin-dir", required=True, help="folder holding the fsi-* executables")
+    parser.add_argument("-o", "--output-dir", help="results folder (overrides run.output_directory)")
+    parser.add_argument("--participant", metavar="NAME",
+                        help="start only this process of the case (coupler, structure, fluid), "
+                             "to start them by hand on several machines")
+    parser.add_argument("--endpoint", metavar="E",
+                        help="endpoint to bind (coupler) or connect to (participants); "
+                             "default: the case file's coupling.endpoint")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="show every line of every process (structure only: debug logging)")
+    parser.add_argument("--print-output-dir", action="store_true",
+                        help="print the case's results folder and exit")
+    parser.add_argument("case_dir", metavar="CASE_DIR", help="case folder holding case.yaml")
+    return parser.parse_args(argv)
+
+
+# ---------------------------------------------------------------------------------------------
+# The plan
+
+class Plan:
+    def __init__(self, output_dir, processes):
+        self.output_dir = output_dir
+        self.processes = processes  # [(name, executable path)] in the coupler's order
+
+    def names(self):
+        return [name for name, _ in self.processes]
+
+    def executable(self, name):
+        return dict(self.processes)[name]
+
+
+def executable_in(bin_dir, name):
+    path = name if os.path.isabs(name) else os.path.join(bin_dir, name)
+    if not (os.path.isfile(path) and os.access(path, os.X_OK)):
+        raise UserError("executable %s not found (build first: ./fsi build)" % path)
+    return path
+
+
+def output_args(args):
+    return ["-o", args.output_dir] if args.output_dir else []
+
+
+def read_plan(args):
+    coupler = executable_in(args.bin_dir, "fsi-coupler")
+    command = [coupler, "--plan", args.case_dir] + output_args(args)
+    try:
+        result = subprocess.run(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE)
+    except OSError as e:
+        raise UserError("cannot run %s: %s" % (coupler, e.strerror))
+    if result.returncode != 0:
+        sys.stderr.buffer.write(result.stderr)
+        sys.stderr.flush()
+        code = result.returncode if result.returncode > 0 else 128 - result.returncode
+        raise UserError("", code)  # the coupler has said why
+    output_dir, processes = None, []
+    for line in result.stdout.decode("utf-8", "replace").splitlines():
+        words = line.split(None, 2) if line.strip() else []
+        if not words:
+            continue
+        if words[0] == "output" and len(words) >= 2:
+            output_dir = line.split(None, 1)[1].strip()
+        elif words[0] == "process":
+            if len(words) != 3:
+                raise UserError("unexpected line from '%s --plan': %s" % (coupler, line),
+                                EXIT_RUN_FAILED)
+            processes.append((words[1], executable_in(args.bin_dir, words[2].strip())))
+        # other lines are for other readers: ignored
+    if output_dir is None or not processes:
+        raise UserError("'%s --plan' named no output folder or no process" % coupler, EXIT_RUN_FAILED)
+    return Plan(output_dir, processes)
+
+
+def command_for(name, executable, args, endpoint, coupled):
+    """The command line of one process. endpoint: None to let it read the case file."""
+    command = [executable, args.case_dir]
+    if not coupled:  # structure only, exactly as before the coupler existed
+        return command + output_args(args) + (["-v"] if args.verbose else [])
+    if name == "structure":
+        command.append("--coupled")
+    if endpoint:
+        command += ["--endpoint", endpoint]
+    return command + output_args(args)
+
+
+# ---------------------------------------------------------------------------------------------
+# Coupled run: children, their output, signals
+
+class Child:
+    def __init__(self, name, command, output_dir, show_all):
+        self.name = name
+        self.command = command
+        self.show_all = show_all
+        # The coupler's lines carry the run's progress and are shown as they are.
+        self.prefix = b"" if name == "coupler" else ("[%s] " % name).encode()
+        self.log_path = os.path.join(output_dir, name + ".log")
+        self.console_path = os.path.join(output_dir, "logs", name + ".console")
+        self.tail = collections.deque(maxlen=10)
+        self.code = None          # exit code once it has exited (128 + n for signal n)
+        self.exit_time = None
+        self.stopped_by_launcher = False
+        self.process = None
+        self.reader = None
+        self.waiter = None
+
+    def start(self):
+        console = open(self.console_path, "wb")
+        try:
+            self.process = subprocess.Popen(self.command, stdin=subprocess.DEVNULL,
+                                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        except OSError as e:
+            console.close()
+            raise UserError("cannot start %s: %s" % (self.command[0], e.strerror), EXIT_RUN_FAILED)
+        self.reader = threading.Thread(target=self._read, args=(console,), daemon=True)
+        self.reader.start()
+        self.waiter = threading.Thread(target=self._wait, daemon=True)
+        self.waiter.start()
+
+    def running(self):
+        return self.process is not None and self.code is None
+
+    def signal(self, signum):
+        if self.running():
+            try:
+                self.process.send_signal(signum)
+            except OSError:
+                pass
+
+    def log_hint(self):
+        return self.log_path if os.path.exists(self.log_path) else self.console_path
+
+    def _wait(self):
+        code = self.process.wait()
+        self.exit_time = time.monotonic()  # exact order of the exits, for "the first that failed"
+        self.code = code if code >= 0 else 128 - code
+
+    def _read(self, console):
+        visible = True  # lines before the first spdlog line (plain stderr) are shown
+        with console:
+            for raw in iter(self.process.stdout.readline, b""):
+                console.write(raw)
+                console.flush()
+                line = raw.rstrip(b"\r\n")
+                self.tail.append(line)
+                match = SPDLOG_LEVEL.match(ANSI.sub(b"", line))
+                if match:  # continuation lines of a message keep its visibility
+                    visible = match.group(1).decode().lower() in SHOWN_LEVELS
+                if self.show_all or visible:
+                    with PRINT_LOCK:
+                        sys.stderr.buffer.write(self.prefix + line + b"\n")
+                        sys.stderr.flush()
+        self.process.stdout.close()
+
+
+class CoupledRun:
+    def __init__(self, args, plan):
+        self.args = args
+        self.plan = plan
+        self.children = []
+        self.interrupted = None  # the signal received, if any
+        self.endpoint_timed_out = False
+        self.endpoint_timeout_s = env_seconds("FSI_ENDPOINT_TIMEOUT_S", 30.0)
+        self.stop_grace_s = env_seconds("FSI_STOP_GRACE_S", 15.0)
+        self.kill_grace_s = env_seconds("FSI_KILL_GRACE_S", 5.0)
+
+    def _on_signal(self, signum, _frame):
+        self.interrupted = signum
+        for child in self.children:
+            child.signal(signum)
+
+    def _start(self, name, endpoint):
+        command = command_for(name, self.plan.executable(name), self.args, endpoint, coupled=True)
+        # The coupler's lines are all shown; a participant's from warning level up (-v: all).
+        child = Child(name, command, self.plan.output_dir,
+                      show_all=(name == "coupler" or self.args.verbose))
+        self.children.append(child)
+        child.start()
+        if self.interrupted:  # the signal came while it was being started
+            child.signal(self.interrupted)
+        return child
+
+    def run(self):
+        out = self.plan.output_dir
+        try:
+            os.makedirs(os.path.join(out, "logs"), exist_ok=True)
+        except OSError as e:
+            raise UserError("cannot create %s: %s" % (os.path.join(out, "logs"), e.strerror))
+        endpoint_file = os.path.join(out, "coupler.endpoint")
+        try:
+            os.remove(endpoint_file)
+        except FileNotFoundError:
+            pass
+        except OSError as e:
+            raise UserError("cannot remove the stale %s: %s" % (endpoint_file, e.strerror))
+
+        previous = {s: signal.signal(s, self._on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            coupler = self._start("coupler", self.args.endpoint)
+            endpoint = self._wait_for_endpoint(coupler, endpoint_file)
+            if endpoint is not None:
+                for name in self.plan.names():
+                    if name != "coupler" and not self.interrupted:
+                        self._start(name, endpoint)
+            self._wait_all()
+        finally:
+            for s, handler in previous.items():
+                signal.signal(s, handler)
+        for child in self.children:
+            child.reader.join(timeout=2.0)
+        return self._report(endpoint_file)
+
+    def _wait_for_endpoint(self, coupler, endpoint_file):
+        deadline = time.monotonic() + self.endpoint_timeout_s
+        while True:
+            try:
+                with open(endpoint_file) as f:
+                    endpoint = f.read().strip()
+                if endpoint:
+                    return endpoint
+            except FileNotFoundError:
+                pass
+            if not coupler.running() or self.interrupted:
+                return None
+            if time.monotonic() >= deadline:
+                self.endpoint_timed_out = True
+                say("the coupler wrote no %s within %g s; stopping it"
+                    % (endpoint_file, self.endpoint_timeout_s))
+                self._stop(self.children)
+                return None
+            time.sleep(POLL_S)
+
+    def _stop(self, children):
+        """SIGTERM, then SIGKILL after kill_grace_s, for those still running."""
+        stragglers = [c for c in children if c.running()]
+        for child in stragglers:
+            child.stopped_by_launcher = True
+            child.signal(signal.SIGTERM)
+        deadline = time.monotonic() + self.kill_grace_s
+        while any(c.running() for c in stragglers) and time.monotonic() < deadline:
+            time.sleep(POLL_S)
+        for child in stragglers:
+            if child.running():
+                say("%s did not stop after SIGTERM; killing it" % child.name)
+                child.signal(signal.SIGKILL)
+        for child in stragglers:
+            child.waiter.join()
+
+    def _wait_all(self):
+        grace_start = None
+        while any(c.running() for c in self.children):
+            if grace_start is None:
+                ended = [c for c in self.children if not c.running()]
+                if self.interrupted or any(c.code != 0 or c.name == "coupler" for c in ended):
+                    grace_start = time.monotonic()  # the others should now stop on their own
+            elif time.monotonic() - grace_start >= self.stop_grace_s:
+                names = ", ".join(c.name for c in self.children if c.running())
+                say("still running %g s after the run ended: %s; stopping" % (self.stop_grace_s, names))
+                self._stop(self.children)
+                break
+            time.sleep(POLL_S)
+        for child in self.children:
+            child.waiter.join()
+
+    def _report(self, endpoint_file):
+        coupler = self.children[0]
+        if len(self.children) == 1 and not self.interrupted:
+            # The coupler stopped (or hung) before it wrote its endpoint.
+            if not self.endpoint_timed_out:
+                say("the coupler stopped before it wrote %s; last lines of its output:" % endpoint_file)
+                with PRINT_LOCK:
+                    for line in coupler.tail:
+                        sys.stderr.buffer.write(b"  | " + line + b"\n")
+                    sys.stderr.flush()
+            note = " after fsi stopped it" if coupler.stopped_by_launcher else ""
+            say("coupler exited with code %d%s (log: %s)" % (coupler.code, note, coupler.log_hint()))
+            if self.endpoint_timed_out or coupler.code == EXIT_OK:
+                return EXIT_RUN_FAILED
+            return coupler.code
+
+        failed = sorted((c for c in self.children if c.code != 0), key=lambda c: c.exit_time)
+        if self.interrupted:
+            if not failed:
+                return EXIT_OK
+            say("interrupted; results so far are in %s" % self.plan.output_dir)
+        for child in failed:
+            if self.interrupted and child.code == EXIT_INTERRUPTED:
+                continue
+            note = " after fsi stopped it" if child.stopped_by_launcher else ""
+            say("%s exited with code %d%s (log: %s)" % (child.name, child.code, note, child.log_hint()))
+        if self.interrupted:
+            return EXIT_INTERRUPTED
+        return failed[0].code if failed else EXIT_OK
+
+
+# ---------------------------------------------------------------------------------------------
+
+def exec_process(command):
+    sys.stdout.flush()
+    sys.stderr.flush()
+    try:
+        os.execv(command[0], command)
+    except OSError as e:
+        raise UserError("cannot run %s: %s" % (command[0], e.strerror), EXIT_RUN_FAILED)
+
+
+def main(argv):
+    args = parse_args(argv)
+    if not os.path.isdir(args.bin_dir):
+        raise UserError("build folder %s not found (build first: ./fsi build)" % args.bin_dir)
+    if not os.path.isdir(args.case_dir):
+        raise UserError("case folder %s not found" % args.case_dir)
+    plan = read_plan(args)
+    if args.print_output_dir:
+        print(plan.output_dir)
+        return EXIT_OK
+    coupled = "coupler" in plan.names()
+
+    if args.endpoint and not coupled:
+        raise UserError("--endpoint applies only to coupled scenes (this case runs %s alone)"
+                        % ", ".join(plan.names()))
+    if args.participant is not None:
+        if args.participant not in plan.names():
+            raise UserError("unknown participant '%s' (this case has: %s)"
+                            % (args.participant, ", ".join(plan.names())))
+        name = args.participant
+        exec_process(command_for(name, plan.executable(name), args, args.endpoint, coupled))
+
+    if not coupled:
+        name = plan.names()[0]
+        exec_process(command_for(name, plan.executable(name), args, None, coupled=False))
+
+    return CoupledRun(args, plan).run()
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except UserError as e:
+        if str(e):
+            say("error: %s" % e)
+        sys.exit(e.code)
+    except KeyboardInterrupt:
+        say("interrupted")
+        sys.exit(EXIT_INTERRUPTED)
