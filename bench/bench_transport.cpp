@@ -52,8 +52,10 @@ public:
     hello.mutable_hello()->set_participant_name("bench");
     channel_.send(hello);
     for (receive(); !request_.has_shutdown(); receive()) {
-      read_points(request_.fluid_advance().position_m(), n_points_, "position_m", arrays_.first);
-      read_points(request_.fluid_advance().force_density_n_per_m2(), n_points_, "force_density",
+      // Two arrays each way: the request reuses the AdvanceReply layout (the transport does
+      // not look at meanings).
+      read_points(request_.advance_reply().position_m(), n_points_, "position_m", arrays_.first);
+      read_points(request_.advance_reply().velocity_m_per_s(), n_points_, "velocity",
                   arrays_.second);
       channel_.send(reply(request_.step()));
     }
@@ -177,9 +179,9 @@ private:
     advance_.set_protocol_version(current_protocol_version);
     advance_.set_sender_role(v1::ROLE_COUPLER);
     advance_.set_step(step);
-    auto *body = advance_.mutable_fluid_advance();
+    auto *body = advance_.mutable_advance_reply();
     write_points(out_.first, *body->mutable_position_m());
-    write_points(out_.second, *body->mutable_force_density_n_per_m2());
+    write_points(out_.second, *body->mutable_velocity_m_per_s());
     return advance_;
   }
 

@@ -56,6 +56,13 @@ std::string routing_id(Role role, std::string_view participant_name) {
   return std::string(role_name(role)) + ":" + std::string(participant_name);
 }
 
+std::string participant_of(std::string_view routing_id) {
+  if (routing_id.size() > heartbeat_suffix.size() &&
+      routing_id.substr(routing_id.size() - heartbeat_suffix.size()) == heartbeat_suffix)
+    routing_id.remove_suffix(heartbeat_suffix.size());
+  return std::string(routing_id);
+}
+
 std::string printable(std::string_view bytes) {
   std::string text;
   text.reserve(bytes.size());

@@ -30,6 +30,13 @@ std::string_view body_name(const Envelope &envelope);
 /// Throws TransportError for the coupler role, an unspecified role or an unusable name.
 std::string routing_id(Role role, std::string_view participant_name);
 
+/// Suffix of the name under which a participant's heartbeat thread connects its own socket
+/// ("structure:main/heartbeat"); the coupler credits its heartbeats to "structure:main".
+inline constexpr std::string_view heartbeat_suffix = "/heartbeat";
+
+/// The participant a routing id belongs to: the id itself, or without heartbeat_suffix.
+std::string participant_of(std::string_view routing_id);
+
 /// A routing id or other raw bytes made safe for a log line (non-printable bytes as \xNN).
 std::string printable(std::string_view bytes);
 

@@ -3,6 +3,8 @@
 
 #include "StructureConfig.hpp"
 #include "CollisionConfig.hpp"
+#include "FluidConfig.hpp"
+#include "coupler/CouplingConfig.hpp"
 
 #include <filesystem>
 
@@ -32,18 +34,29 @@ struct CaseConfig {
   Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
   std::optional<CollisionConfig> collisions;
   std::vector<StructureConfig> structures;
+  std::optional<FluidConfig> fluid;
+  std::optional<coupler::CouplingConfig> coupling;
 
   template <class V> void visit(V &v) {
     v.section("run", run, "Time stepping and output.");
     v.vec3("gravity_m_per_s2", gravity_m_per_s2, "m/s^2", "Gravitational acceleration g.");
     v.optional_section("collisions", collisions, "Rigid surfaces and the collision model of Eq. (11).");
     v.list("structures", structures, "Flexible structures of the scene (at least one).");
+    v.optional_section("fluid", fluid,
+                       "The fluid the structures move in. Absent: structure only (no coupler, no fluid process).");
+    v.optional_section("coupling", coupling, "Fluid-structure coupling (section 2.3); required with `fluid`.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       validate(v);
   }
 
   /// Reads and validates `case_dir/case.yaml`; throws common::ConfigError.
   static CaseConfig load(const std::filesystem::path &case_dir);
+
+  /// True when the scene has a fluid: then a coupler and a fluid participant run too.
+  bool is_coupled() const { return fluid.has_value(); }
+  /// Hash (16 hex digits) of the effective configuration without what may differ between
+  /// the processes of one run (output folder, endpoint): participants must agree on it.
+  std::string fingerprint() const;
 
 private:
   void validate(common::ConfigReader &v) const;

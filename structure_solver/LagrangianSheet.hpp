@@ -48,6 +48,7 @@ public:
   const PointArray &velocities_m_per_s() const override { return v_; }
   const Eigen::VectorXd &point_measures() const override { return measure_; }
   double lagrangian_spacing_m() const override { return setup_.grid.min_spacing_m(); }
+  double mass_per_measure() const override { return setup_.mass_per_measure; }
   double tension_wave_speed_m_per_s() const override {
     return std::sqrt(2.0 * setup_.tension_coefficient / setup_.mass_per_measure);
   }

@@ -59,12 +59,14 @@ void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per
           structures_[i]->positions_m(), config.threshold_m, config.target_distance_m);
 }
 
-void Scene::advance() {
+void Scene::advance() { advance(zero_loads_); } // gravity only, no fluid
+
+void Scene::advance(const std::vector<PointArray> &load_densities) {
   last_corrections_ = 0;
   last_iterations_ = 0;
   for (std::size_t i = 0; i < structures_.size(); ++i) {
-    last_iterations_ += structures_[i]->advance(zero_loads_[i]); // Eq. (4): gravity only, no fluid
-    correct_collisions(*structures_[i], i);  // Eq. (11)
+    last_iterations_ += structures_[i]->advance(load_densities[i]); // Eq. (4)
+    correct_collisions(*structures_[i], i);                         // Eq. (11)
   }
 }
 

@@ -18,6 +18,8 @@ public:
 
   /// One step for every structure (no fluid load): Eq. (4), then Eq. (11).
   void advance();
+  /// One step under load densities, one N_i x 3 array per structure (e.g. -F_fsi, Eq. 3).
+  void advance(const std::vector<PointArray> &load_densities);
 
   double time_s() const { return structures_.front()->time_s(); }
   const std::vector<std::unique_ptr<StructureModel>> &structures() const { return structures_; }

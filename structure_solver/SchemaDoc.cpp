@@ -1,6 +1,7 @@
 #include "SchemaDoc.hpp"
 
 #include "CaseConfig.hpp"
+#include "coupler/CouplingLawRegistry.hpp"
 
 #include <sstream>
 
@@ -18,6 +19,13 @@ std::string case_schema_markdown() {
     common::ConfigDocWriter::header(out);
     auto config = entry.make_config();
     common::ConfigDocWriter writer(out, "structures[].");
+    config->visit(writer);
+  }
+  for (const auto &entry : coupler::CouplingLawRegistry::builtin().entries()) {
+    out << "\n#### `coupling` with `law: " << entry.name << "`: " << entry.summary << "\n\n";
+    common::ConfigDocWriter::header(out);
+    auto config = entry.make_config();
+    common::ConfigDocWriter writer(out, "coupling.");
     config->visit(writer);
   }
   return out.str();

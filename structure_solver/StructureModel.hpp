@@ -33,6 +33,8 @@ public:
   virtual const PointArray &velocities_m_per_s() const = 0;
   /// Measure (area m^2 or length m) carried by each point: force density x measure = force.
   virtual const Eigen::VectorXd &point_measures() const = 0;
+  /// rho_1: mass per unit area (kg/m^2) of a sheet, per unit length (kg/m) of a filament.
+  virtual double mass_per_measure() const = 0;
   /// Smallest Lagrangian spacing Delta s (m), for the rule Delta s / Delta t >= 100 m/s.
   virtual double lagrangian_spacing_m() const = 0;
   /// Speed of stretching waves, sqrt(2 phi / rho_1) (m/s). The tension coefficients are

@@ -14,8 +14,8 @@
 namespace fsi::structure {
 
 namespace {
-std::atomic<int> stop_signal{0};
-extern "C" void on_stop_signal(int signal) { stop_signal = signal; }
+std::atomic<int> received_stop_signal{0};
+extern "C" void on_stop_signal(int signal) { received_stop_signal = signal; }
 
 std::string format_duration(double seconds) {
   char text[32];
@@ -27,9 +27,8 @@ std::string format_duration(double seconds) {
 }
 } // namespace
 
-StructureRun::StructureRun(CaseConfig config, std::filesystem::path case_dir)
-    : config_(std::move(config)), case_dir_(std::move(case_dir)),
-      output_dir_(case_dir_ / config_.run.output_directory) {
+StructureRun::StructureRun(CaseConfig config, std::filesystem::path case_dir, std::filesystem::path output_dir)
+    : config_(std::move(config)), case_dir_(std::move(case_dir)), output_dir_(std::move(output_dir)) {
   config_yaml_ = common::to_yaml(config_);
 }
 
@@ -116,7 +115,11 @@ void StructureRun::stop_with(const std::string &status, long last_good_step) {
   results_->set_status(status);
 }
 
-int StructureRun::run() {
+const std::atomic<int> &StructureRun::stop_signal() { return received_stop_signal; }
+
+long StructureRun::n_steps() const { return std::lround(config_.run.end_time_s / config_.run.time_step_s); }
+
+void StructureRun::start() {
   std::filesystem::create_directories(output_dir_);
   common::add_log_file(output_dir_ / "structure.log");
   spdlog::info("case {}: effective configuration\n{}", case_dir_.string(), config_yaml_);
@@ -124,37 +127,59 @@ int StructureRun::run() {
   for (const auto &warning : time_step_warnings(*scene_, config_.run.time_step_s))
     spdlog::warn("{}", warning);
   open_results();
-  const double dt = config_.run.time_step_s;
-  const long n_steps = std::lround(config_.run.end_time_s / dt);
-  const long output_every = std::max(1L, std::lround(config_.run.output_interval_s / dt));
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   start_ = last_progress_ = std::chrono::steady_clock::now();
   write_state(0);
   last_good_x_.resize(scene_->structures().size());
   last_good_v_.resize(scene_->structures().size());
-  for (long step = 1; step <= n_steps; ++step) {
-    for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
-      last_good_x_[i] = scene_->structures()[i]->positions_m();
-      last_good_v_[i] = scene_->structures()[i]->velocities_m_per_s();
-    }
+}
+
+StepOutcome StructureRun::advance_step(long step, const std::vector<PointArray> *load_densities) {
+  for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
+    last_good_x_[i] = scene_->structures()[i]->positions_m();
+    last_good_v_[i] = scene_->structures()[i]->velocities_m_per_s();
+  }
+  if (load_densities)
+    scene_->advance(*load_densities);
+  else
     scene_->advance();
-    if (const auto divergence = find_divergence(step)) {
-      spdlog::error("diverged at {}", divergence->message);
-      stop_with("diverged: " + divergence->message, step - 1);
-      spdlog::error("the last good state (step {}) is in {}", step - 1, results_->h5_path().string());
+  if (const auto divergence = find_divergence(step)) {
+    spdlog::error("diverged at {}", divergence->message);
+    stop_with("diverged: " + divergence->message, step - 1);
+    spdlog::error("the last good state (step {}) is in {}", step - 1, results_->h5_path().string());
+    return {StepOutcome::Kind::diverged, divergence->message};
+  }
+  if (received_stop_signal != 0) {
+    write_state(step);
+    results_->set_status("interrupted");
+    spdlog::warn("interrupted by signal {} at step {}; results so far are in {}", int(received_stop_signal), step,
+                 results_->h5_path().string());
+    return {StepOutcome::Kind::interrupted, "interrupted by signal " + std::to_string(int(received_stop_signal))};
+  }
+  const long n = n_steps();
+  const long output_every = std::max(1L, std::lround(config_.run.output_interval_s / config_.run.time_step_s));
+  if (step % output_every == 0 || step == n)
+    write_state(step);
+  report_progress(step, n, step == n);
+  return {};
+}
+
+void StructureRun::finish(const std::string &status, long step) {
+  if (last_written_step_ != step)
+    write_state(step);
+  results_->set_status(status);
+}
+
+int StructureRun::run() {
+  start();
+  const long n = n_steps();
+  for (long step = 1; step <= n; ++step) {
+    const StepOutcome outcome = advance_step(step, nullptr);
+    if (outcome.kind == StepOutcome::Kind::diverged)
       return common::exit_code_run_failed;
-    }
-    if (stop_signal != 0) {
-      write_state(step);
-      results_->set_status("interrupted");
-      spdlog::warn("interrupted by signal {} at step {}; results so far are in {}", int(stop_signal), step,
-                   results_->h5_path().string());
+    if (outcome.kind == StepOutcome::Kind::interrupted)
       return 130;
-    }
-    if (step % output_every == 0 || step == n_steps)
-      write_state(step);
-    report_progress(step, n_steps, step == n_steps);
   }
   results_->set_status("completed");
   spdlog::info("completed: {} saved steps in {} (open {} in ParaView)", results_->n_saved(),

@@ -8,6 +8,7 @@
 #include "Scene.hpp"
 #include "structure_solver/output/ResultsWriter.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <optional>
@@ -19,14 +20,35 @@ struct Divergence {
   std::string message;
 };
 
+/// What one step came to.
+struct StepOutcome {
+  enum class Kind { advanced, diverged, interrupted } kind = Kind::advanced;
+  std::string message; ///< for diverged: the step, structure, point and likely cause
+};
+
 class StructureRun {
 public:
-  StructureRun(CaseConfig config, std::filesystem::path case_dir);
+  /// output_dir: where results go (absolute, or relative to the working folder).
+  StructureRun(CaseConfig config, std::filesystem::path case_dir, std::filesystem::path output_dir);
   ~StructureRun();
 
   /// Runs to the end time; returns the process exit code (0 completed, 1 diverged,
   /// 130 interrupted).
   int run();
+
+  // The pieces of run(), for drivers that take the loads from elsewhere (a coupled run):
+  /// Builds the scene, opens the results, writes step 0, installs the stop-signal handler.
+  void start();
+  /// Advances one step under the given load densities (nullptr: none), checks for divergence
+  /// (then the last good state is on disk), writes results at the output interval.
+  StepOutcome advance_step(long step, const std::vector<PointArray> *load_densities);
+  /// Writes the current state if not written yet and sets the results status.
+  void finish(const std::string &status, long step);
+  Scene &scene() { return *scene_; }
+  long n_steps() const;
+  const CaseConfig &config() const { return config_; }
+  /// The signal (SIGINT, SIGTERM) that asked to stop, 0 if none.
+  static const std::atomic<int> &stop_signal();
 
   /// Checks the rule Delta s / Delta t >= 100 m/s of section 2.2; returns the warnings.
   static std::vector<std::string> time_step_warnings(const Scene &scene, double time_step_s);

@@ -3,11 +3,17 @@
 //   fsi-structure --check CASE_DIR    validate the case and exit
 //   fsi-structure -o DIR CASE_DIR     write the results to DIR instead of run.output_directory
 //   fsi-structure --schema            print the case-file reference (Markdown)
-// Exit codes: 0 success, 1 run failed (diverged), 2 bad input, 130 interrupted.
+//   fsi-structure --coupled [--endpoint E] CASE_DIR
+//                                     take part in a coupled run: join the coupler at E (default:
+//                                     coupling.endpoint of the case) and take the fluid load from it
+// Exit codes: 0 success, 1 run failed (diverged, or the coupled run stopped), 2 bad input,
+// 130 interrupted.
 
 #include "CaseConfig.hpp"
 #include "SchemaDoc.hpp"
+#include "StructureParticipant.hpp"
 #include "StructureRun.hpp"
+#include "proto/TransportError.hpp"
 #include "structure_solver/collision/MeshErrors.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
@@ -35,11 +41,14 @@ int main(int argc, char **argv) {
   CLI::App app{"fsi-structure: membrane and filament solver with collisions (standalone, no fluid)"};
   std::string case_dir;
   std::string output_dir;
-  bool check = false, schema = false, verbose = false;
+  std::string endpoint;
+  bool check = false, schema = false, verbose = false, coupled = false;
   app.add_option("case_dir", case_dir, "Case folder holding case.yaml");
   app.add_flag("--check", check, "Validate the case without running it");
   app.add_option("-o,--output-dir", output_dir, "Results folder (overrides run.output_directory)");
   app.add_flag("--schema", schema, "Print the case-file reference as Markdown");
+  app.add_flag("--coupled", coupled, "Take part in a coupled run (the case must have a fluid section)");
+  app.add_option("--endpoint", endpoint, "Coupler endpoint (with --coupled; default: coupling.endpoint)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
   try {
     app.parse(argc, argv);
@@ -59,12 +68,37 @@ int main(int argc, char **argv) {
     if (check)
       return check_case(case_dir);
     auto config = fsi::structure::CaseConfig::load(case_dir);
-    if (!output_dir.empty())
-      config.run.output_directory = std::filesystem::absolute(output_dir).string();
-    fsi::structure::StructureRun run(std::move(config), case_dir);
-    return run.run();
+    const std::filesystem::path out = output_dir.empty()
+                                          ? std::filesystem::path(case_dir) / config.run.output_directory
+                                          : std::filesystem::path(output_dir);
+    if (!coupled) {
+      if (config.is_coupled())
+        spdlog::warn("case {} has a fluid section; running the structure alone (no fluid load). Use ./fsi run "
+                     "for the coupled run.",
+                     case_dir);
+      fsi::structure::StructureRun run(std::move(config), case_dir, out);
+      return run.run();
+    }
+    if (!config.is_coupled()) {
+      spdlog::error("--coupled: case {} has no `fluid` section, so there is nothing to couple to", case_dir);
+      return fsi::common::exit_code_bad_input;
+    }
+    fsi::proto::SessionSettings settings;
+    settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
+    settings.handshake_timeout =
+        std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
+    settings.coupler.check_connectable();
+    fsi::structure::StructureRun run(std::move(config), case_dir, out);
+    fsi::structure::StructureParticipant participant(run, std::move(settings));
+    return participant.run();
   } catch (const fsi::common::ConfigError &e) {
     spdlog::error("{}", e.what());
+    return fsi::common::exit_code_bad_input;
+  } catch (const fsi::proto::TransportError &e) {
+    spdlog::error("{}{}", e.what(),
+                  endpoint.empty() ? " (coupling.endpoint of the case; port 0 means 'any free port', which only "
+                                     "./fsi run can hand over: give --endpoint or a fixed port)"
+                                   : "");
     return fsi::common::exit_code_bad_input;
   } catch (const fsi::structure::collision::MeshError &e) {
     spdlog::error("{}", e.what());

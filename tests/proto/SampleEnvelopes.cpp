@@ -81,7 +81,6 @@ Envelope fluid_advance() {
   auto *body = e.mutable_fluid_advance();
   body->set_time_s(0.125);
   body->set_dt_s(1e-5);
-  fill(body->mutable_position_m(), 30, 0.01);
   fill(body->mutable_force_density_n_per_m2(), 30, 3.0);
   return e;
 }

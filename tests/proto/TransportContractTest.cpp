@@ -97,14 +97,17 @@ TEST_P(TransportContract, HundredThousandPointArraysArriveIntact) {
                         velocities_m_per_s));
 
   Envelope advance = make_envelope(v1::ROLE_COUPLER, 3);
-  write_points(positions_m, *advance.mutable_fluid_advance()->mutable_position_m());
   write_points(velocities_m_per_s,
-               *advance.mutable_fluid_advance()->mutable_force_density_n_per_m2());
+               *advance.mutable_structure_advance()->mutable_load_density_n_per_m2());
   coupler().send(incoming.peer(), advance);
   const Envelope back = receive_at(participant);
-  EXPECT_TRUE(identical(view_points(back.fluid_advance().position_m(), "position_m"), positions_m));
-  EXPECT_TRUE(identical(view_points(back.fluid_advance().force_density_n_per_m2(), "force"),
+  EXPECT_TRUE(identical(view_points(back.structure_advance().load_density_n_per_m2(), "load"),
                         velocities_m_per_s));
+  Envelope request = make_envelope(v1::ROLE_COUPLER, 4);
+  write_points(positions_m, *request.mutable_interpolate_request()->mutable_position_m());
+  coupler().send(incoming.peer(), request);
+  const Envelope back_request = receive_at(participant);
+  EXPECT_TRUE(identical(view_points(back_request.interpolate_request().position_m(), "position_m"), positions_m));
 }
 
 TEST_P(TransportContract, ReceivingIntoAnEnvelopeReusesItsArraysAndLeavesNothingStale) {

@@ -1,0 +1,53 @@
+#pragma once
+// The case's `coupling` section: the coupling law (from CouplingLawRegistry, its keys at the
+// same level), where the coupler listens, and the liveness limits of the run.
+
+#include "CouplingLawRegistry.hpp"
+#include "common/DidYouMean.hpp"
+
+#include <string>
+
+namespace fsi::coupler {
+
+struct CouplingConfig {
+  std::string law = "penalty";
+  std::unique_ptr<CouplingLawConfig> parameters = CouplingLawRegistry::builtin().make_config("penalty");
+  std::string endpoint = "tcp://127.0.0.1:0";
+  bool allow_remote = false;
+  double heartbeat_interval_s = 0.5;
+  double timeout_s = 10.0;
+  double step_timeout_s = 600.0;
+  double handshake_timeout_s = 120.0;
+
+  template <class V> void visit(V &v) {
+    v.text("law", law, "Coupling law: " + common::join(CouplingLawRegistry::builtin().names()) +
+                            " (its keys follow at the same level).");
+    if constexpr (std::is_same_v<V, common::ConfigReader>) {
+      try {
+        parameters = CouplingLawRegistry::builtin().make_config(law);
+      } catch (const common::ConfigError &e) {
+        v.fail_value("law", std::string("= ") + e.what());
+      }
+    }
+    if constexpr (!std::is_same_v<V, common::ConfigDocWriter>)
+      parameters->visit(v);
+    v.text("endpoint", endpoint,
+           "Where the coupler listens (tcp://HOST:PORT, ipc:///PATH). Port 0: any free port, handed to the "
+           "participants by ./fsi run; give a fixed port to start the processes by hand on several machines.");
+    v.flag("allow_remote", allow_remote,
+           "Allow binding an address other machines can reach (tcp on a non-loopback interface).");
+    v.number("heartbeat_interval_s", heartbeat_interval_s, common::Range::positive("s"),
+             "Interval between heartbeats of the coupler and the participants.");
+    v.number("timeout_s", timeout_s, common::Range::positive("s"),
+             "A process that sends no heartbeat for this long is dead: the run stops, naming it.");
+    v.number("step_timeout_s", step_timeout_s, common::Range::positive("s"),
+             "Longest wait for one reply of a live participant (a hung solver).");
+    v.number("handshake_timeout_s", handshake_timeout_s, common::Range::positive("s"),
+             "Longest wait for all participants to connect at the start.");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      if (timeout_s <= 2.0 * heartbeat_interval_s)
+        v.fail_value("timeout_s", "must exceed twice heartbeat_interval_s.");
+  }
+};
+
+} // namespace fsi::coupler

@@ -1,0 +1,56 @@
+#include "CouplingResults.hpp"
+
+#include "structure_solver/output/H5Attributes.hpp"
+#include "structure_solver/output/H5Error.hpp"
+#include "structure_solver/output/H5FileAccess.hpp"
+
+namespace fsi::coupler {
+
+using structure::output::ExtendableDataset;
+using structure::output::H5Handle;
+
+CouplingResults::CouplingResults(const std::filesystem::path &h5_path, const std::string &config_yaml,
+                                 const std::string &version)
+    : path_(h5_path) {
+  structure::output::silence_hdf5_error_printing();
+  const std::string what = "cannot create the coupling results file " + h5_path.string();
+  const H5Handle access = structure::output::file_access_without_locking(what);
+  file_ = H5Handle::file(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), what);
+  structure::output::write_string_attribute(file_.get(), "config_yaml", config_yaml);
+  structure::output::write_string_attribute(file_.get(), "code_version", version);
+  structure::output::write_string_attribute(file_.get(), "status", "running");
+  constexpr hsize_t chunk = 256;
+  step_ = std::make_unique<ExtendableDataset>(file_.get(), "step", ExtendableDataset::ElementType::int64,
+                                              std::vector<hsize_t>{}, chunk, "1");
+  time_ = std::make_unique<ExtendableDataset>(file_.get(), "time_s", ExtendableDataset::ElementType::float64,
+                                              std::vector<hsize_t>{}, chunk, "s");
+  force_ = std::make_unique<ExtendableDataset>(file_.get(), "total_force_on_fluid_n",
+                                               ExtendableDataset::ElementType::float64, std::vector<hsize_t>{3},
+                                               chunk, "N");
+  timings_group_ = H5Handle::group(H5Gcreate2(file_.get(), "timings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                   "cannot create /timings in " + h5_path.string());
+  for (const auto name : StepTimings::names)
+    timings_.emplace_back(timings_group_.get(), std::string(name), ExtendableDataset::ElementType::float64,
+                          std::vector<hsize_t>{}, chunk, "s");
+}
+
+CouplingResults::~CouplingResults() = default;
+
+void CouplingResults::write_step(long step, double time_s, const StepTimings &timings,
+                                 const double total_force_on_fluid_n[3]) {
+  const std::int64_t s = step;
+  step_->append_row(&s);
+  time_->append_row(&time_s);
+  force_->append_row(total_force_on_fluid_n);
+  const auto values = timings.values();
+  for (std::size_t i = 0; i < values.size(); ++i)
+    timings_[i].append_row(&values[i]);
+  structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+}
+
+void CouplingResults::set_status(const std::string &status) {
+  structure::output::write_string_attribute(file_.get(), "status", status);
+  structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+}
+
+} // namespace fsi::coupler

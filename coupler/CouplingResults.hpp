@@ -1,0 +1,34 @@
+#pragma once
+// The coupler's results file, coupling.h5: per step, the time, the timing breakdown
+// (StepTimings, seconds) and the total force the structures exert on the fluid (N); as
+// attributes, the effective configuration, the code version and the run status. Flushed
+// after every step, so the file stays readable if the run dies.
+
+#include "StepTimings.hpp"
+#include "structure_solver/output/ExtendableDataset.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi::coupler {
+
+class CouplingResults {
+public:
+  CouplingResults(const std::filesystem::path &h5_path, const std::string &config_yaml, const std::string &version);
+  ~CouplingResults();
+
+  void write_step(long step, double time_s, const StepTimings &timings, const double total_force_on_fluid_n[3]);
+  /// "running", "completed", "failed: ...", "interrupted".
+  void set_status(const std::string &status);
+  const std::filesystem::path &path() const { return path_; }
+
+private:
+  std::filesystem::path path_;
+  structure::output::H5Handle file_, timings_group_;
+  std::unique_ptr<structure::output::ExtendableDataset> step_, time_, force_;
+  std::vector<structure::output::ExtendableDataset> timings_;
+};
+
+} // namespace fsi::coupler

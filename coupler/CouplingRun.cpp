@@ -1,0 +1,404 @@
+#include "CouplingRun.hpp"
+
+#include "CouplingErrors.hpp"
+#include "common/ConfigEmitter.hpp"
+#include "common/Logging.hpp"
+#include "common/MotionFactory.hpp"
+#include "proto/PackedPoints.hpp"
+#include "proto/TransportError.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace fsi::coupler {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+using proto::v1::Envelope;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
+
+std::string format_duration(double seconds) {
+  char text[32];
+  if (seconds < 120)
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+  else
+    std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(seconds) / 60, static_cast<int>(seconds) % 60);
+  return text;
+}
+
+void write_pose(const std::string &name, const common::RigidMotion &motion, double t, proto::v1::RigidBodyPose &out) {
+  const Eigen::Isometry3d pose = motion.pose_at(t);
+  out.set_name(name);
+  proto::write_matrix3(pose.linear(), *out.mutable_rotation());
+  proto::write_vector3(pose.translation(), *out.mutable_translation_m());
+  // Rigid velocity field v(x) = v_o + omega x (x - o): recovered from three points.
+  const Vec3 o = pose.translation();
+  const Vec3 v_o = motion.velocity_at(o, t);
+  Vec3 omega = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = pose.linear().col(k);
+    // (v(o + e) - v_o) = omega x e; sum over an orthonormal basis: omega = 1/2 sum e x (omega x e).
+    omega += 0.5 * e.cross(motion.velocity_at(o + e, t) - v_o);
+  }
+  proto::write_vector3(omega, *out.mutable_angular_velocity_rad_per_s());
+  proto::write_vector3(v_o, *out.mutable_linear_velocity_m_per_s());
+}
+} // namespace
+
+std::atomic<int> &CouplingRun::stop_signal() {
+  static std::atomic<int> signal{0};
+  return signal;
+}
+
+CouplingRun::CouplingRun(structure::CaseConfig config, std::filesystem::path output_dir, std::string endpoint_override)
+    : config_(std::move(config)), output_dir_(std::move(output_dir)), endpoint_override_(std::move(endpoint_override)) {
+  if (!config_.coupling)
+    throw std::logic_error("CouplingRun needs a case with a coupling section");
+  config_yaml_ = common::to_yaml(config_);
+  dt_ = config_.run.time_step_s;
+  n_steps_ = std::lround(config_.run.end_time_s / dt_);
+}
+
+CouplingRun::~CouplingRun() = default;
+
+int CouplingRun::run() {
+  long step = 0;
+  try {
+    open();
+    handshake();
+    receive_initial_state();
+    check_stability();
+    start_ = last_progress_ = Clock::now();
+    for (step = 0; step < n_steps_; ++step) {
+      advance_one_step(step);
+      record_step(step + 1);
+      report_progress(step + 1, step + 1 == n_steps_);
+    }
+    participants_->shutdown_all("run completed", true, static_cast<std::uint64_t>(n_steps_));
+    results_->set_status("completed");
+    spdlog::info("completed: {} steps; timings and FSI force in {}", n_steps_, results_->path().string());
+    return 0;
+  } catch (const ParticipantFailed &e) {
+    spdlog::error("{}", e.what());
+    if (participants_)
+      participants_->shutdown_all(std::string("stopped by the coupler: ") + e.what(), false, step);
+    if (results_)
+      results_->set_status(std::string("failed: ") + e.what());
+    spdlog::error("run stopped at step {} because of participant {}; results so far are kept in {}", step,
+                  e.participant, output_dir_.string());
+    return common::exit_code_run_failed;
+  } catch (const HandshakeRefused &e) {
+    spdlog::error("{}", e.what());
+    if (participants_)
+      participants_->shutdown_all(std::string("stopped by the coupler: ") + e.what(), false, step);
+    if (results_)
+      results_->set_status(std::string("refused: ") + e.what());
+    return common::exit_code_bad_input;
+  } catch (const StopRequested &e) {
+    spdlog::warn("{} at step {}: telling the participants to stop", e.what(), step);
+    if (participants_)
+      participants_->shutdown_all("interrupted (signal at the coupler)", false, step);
+    if (results_)
+      results_->set_status("interrupted");
+    return 130;
+  }
+}
+
+// ---- the run, step by step ------------------------------------------------------------------
+
+void CouplingRun::open() {
+  std::filesystem::create_directories(output_dir_);
+  common::add_log_file(output_dir_ / "coupler.log");
+  const auto &c = *config_.coupling;
+  const auto endpoint = proto::Endpoint::parse(endpoint_override_.empty() ? c.endpoint : endpoint_override_);
+  proto::ChannelOptions options;
+  options.allow_remote = c.allow_remote;
+  try {
+    channel_ = std::make_unique<proto::CouplerChannel>(endpoint, options);
+  } catch (const proto::TransportError &e) {
+    throw HandshakeRefused(std::string("cannot listen: ") + e.what());
+  }
+  write_endpoint_file(channel_->endpoint().str());
+  spdlog::info("coupler listening on {} (protocol version {}, case fingerprint {})", channel_->endpoint().str(),
+               proto::current_protocol_version, config_.fingerprint());
+  participants_ = std::make_unique<ParticipantTable>(
+      *channel_, Liveness{to_ms(c.heartbeat_interval_s), to_ms(c.timeout_s), to_ms(c.step_timeout_s)}, &stop_signal());
+  results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_yaml_, FSI_VERSION);
+  law_ = c.parameters->build();
+  spdlog::info("coupling law: {}", law_->name());
+  if (config_.collisions)
+    for (std::size_t i = 0; i < config_.collisions->surfaces.size(); ++i)
+      if (const auto &motion = config_.collisions->surfaces[i].motion)
+        moving_bodies_.emplace_back("surface" + std::to_string(i),
+                                    common::make_motion(*motion, config_.gravity_m_per_s2.norm()));
+}
+
+void CouplingRun::handshake() {
+  const auto deadline = Clock::now() + to_ms(config_.coupling->handshake_timeout_s);
+  while (fluid_id_.empty() || structure_id_.empty()) {
+    const std::string missing = structure_id_.empty() ? (fluid_id_.empty() ? "structure and fluid" : "structure")
+                                                       : "fluid";
+    proto::Incoming *incoming = nullptr;
+    try {
+      incoming = &participants_->next(deadline, missing, "Hello", 0);
+    } catch (const ParticipantFailed &e) {
+      if (!e.participant.empty() && participants_->knows(e.participant))
+        throw;
+      throw ParticipantFailed(missing, "no " + missing + " participant joined within coupling.handshake_timeout_s = " +
+                                           std::to_string(config_.coupling->handshake_timeout_s) + " s at " +
+                                           channel_->endpoint().str() + "; start it with ./fsi run --participant " +
+                                           (structure_id_.empty() ? "structure" : "fluid") + " CASE_DIR");
+    }
+    if (incoming->envelope().has_hello())
+      accept_hello(*incoming);
+    else
+      participants_->answer_error(incoming->peer(), "the run has not started: wait for Welcome", 0);
+  }
+  welcome(structure_id_, false);
+  welcome(fluid_id_, true);
+  spdlog::info("participants joined: {} and {}", structure_id_, fluid_id_);
+}
+
+bool CouplingRun::accept_hello(const proto::Incoming &incoming) {
+  const auto &hello = incoming.envelope().hello();
+  const std::string &peer = incoming.peer();
+  if (hello.protocol_version() != proto::current_protocol_version)
+    refuse(peer, "participant " + peer + " speaks protocol version " + std::to_string(hello.protocol_version()) +
+                     ", this coupler version " + std::to_string(proto::current_protocol_version) +
+                     ": build all processes of a run from the same version");
+  if (hello.case_fingerprint() != config_.fingerprint())
+    refuse(peer, "participant " + peer + " was started with another case (fingerprint " + hello.case_fingerprint() +
+                     ", the coupler's is " + config_.fingerprint() +
+                     "): give every process the same case folder (copy it to every machine)");
+  const bool is_fluid = hello.role() == proto::v1::ROLE_FLUID;
+  if (!is_fluid && hello.role() != proto::v1::ROLE_STRUCTURE)
+    refuse(peer, "participant " + peer + " has role " + std::string(proto::role_name(hello.role())) +
+                     "; a coupled run takes one fluid and one structure participant");
+  std::string &slot = is_fluid ? fluid_id_ : structure_id_;
+  if (!slot.empty())
+    refuse(peer, "participant " + peer + " is a second " + std::string(proto::role_name(hello.role())) +
+                     " participant; " + slot + " has joined already");
+  if (!is_fluid) {
+    if (hello.structures_size() != static_cast<int>(config_.structures.size()))
+      refuse(peer, "participant " + peer + " announced " + std::to_string(hello.structures_size()) +
+                       " structures; the case has " + std::to_string(config_.structures.size()));
+    topology_.assign(hello.structures().begin(), hello.structures().end());
+    Eigen::Index n = 0;
+    for (const auto &s : topology_) {
+      if (s.point_measure_size() != static_cast<int>(s.n1() * s.n2()))
+        refuse(peer, "participant " + peer + ": structure '" + s.name() + "' has " +
+                         std::to_string(s.point_measure_size()) + " point measures for " +
+                         std::to_string(s.n1() * s.n2()) + " points");
+      n += s.n1() * s.n2();
+    }
+    measures_.resize(n);
+    Eigen::Index at = 0;
+    for (const auto &s : topology_)
+      for (const double m : s.point_measure())
+        measures_[at++] = m;
+  }
+  slot = peer;
+  participants_->add(peer);
+  spdlog::info("participant {} joined (role {}, protocol {})", peer, proto::role_name(hello.role()),
+               hello.protocol_version());
+  return true;
+}
+
+void CouplingRun::refuse(const std::string &peer, const std::string &message) {
+  participants_->answer_error(peer, message, 0);
+  throw HandshakeRefused(message);
+}
+
+void CouplingRun::welcome(const std::string &id, bool with_structures) {
+  Envelope envelope = proto::make_envelope(proto::v1::ROLE_COUPLER, 0);
+  auto *w = envelope.mutable_welcome();
+  w->set_time_step_s(dt_);
+  w->set_n_steps(static_cast<std::uint64_t>(n_steps_));
+  w->set_heartbeat_interval_s(config_.coupling->heartbeat_interval_s);
+  w->set_timeout_s(config_.coupling->timeout_s);
+  if (with_structures)
+    for (const auto &s : topology_)
+      *w->add_structures() = s;
+  participants_->send(id, envelope, 0);
+}
+
+void CouplingRun::receive_initial_state() {
+  // The structure's first AdvanceReply, right after Welcome: X^0 and V^0. Eq. (4) keeps
+  // V^n = (X^n - X^{n-1}) / dt, so X^{-1} = X^0 - V^0 dt is the structure's own X^{n-1}.
+  const auto &reply = await(structure_id_, Envelope::kAdvanceReply, 0, "initial state (AdvanceReply)").advance_reply();
+  const Eigen::Index n = measures_.size();
+  proto::read_points(reply.position_m(), n, "AdvanceReply.position_m", x_now_);
+  PointArray v0;
+  proto::read_points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s", v0);
+  x_prev_ = x_now_ - dt_ * v0;
+  spdlog::info("initial state received: {} Lagrangian points in {} structure(s)", n, topology_.size());
+}
+
+void CouplingRun::advance_one_step(long n) {
+  const auto step_start = Clock::now();
+  participants_->take_wait_s();
+  interpolate_fluid_velocity(n);   // U_ib^n at X_ib^n (with the rigid-body poses at t^n)
+  apply_coupling_law();            // X_ib^{n+1} and F_fsi^n, Eq. (5)
+  advance_fluid_and_structure(n);  // Eq. (8) + PIMPLE || Eq. (4) + Eq. (11), concurrently
+  timings_.waiting_s = participants_->take_wait_s();
+  timings_.step_wall_s = seconds_since(step_start);
+}
+
+void CouplingRun::interpolate_fluid_velocity(long n) {
+  // Section 2.3, first bullet: rigid surfaces move before the fluid forces are computed.
+  auto *request = request_.mutable_interpolate_request();
+  const double t = static_cast<double>(n) * dt_;
+  request->set_time_s(t);
+  request->mutable_rigid_bodies()->Clear();
+  for (const auto &[name, motion] : moving_bodies_)
+    write_pose(name, *motion, t, *request->add_rigid_bodies());
+  // The immersed-boundary points are the structure points at the start of the step,
+  // X_ib^n = X^n (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5).
+  x_ib_ = x_now_;
+  proto::write_points(x_ib_, *request->mutable_position_m());
+  participants_->send(fluid_id_, request_, static_cast<std::uint64_t>(n));
+  const auto &reply = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply").interpolate_reply();
+  proto::read_points(reply.velocity_m_per_s(), x_ib_.rows(), "InterpolateReply.velocity_m_per_s", u_ib_);
+  timings_.interpolation_s = reply.solve_wall_s();
+}
+
+void CouplingRun::apply_coupling_law() {
+  const auto start = Clock::now();
+  coupled_ = law_->compute({&x_now_, &x_prev_, &x_ib_, &u_ib_, dt_});
+  // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
+  // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
+  load_ = -coupled_.force_density_n_per_m2;
+  if (!load_.allFinite()) {
+    Eigen::Index worst = 0;
+    (load_.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
+    throw ParticipantFailed(fluid_id_, "the FSI force is not finite at Lagrangian point " + std::to_string(worst) +
+                                           ": the fluid velocity there is " +
+                                           std::to_string(u_ib_.row(worst).norm()) + " m/s (NaN?)");
+  }
+  timings_.coupling_law_s = seconds_since(start);
+}
+
+void CouplingRun::advance_fluid_and_structure(long n) {
+  const double t = static_cast<double>(n) * dt_;
+  auto *fluid = fluid_advance_.mutable_fluid_advance();
+  fluid->set_time_s(t);
+  fluid->set_dt_s(dt_);
+  // The fluid has X^n (= X_ib^n) from this step's InterpolateRequest: not sent again.
+  proto::write_points(coupled_.force_density_n_per_m2, *fluid->mutable_force_density_n_per_m2());
+  auto *structure = structure_advance_.mutable_structure_advance();
+  structure->set_time_s(t);
+  structure->set_dt_s(dt_);
+  proto::write_points(load_, *structure->mutable_load_density_n_per_m2());
+  participants_->send(structure_id_, structure_advance_, static_cast<std::uint64_t>(n));
+  participants_->send(fluid_id_, fluid_advance_, static_cast<std::uint64_t>(n));
+
+  // Collect both replies, in whichever order they come.
+  bool fluid_done = false, structure_done = false;
+  const auto deadline = Clock::now() + to_ms(config_.coupling->step_timeout_s);
+  while (!fluid_done || !structure_done) {
+    const std::string &waited = structure_done ? fluid_id_ : structure_id_;
+    auto &incoming = participants_->next(deadline, waited, "AdvanceReply", static_cast<std::uint64_t>(n));
+    const auto &envelope = incoming.envelope();
+    const bool from_fluid = incoming.peer() == fluid_id_;
+    bool &done = from_fluid ? fluid_done : structure_done;
+    if (!envelope.has_advance_reply() || envelope.step() != static_cast<std::uint64_t>(n) || done) {
+      participants_->answer_error(incoming.peer(),
+                                  "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
+                                      std::to_string(envelope.step()) + "; the coupler waits for the AdvanceReply of step " +
+                                      std::to_string(n),
+                                  n);
+      continue;
+    }
+    const auto &reply = envelope.advance_reply();
+    done = true;
+    if (from_fluid) {
+      timings_.fluid_solve_s = reply.solve_wall_s();
+      continue;
+    }
+    timings_.structure_solve_s = reply.solve_wall_s();
+    x_prev_.swap(x_now_);
+    try {
+      proto::read_points(reply.position_m(), x_prev_.rows(), "AdvanceReply.position_m", x_now_);
+    } catch (const proto::MalformedMessageError &e) {
+      throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad AdvanceReply at step " +
+                                                 std::to_string(n) + ": " + e.what());
+    }
+  }
+  ++steps_done_;
+}
+
+// ---- helpers ------------------------------------------------------------------------------
+
+proto::Envelope &CouplingRun::await(const std::string &peer, Envelope::BodyCase body, long step,
+                                    const std::string &what) {
+  const auto deadline = Clock::now() + to_ms(config_.coupling->step_timeout_s);
+  while (true) {
+    auto &incoming = participants_->next(deadline, peer, what, static_cast<std::uint64_t>(step));
+    auto &envelope = incoming.envelope();
+    if (incoming.peer() == peer && envelope.body_case() == body)
+      return envelope;
+    participants_->answer_error(incoming.peer(),
+                                "unexpected " + std::string(proto::body_name(envelope)) + " at step " +
+                                    std::to_string(step) + "; the coupler waits for " + what + " from " + peer,
+                                static_cast<std::uint64_t>(step));
+  }
+}
+
+void CouplingRun::check_stability() const {
+  for (const auto &s : topology_) {
+    const double rho = s.mass_per_measure();
+    if (!(rho > 0.0))
+      continue;
+    const double limit = config_.coupling->parameters->stable_time_step_s(rho);
+    spdlog::info("structure '{}': coupling time step limit {:.3g} s (dt = {:.3g} s)", s.name(), limit, dt_);
+    if (dt_ > limit)
+      spdlog::warn("structure '{}': run.time_step_s = {:.3g} s exceeds the stability limit {:.3g} s of the coupling "
+                   "law (rho_1 = {:.3g}); the run is expected to diverge: lower the penalty constant or the time step",
+                   s.name(), dt_, limit, rho);
+  }
+}
+
+void CouplingRun::record_step(long n) {
+  double force[3] = {0.0, 0.0, 0.0};
+  const Vec3 total = (coupled_.force_density_n_per_m2.array().colwise() * measures_.array()).colwise().sum();
+  for (int k = 0; k < 3; ++k)
+    force[k] = total[k];
+  results_->write_step(n, static_cast<double>(n) * dt_, timings_, force);
+}
+
+void CouplingRun::report_progress(long n, bool force) {
+  const auto now = Clock::now();
+  if (!force && std::chrono::duration<double>(now - last_progress_).count() < config_.run.progress_interval_s)
+    return;
+  last_progress_ = now;
+  const double wall = std::chrono::duration<double>(now - start_).count();
+  const double eta = wall * static_cast<double>(n_steps_ - n) / static_cast<double>(std::max(1L, n));
+  spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step (fluid {:.3g}, structure {:.3g}, "
+               "coupling overhead {:.3g} ms)",
+               n, n_steps_, static_cast<double>(n) * dt_, 100.0 * static_cast<double>(n) / static_cast<double>(n_steps_),
+               format_duration(wall), format_duration(eta), 1e3 * wall / static_cast<double>(std::max(1L, n)),
+               1e3 * (timings_.interpolation_s + timings_.fluid_solve_s), 1e3 * timings_.structure_solve_s,
+               1e3 * timings_.overhead_s());
+}
+
+void CouplingRun::write_endpoint_file(const std::string &endpoint) const {
+  std::string text = endpoint;
+  const auto bound = proto::Endpoint::parse(endpoint);
+  if (bound.transport() == proto::Endpoint::Transport::tcp && (bound.host() == "*" || bound.host() == "0.0.0.0")) {
+    char host[256] = {};
+    gethostname(host, sizeof host - 1);
+    text = "tcp://" + std::string(host) + ":" + std::to_string(bound.port());
+  }
+  const auto path = output_dir_ / "coupler.endpoint", tmp = output_dir_ / "coupler.endpoint.tmp";
+  std::ofstream(tmp) << text << "\n";
+  std::filesystem::rename(tmp, path);
+}
+
+} // namespace fsi::coupler

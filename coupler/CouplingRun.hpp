@@ -1,0 +1,78 @@
+#pragma once
+// The coupler daemon's run: it binds the endpoint of the case, accepts the fluid and structure
+// participants (protocol version and case fingerprint must match), then drives the coupling
+// sequence of section 2.3 every step, writes coupling.h5 (timings, total FSI force) and logs
+// progress with an ETA. On any failure it tells the participants to stop, keeps what it wrote,
+// and returns non-zero naming the participant and the step.
+
+#include "CouplingLaw.hpp"
+#include "CouplingResults.hpp"
+#include "ParticipantTable.hpp"
+#include "structure_solver/CaseConfig.hpp"
+#include "common/RigidMotion.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+namespace fsi::coupler {
+
+class CouplingRun {
+public:
+  /// endpoint_override: "" to use coupling.endpoint of the case.
+  CouplingRun(structure::CaseConfig config, std::filesystem::path output_dir, std::string endpoint_override);
+  ~CouplingRun();
+
+  /// Returns the exit code: 0 completed, 1 a participant failed, 2 refused handshake, 130 interrupted.
+  int run();
+
+  /// Set by the signal handler of the process (SIGINT, SIGTERM).
+  static std::atomic<int> &stop_signal();
+
+private:
+  // The run, step by step.
+  void open();
+  void handshake();
+  void receive_initial_state();
+  void advance_one_step(long n);
+  void interpolate_fluid_velocity(long n);
+  void apply_coupling_law();
+  void advance_fluid_and_structure(long n);
+
+  // Helpers.
+  bool accept_hello(const proto::Incoming &incoming);
+  void refuse(const std::string &peer, const std::string &message);
+  void welcome(const std::string &id, bool with_structures);
+  proto::Envelope &await(const std::string &peer, proto::v1::Envelope::BodyCase body, long step, const std::string &what);
+  void check_stability() const;
+  void record_step(long n);
+  void report_progress(long n, bool force);
+  void write_endpoint_file(const std::string &endpoint) const;
+
+  structure::CaseConfig config_;
+  std::filesystem::path output_dir_;
+  std::string endpoint_override_, config_yaml_;
+  long n_steps_ = 0;
+  double dt_ = 0.0;
+
+  std::unique_ptr<proto::CouplerChannel> channel_;
+  std::unique_ptr<ParticipantTable> participants_;
+  std::unique_ptr<CouplingResults> results_;
+  std::unique_ptr<CouplingLaw> law_;
+  std::string fluid_id_, structure_id_;
+  std::vector<proto::v1::StructureTopology> topology_;
+  std::vector<std::pair<std::string, std::shared_ptr<const common::RigidMotion>>> moving_bodies_;
+
+  // Lagrangian state of all structures, concatenated (N x 3, SI).
+  PointArray x_now_, x_prev_, x_ib_, u_ib_, load_;
+  Eigen::VectorXd measures_;
+  CouplingOutputs coupled_;
+
+  proto::Envelope request_, fluid_advance_, structure_advance_;
+  StepTimings timings_;
+  std::chrono::steady_clock::time_point start_, last_progress_;
+  long steps_done_ = 0;
+};
+
+} // namespace fsi::coupler

@@ -1,0 +1,155 @@
+#include "ParticipantTable.hpp"
+
+#include "CouplingErrors.hpp"
+#include "proto/TransportError.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+namespace fsi::coupler {
+
+namespace {
+using std::chrono::milliseconds;
+
+double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+bool looks_like_participant(const std::string &peer) {
+  return peer.rfind("fluid:", 0) == 0 || peer.rfind("structure:", 0) == 0;
+}
+} // namespace
+
+ParticipantTable::ParticipantTable(proto::CouplerChannel &channel, Liveness liveness,
+                                   const std::atomic<int> *stop_signal)
+    : channel_(channel), liveness_(liveness), stop_signal_(stop_signal) {}
+
+void ParticipantTable::add(const std::string &routing_id) {
+  ids_.push_back(routing_id);
+  last_seen_[routing_id] = Clock::now();
+}
+
+void ParticipantTable::send(const std::string &routing_id, proto::Envelope &envelope, std::uint64_t step) {
+  envelope.set_protocol_version(proto::current_protocol_version);
+  envelope.set_sender_role(proto::v1::ROLE_COUPLER);
+  envelope.set_step(step);
+  try {
+    channel_.send(routing_id, envelope);
+  } catch (const proto::TransportError &e) {
+    throw ParticipantFailed(routing_id, "cannot send " + std::string(proto::body_name(envelope)) + " to participant " +
+                                            routing_id + " at step " + std::to_string(step) + ": " + e.what());
+  }
+}
+
+proto::Incoming &ParticipantTable::next(Clock::time_point deadline, const std::string &waited_peer,
+                                        const std::string &waiting_for, std::uint64_t step) {
+  while (true) {
+    if (stop_signal_ && *stop_signal_ != 0)
+      throw StopRequested(*stop_signal_);
+    send_heartbeats_if_due(step);
+    check_liveness(step);
+    const auto now = Clock::now();
+    if (now >= deadline)
+      throw ParticipantFailed(waited_peer, "no " + waiting_for + " from " + waited_peer + " at step " +
+                                               std::to_string(step) + " within the time limit (coupling." +
+                                               (knows(waited_peer) ? "step_timeout_s" : "handshake_timeout_s") +
+                                               "); it is alive (heartbeats) but seems stuck");
+    const auto slice = std::min({std::chrono::duration_cast<milliseconds>(deadline - now),
+                                 liveness_.heartbeat_interval / 2, milliseconds(100)});
+    const auto before = Clock::now();
+    const bool received = channel_.receive_into(incoming_, std::max(slice, milliseconds(1)));
+    wait_s_ += seconds(Clock::now() - before);
+    if (received && !absorb(incoming_, step))
+      return incoming_;
+  }
+}
+
+bool ParticipantTable::absorb(const proto::Incoming &incoming, std::uint64_t step) {
+  const std::string &peer = incoming.peer();
+  if (incoming.is_malformed()) {
+    const auto &bad = incoming.malformed();
+    if (bad.kind == proto::MalformedMessage::Kind::wrong_protocol_version && looks_like_participant(peer)) {
+      const std::string message = "refused participant " + proto::printable(peer) + ": " + bad.reason +
+                                  " (this coupler speaks protocol version " +
+                                  std::to_string(proto::current_protocol_version) +
+                                  "); build all processes of a run from the same version";
+      answer_error(peer, message, step);
+      throw HandshakeRefused(message);
+    }
+    spdlog::warn("ignored a malformed message from {}: {}", proto::printable(peer), bad.reason);
+    answer_error(peer, "the coupler could not read your message (" + bad.reason + ")", step);
+    return true;
+  }
+  const auto &envelope = incoming.envelope();
+  const std::string owner = proto::participant_of(peer);
+  const bool known = knows(owner);
+  if (known)
+    last_seen_[owner] = Clock::now();
+  if (envelope.has_heartbeat())
+    return true;
+  if (known && envelope.has_error())
+    throw ParticipantFailed(owner, "participant " + owner + " reported an error at step " +
+                                       std::to_string(envelope.step()) + ": " + envelope.error().message());
+  if (known || envelope.has_hello())
+    return false;
+  spdlog::warn("ignored {} from {}, which has not joined the run", proto::body_name(envelope), proto::printable(peer));
+  answer_error(peer, "you have not joined this run: send Hello first", step);
+  return true;
+}
+
+void ParticipantTable::send_heartbeats_if_due(std::uint64_t step) {
+  const auto now = Clock::now();
+  if (now - last_heartbeat_sent_ < liveness_.heartbeat_interval)
+    return;
+  last_heartbeat_sent_ = now;
+  for (const auto &id : ids_) {
+    proto::Envelope beat = proto::make_envelope(proto::v1::ROLE_COUPLER, step);
+    beat.mutable_heartbeat()->set_wall_time_s(seconds(now.time_since_epoch()));
+    try {
+      channel_.send(id, beat);
+    } catch (const proto::TransportError &) {
+      // Not reading or gone: check_liveness() names it once its timeout has passed.
+    }
+  }
+}
+
+void ParticipantTable::check_liveness(std::uint64_t step) const {
+  const auto now = Clock::now();
+  for (const auto &[id, seen] : last_seen_)
+    if (now - seen > liveness_.timeout)
+      throw ParticipantFailed(id, "participant " + id + " has sent nothing, not even a heartbeat, for " +
+                                      std::to_string(seconds(now - seen)).substr(0, 5) + " s at step " +
+                                      std::to_string(step) +
+                                      " (coupling.timeout_s): its process died or its machine is unreachable");
+}
+
+void ParticipantTable::answer_error(const std::string &peer, const std::string &message, std::uint64_t step) noexcept {
+  try {
+    proto::Envelope error = proto::make_envelope(proto::v1::ROLE_COUPLER, step);
+    error.mutable_error()->set_message(message);
+    error.mutable_error()->set_fatal(false);
+    channel_.send(peer, error);
+  } catch (...) {
+    // The peer is gone; nothing to answer.
+  }
+}
+
+void ParticipantTable::shutdown_all(const std::string &reason, bool success, std::uint64_t step) noexcept {
+  for (const auto &id : ids_) {
+    try {
+      proto::Envelope shutdown = proto::make_envelope(proto::v1::ROLE_COUPLER, step);
+      shutdown.mutable_shutdown()->set_reason(reason);
+      shutdown.mutable_shutdown()->set_success(success);
+      channel_.send(id, shutdown);
+    } catch (...) {
+      // A dead participant cannot be told.
+    }
+  }
+}
+
+double ParticipantTable::take_wait_s() {
+  const double w = wait_s_;
+  wait_s_ = 0.0;
+  return w;
+}
+
+} // namespace fsi::coupler

@@ -1,0 +1,70 @@
+#pragma once
+// The coupler's view of its participants over one CouplerChannel: who has joined, when each
+// was last heard from, and the housekeeping of every wait: heartbeats in both directions,
+// liveness timeouts, error replies to malformed or unexpected messages. The coupling run
+// only ever sees the messages it asked for.
+
+#include "proto/CouplerChannel.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fsi::coupler {
+
+struct Liveness {
+  std::chrono::milliseconds heartbeat_interval{500};
+  std::chrono::milliseconds timeout{10000};      ///< silence after which a participant is dead
+  std::chrono::milliseconds step_timeout{600000}; ///< longest wait for one reply
+};
+
+class ParticipantTable {
+public:
+  using Clock = std::chrono::steady_clock;
+
+  ParticipantTable(proto::CouplerChannel &channel, Liveness liveness, const std::atomic<int> *stop_signal);
+
+  /// A participant whose handshake was accepted: from now on it is heartbeated and watched.
+  void add(const std::string &routing_id);
+  const std::vector<std::string> &participants() const { return ids_; }
+  bool knows(const std::string &routing_id) const { return last_seen_.count(routing_id) != 0; }
+
+  /// Sends to a participant (stamped with the coupler's role and the step). A participant that
+  /// is gone or does not read throws ParticipantFailed.
+  void send(const std::string &routing_id, proto::Envelope &envelope, std::uint64_t step);
+
+  /// The next message the run has to act on: any body but a heartbeat from a known
+  /// participant, or a Hello from anyone. Answers malformed bytes and messages from strangers
+  /// with an ErrorReport and keeps waiting. Throws ParticipantFailed for an ErrorReport, a
+  /// participant silent for the liveness timeout, or `deadline` passing (naming
+  /// `waiting_for`); HandshakeRefused for a participant of another protocol version;
+  /// StopRequested on a stop signal.
+  proto::Incoming &next(Clock::time_point deadline, const std::string &waited_peer, const std::string &waiting_for,
+                        std::uint64_t step);
+
+  /// Answers `peer` with an ErrorReport (best effort).
+  void answer_error(const std::string &peer, const std::string &message, std::uint64_t step) noexcept;
+  /// Sends Shutdown to every participant that joined (best effort: never throws).
+  void shutdown_all(const std::string &reason, bool success, std::uint64_t step) noexcept;
+
+  /// Wall time the coupler spent blocked in next() since the last call (waiting for peers).
+  double take_wait_s();
+
+private:
+  void send_heartbeats_if_due(std::uint64_t step);
+  void check_liveness(std::uint64_t step) const;
+  bool absorb(const proto::Incoming &incoming, std::uint64_t step);
+
+  proto::CouplerChannel &channel_;
+  Liveness liveness_;
+  const std::atomic<int> *stop_signal_;
+  std::vector<std::string> ids_;
+  std::map<std::string, Clock::time_point> last_seen_;
+  Clock::time_point last_heartbeat_sent_{};
+  proto::Incoming incoming_;
+  double wait_s_ = 0.0;
+};
+
+} // namespace fsi::coupler

@@ -1,0 +1,75 @@
+// fsi-coupler: the coupling daemon of a fluid-structure run (section 2.3).
+//   fsi-coupler CASE_DIR                 bind coupling.endpoint, wait for the participants, run
+//   fsi-coupler CASE_DIR --endpoint E    listen on E instead (e.g. tcp://0.0.0.0:5560 with allow_remote)
+//   fsi-coupler CASE_DIR -o DIR          results (coupling.h5, coupler.log, coupler.endpoint) in DIR
+//   fsi-coupler --plan CASE_DIR          print the output folder and the processes the scene needs
+// Exit codes: 0 success, 1 a participant failed, 2 bad input or refused participant, 130 interrupted.
+
+#include "CouplingRun.hpp"
+#include "common/ConfigError.hpp"
+#include "common/Logging.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <iostream>
+
+namespace {
+
+extern "C" void on_stop_signal(int signal) { fsi::coupler::CouplingRun::stop_signal() = signal; }
+
+/// The processes a case needs, for ./fsi run: "model only what a scene needs".
+int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::path &output_dir) {
+  std::cout << "output " << std::filesystem::absolute(output_dir).lexically_normal().string() << "\n";
+  if (config.is_coupled()) {
+    std::cout << "process coupler fsi-coupler\n";
+    std::cout << "process structure fsi-structure\n";
+    std::cout << "process fluid fsi-" << config.fluid->model() << "-flow\n";
+  } else {
+    std::cout << "process structure fsi-structure\n";
+  }
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  CLI::App app{"fsi-coupler: the coupling daemon of a fluid-structure run"};
+  std::string case_dir, output_dir, endpoint;
+  bool plan = false, verbose = false;
+  app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
+  app.add_option("-o,--output-dir", output_dir, "Results folder (overrides run.output_directory)");
+  app.add_option("--endpoint", endpoint, "Listen here instead of coupling.endpoint");
+  app.add_flag("--plan", plan, "Print the output folder and the processes this case needs, then exit");
+  app.add_flag("-v,--verbose", verbose, "Debug logging");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError &e) {
+    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
+  }
+  fsi::common::setup_logging("coupler", verbose);
+  try {
+    auto config = fsi::structure::CaseConfig::load(case_dir);
+    const std::filesystem::path out =
+        output_dir.empty() ? std::filesystem::path(case_dir) / config.run.output_directory : std::filesystem::path(output_dir);
+    if (plan)
+      return print_plan(config, out);
+    if (!config.is_coupled()) {
+      spdlog::error("case {} has no `fluid` section: it is a structure-only scene and needs no coupler; run it with "
+                    "./fsi run {}",
+                    case_dir, case_dir);
+      return fsi::common::exit_code_bad_input;
+    }
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    fsi::coupler::CouplingRun run(std::move(config), out, endpoint);
+    return run.run();
+  } catch (const fsi::common::ConfigError &e) {
+    spdlog::error("{}", e.what());
+    return fsi::common::exit_code_bad_input;
+  } catch (const std::exception &e) {
+    spdlog::error("coupler failed: {}", e.what());
+    return fsi::common::exit_code_run_failed;
+  }
+}

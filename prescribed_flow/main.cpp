@@ -1,0 +1,73 @@
+// fsi-prescribed-flow: the fluid participant of one-way coupled scenes. The velocity at the
+// Lagrangian points comes from the case's `fluid.prescribed` field (quiescent, uniform, shear,
+// rotation, table) instead of a Navier-Stokes solution.
+//   fsi-prescribed-flow CASE_DIR [--endpoint E] [-o DIR] [-v]
+// Exit codes: 0 success, 1 the run stopped (coupler lost or another participant failed),
+// 2 bad input, 130 interrupted.
+
+#include "FlowFactory.hpp"
+#include "PrescribedFlowParticipant.hpp"
+#include "structure_solver/CaseConfig.hpp"
+#include "common/ConfigError.hpp"
+#include "common/Logging.hpp"
+#include "proto/TransportError.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+
+namespace {
+extern "C" void on_stop_signal(int signal) { fsi::prescribed_flow::PrescribedFlowParticipant::stop_signal() = signal; }
+} // namespace
+
+int main(int argc, char **argv) {
+  CLI::App app{"fsi-prescribed-flow: fluid participant with a prescribed velocity field (one-way coupling)"};
+  std::string case_dir, output_dir, endpoint;
+  bool verbose = false;
+  app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
+  app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
+  app.add_option("-o,--output-dir", output_dir, "Folder for fluid.log (default: run.output_directory)");
+  app.add_flag("-v,--verbose", verbose, "Debug logging");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError &e) {
+    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
+  }
+  fsi::common::setup_logging("fluid", verbose);
+  try {
+    const auto config = fsi::structure::CaseConfig::load(case_dir);
+    if (!config.fluid || !config.fluid->prescribed) {
+      spdlog::error("case {} has no `fluid.prescribed` section: there is no prescribed flow to run", case_dir);
+      return fsi::common::exit_code_bad_input;
+    }
+    const std::filesystem::path out = output_dir.empty()
+                                          ? std::filesystem::path(case_dir) / config.run.output_directory
+                                          : std::filesystem::path(output_dir);
+    std::filesystem::create_directories(out);
+    fsi::common::add_log_file(out / "fluid.log");
+    fsi::proto::SessionSettings settings;
+    settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
+    settings.coupler.check_connectable();
+    settings.case_fingerprint = config.fingerprint();
+    settings.handshake_timeout =
+        std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    fsi::prescribed_flow::PrescribedFlowParticipant participant(fsi::prescribed_flow::make_flow(*config.fluid->prescribed),
+                                                                std::move(settings));
+    return participant.run();
+  } catch (const fsi::common::ConfigError &e) {
+    spdlog::error("{}", e.what());
+    return fsi::common::exit_code_bad_input;
+  } catch (const fsi::proto::TransportError &e) {
+    spdlog::error("{}{}", e.what(),
+                  endpoint.empty() ? " (coupling.endpoint of the case; port 0 means 'any free port', which only "
+                                     "./fsi run can hand over: give --endpoint or a fixed port)"
+                                   : "");
+    return fsi::common::exit_code_bad_input;
+  } catch (const std::exception &e) {
+    spdlog::error("prescribed flow failed: {}", e.what());
+    return fsi::common::exit_code_run_failed;
+  }
+}

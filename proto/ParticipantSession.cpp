@@ -1,0 +1,129 @@
+#include "ParticipantSession.hpp"
+
+#include "TransportError.hpp"
+
+namespace fsi::proto {
+
+namespace {
+using std::chrono::milliseconds;
+
+milliseconds to_ms(double seconds) { return milliseconds(static_cast<long long>(seconds * 1000.0)); }
+} // namespace
+
+ParticipantSession::ParticipantSession(SessionSettings settings)
+    : settings_(std::move(settings)),
+      channel_(settings_.coupler, settings_.role, settings_.name, settings_.options) {}
+
+ParticipantSession::~ParticipantSession() { stop_heartbeat(); }
+
+const v1::Welcome &ParticipantSession::handshake(const std::vector<v1::StructureTopology> &structures) {
+  Envelope hello = make_envelope(settings_.role, 0);
+  auto *body = hello.mutable_hello();
+  body->set_role(settings_.role);
+  body->set_participant_name(settings_.name);
+  body->set_protocol_version(current_protocol_version);
+  body->set_case_fingerprint(settings_.case_fingerprint);
+  for (const auto &s : structures)
+    *body->add_structures() = s;
+  channel_.send(hello);
+  Envelope &reply = wait_for_message(settings_.handshake_timeout, "Welcome");
+  if (!reply.has_welcome())
+    throw CouplerLost("participant " + routing_id() + ": the coupler at " + settings_.coupler.str() +
+                      " answered the handshake with " + std::string(body_name(reply)) + " instead of Welcome");
+  welcome_ = reply.welcome();
+  start_heartbeat(to_ms(welcome_.heartbeat_interval_s()));
+  return welcome_;
+}
+
+Envelope &ParticipantSession::wait_for_message(milliseconds timeout, const char *waiting_for) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (true) {
+    if (settings_.stop_signal && *settings_.stop_signal != 0)
+      throw Interrupted(*settings_.stop_signal);
+    const auto left = std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0)
+      throw CouplerLost("participant " + routing_id() + ": no message from the coupler at " +
+                        settings_.coupler.str() + " for " + std::to_string(timeout.count() / 1000.0) +
+                        " s while waiting for " + waiting_for + "; is the coupler running and reachable?");
+    // Short slices so that a stop signal is seen promptly.
+    if (!channel_.receive_into(incoming_, std::min(left, milliseconds(200))))
+      continue;
+    if (incoming_.has_heartbeat())
+      return incoming_; // the caller decides whether it counts
+    if (incoming_.has_error())
+      throw RunStopped(incoming_.error().message());
+    if (incoming_.has_shutdown() && !incoming_.shutdown().success())
+      throw RunStopped(incoming_.shutdown().reason());
+    return incoming_;
+  }
+}
+
+Envelope &ParticipantSession::next_request() {
+  const milliseconds timeout = to_ms(welcome_.timeout_s());
+  while (true) {
+    Envelope &message = wait_for_message(timeout, "the next request");
+    if (!message.has_heartbeat())
+      return message;
+  }
+}
+
+void ParticipantSession::send(Envelope &envelope) {
+  envelope.set_protocol_version(current_protocol_version);
+  envelope.set_sender_role(settings_.role);
+  channel_.send(envelope);
+}
+
+void ParticipantSession::report_error(const std::string &message, std::uint64_t step) noexcept {
+  try {
+    Envelope error = make_envelope(settings_.role, step);
+    error.mutable_error()->set_message(message);
+    error.mutable_error()->set_fatal(true);
+    channel_.send(error);
+  } catch (...) {
+    // The coupler may be gone already; the caller exits non-zero anyway.
+  }
+}
+
+void ParticipantSession::start_heartbeat(milliseconds interval) {
+  stop_heartbeat();
+  heartbeat_stop_ = false;
+  heartbeat_ = std::thread([this, interval] { heartbeat_loop(interval); });
+}
+
+void ParticipantSession::stop_heartbeat() {
+  if (!heartbeat_.joinable())
+    return;
+  {
+    std::lock_guard lock(heartbeat_mutex_);
+    heartbeat_stop_ = true;
+  }
+  heartbeat_wakeup_.notify_all();
+  heartbeat_.join();
+}
+
+void ParticipantSession::heartbeat_loop(milliseconds interval) {
+  // Its own socket (ZeroMQ sockets are single-threaded), so heartbeats go out while the main
+  // thread is busy solving: the coupler tells a slow participant from a dead one.
+  try {
+    ChannelOptions options = settings_.options;
+    options.send_timeout = milliseconds(1);
+    ParticipantChannel beat(settings_.coupler, settings_.role, settings_.name + std::string(heartbeat_suffix), options);
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_lock lock(heartbeat_mutex_);
+    while (!heartbeat_stop_) {
+      Envelope envelope = make_envelope(settings_.role, 0);
+      envelope.mutable_heartbeat()->set_wall_time_s(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      try {
+        beat.send(envelope);
+      } catch (const TransportError &) {
+        // Queue full: the coupler is not reading; the main thread's timeout handles it.
+      }
+      heartbeat_wakeup_.wait_for(lock, interval, [this] { return heartbeat_stop_; });
+    }
+  } catch (const std::exception &) {
+    // Could not even open the socket: without heartbeats the coupler reports this participant.
+  }
+}
+
+} // namespace fsi::proto

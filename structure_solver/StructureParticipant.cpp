@@ -1,0 +1,163 @@
+#include "StructureParticipant.hpp"
+
+#include "common/ConfigError.hpp"
+#include "proto/PackedPoints.hpp"
+#include "proto/TransportError.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+namespace fsi::structure {
+
+namespace {
+/// A request the coupler should never send: a bug on its side or a foreign coupler.
+class ProtocolViolation : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+} // namespace
+
+StructureParticipant::StructureParticipant(StructureRun &run, proto::SessionSettings settings)
+    : run_(run), settings_(std::move(settings)) {
+  settings_.role = proto::v1::ROLE_STRUCTURE;
+  settings_.case_fingerprint = run_.config().fingerprint();
+  settings_.stop_signal = &StructureRun::stop_signal();
+}
+
+std::vector<proto::v1::StructureTopology> StructureParticipant::topology() const {
+  std::vector<proto::v1::StructureTopology> out;
+  for (const auto &s : run_.scene().structures()) {
+    proto::v1::StructureTopology t;
+    t.set_name(s->name());
+    t.set_model(s->model());
+    t.set_n1(static_cast<std::uint32_t>(s->grid_shape().first));
+    t.set_n2(static_cast<std::uint32_t>(s->grid_shape().second));
+    const Eigen::VectorXd &m = s->point_measures();
+    t.mutable_point_measure()->Assign(m.data(), m.data() + m.size());
+    t.set_mass_per_measure(s->mass_per_measure());
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+int StructureParticipant::run() {
+  run_.start();
+  for (const auto &s : run_.scene().structures())
+    loads_.push_back(PointArray::Zero(s->n_points(), 3));
+  long step = 0;
+  try {
+    session_ = std::make_unique<proto::ParticipantSession>(settings_);
+    spdlog::info("joining the coupler at {} as {}", settings_.coupler.str(), session_->routing_id());
+    const auto &welcome = session_->handshake(topology());
+    if (std::abs(welcome.time_step_s() - run_.config().run.time_step_s) > 1e-12 * run_.config().run.time_step_s ||
+        static_cast<long>(welcome.n_steps()) != run_.n_steps())
+      throw ProtocolViolation("the coupler runs " + std::to_string(welcome.n_steps()) + " steps of " +
+                              std::to_string(welcome.time_step_s()) + " s; this case has " +
+                              std::to_string(run_.n_steps()) + " steps of " +
+                              std::to_string(run_.config().run.time_step_s) + " s");
+    spdlog::info("joined: {} steps of {} s", welcome.n_steps(), welcome.time_step_s());
+    send_state(0, 0.0); // the initial state X^0, V^0
+    for (step = 1; step <= run_.n_steps(); ++step) {
+      const proto::Envelope &request = session_->next_request();
+      check_request(request, step);
+      unpack_loads(request.structure_advance().load_density_n_per_m2());
+      const auto start = std::chrono::steady_clock::now();
+      const StepOutcome outcome = run_.advance_step(step, &loads_);
+      const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (outcome.kind == StepOutcome::Kind::diverged) {
+        session_->report_error("structure diverged at " + outcome.message, static_cast<std::uint64_t>(step - 1));
+        return common::exit_code_run_failed;
+      }
+      if (outcome.kind == StepOutcome::Kind::interrupted) {
+        session_->report_error("participant " + session_->routing_id() + " " + outcome.message,
+                               static_cast<std::uint64_t>(step - 1));
+        return 130;
+      }
+      send_state(static_cast<std::uint64_t>(step - 1), solve_s);
+    }
+    const proto::Envelope &last = session_->next_request();
+    if (!last.has_shutdown())
+      throw ProtocolViolation("expected Shutdown after the last step, got " + std::string(proto::body_name(last)));
+    run_.finish("completed", run_.n_steps());
+    spdlog::info("completed: the coupler ended the run ({})", last.shutdown().reason());
+    return 0;
+  } catch (const proto::Interrupted &e) {
+    run_.finish("interrupted", step - 1);
+    if (session_)
+      session_->report_error("participant " + session_->routing_id() + " " + e.what(),
+                             static_cast<std::uint64_t>(std::max(0L, step - 1)));
+    spdlog::warn("{} while waiting for the coupler at step {}", e.what(), step);
+    return 130;
+  } catch (const proto::RunStopped &e) {
+    spdlog::error("the coupler stopped the run at step {}: {}", step, e.what());
+    run_.finish(std::string("stopped: ") + e.what(), step - 1);
+  } catch (const proto::CouplerLost &e) {
+    spdlog::error("{}", e.what());
+    run_.finish(std::string("coupler lost: ") + e.what(), step - 1);
+  } catch (const ProtocolViolation &e) {
+    const std::string message = "participant structure at step " + std::to_string(step) + ": " + e.what();
+    spdlog::error("{}", message);
+    if (session_)
+      session_->report_error(message, static_cast<std::uint64_t>(std::max(0L, step - 1)));
+    run_.finish("failed: " + message, step - 1);
+  } catch (const proto::TransportError &e) {
+    spdlog::error("transport failed at step {}: {}", step, e.what());
+    run_.finish(std::string("failed: ") + e.what(), step - 1);
+  }
+  spdlog::error("results up to step {} are kept", std::max(0L, step - 1));
+  return common::exit_code_run_failed;
+}
+
+void StructureParticipant::check_request(const proto::Envelope &request, long step) const {
+  if (request.has_shutdown())
+    throw ProtocolViolation("the coupler ended the run early (" + request.shutdown().reason() + ")");
+  if (!request.has_structure_advance())
+    throw ProtocolViolation("expected StructureAdvance, got " + std::string(proto::body_name(request)));
+  const double expected_t = static_cast<double>(step - 1) * run_.config().run.time_step_s;
+  if (request.step() != static_cast<std::uint64_t>(step - 1) ||
+      std::abs(request.structure_advance().time_s() - expected_t) > 1e-9 * std::max(1.0, expected_t))
+    throw ProtocolViolation("StructureAdvance for step " + std::to_string(request.step()) + " (t = " +
+                            std::to_string(request.structure_advance().time_s()) + " s), expected step " +
+                            std::to_string(step - 1));
+}
+
+void StructureParticipant::unpack_loads(const proto::PackedDoubles &field) {
+  Eigen::Index total = 0;
+  for (const auto &l : loads_)
+    total += l.rows();
+  proto::PointsView all = [&] {
+    try {
+      return proto::view_points(field, total, "StructureAdvance.load_density_n_per_m2");
+    } catch (const proto::MalformedMessageError &e) {
+      throw ProtocolViolation(e.what());
+    }
+  }();
+  Eigen::Index at = 0;
+  for (auto &l : loads_) {
+    l = all.middleRows(at, l.rows());
+    at += l.rows();
+  }
+}
+
+void StructureParticipant::send_state(std::uint64_t step, double solve_wall_s) {
+  const auto &structures = run_.scene().structures();
+  Eigen::Index total = 0;
+  for (const auto &s : structures)
+    total += s->n_points();
+  auto *reply = reply_.mutable_advance_reply();
+  reply->set_time_s(run_.scene().time_s());
+  reply->set_solve_wall_s(solve_wall_s);
+  auto x = proto::resize_points(*reply->mutable_position_m(), total);
+  auto v = proto::resize_points(*reply->mutable_velocity_m_per_s(), total);
+  Eigen::Index at = 0;
+  for (const auto &s : structures) {
+    x.middleRows(at, s->n_points()) = s->positions_m();
+    v.middleRows(at, s->n_points()) = s->velocities_m_per_s();
+    at += s->n_points();
+  }
+  reply_.set_step(step);
+  session_->send(reply_);
+}
+
+} // namespace fsi::structure

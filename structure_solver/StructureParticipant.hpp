@@ -1,0 +1,34 @@
+#pragma once
+// The structure solver as a participant of a coupled run (fsi-structure --coupled): it joins
+// the coupler, sends its topology and initial state, then every step takes the load -F_fsi^n
+// from the coupler, advances Eq. (4) and Eq. (11) through StructureRun (same guards, output
+// and progress as a standalone run) and answers with X^{n+1}, V^{n+1}.
+
+#include "StructureRun.hpp"
+#include "proto/PackedPoints.hpp"
+#include "proto/ParticipantSession.hpp"
+
+namespace fsi::structure {
+
+class StructureParticipant {
+public:
+  StructureParticipant(StructureRun &run, proto::SessionSettings settings);
+
+  /// Returns the exit code: 0 completed, 1 diverged or stopped by the coupler, 130 interrupted.
+  int run();
+
+private:
+  std::vector<proto::v1::StructureTopology> topology() const;
+  void send_state(std::uint64_t step, double solve_wall_s);
+  void check_request(const proto::Envelope &request, long step) const;
+  void unpack_loads(const proto::PackedDoubles &field);
+
+  StructureRun &run_;
+  proto::SessionSettings settings_;
+  std::unique_ptr<proto::ParticipantSession> session_;
+  std::vector<PointArray> loads_;
+  proto::Envelope reply_;
+  PointArray gather_;
+};
+
+} // namespace fsi::structure
