@@ -371,6 +371,13 @@ void CouplingRun::record_step(long n) {
   for (int k = 0; k < 3; ++k)
     force[k] = total[k];
   results_->write_step(n, static_cast<double>(n) * dt_, timings_, force);
+  timings_sum_.step_wall_s += timings_.step_wall_s;
+  timings_sum_.interpolation_s += timings_.interpolation_s;
+  timings_sum_.fluid_solve_s += timings_.fluid_solve_s;
+  timings_sum_.structure_solve_s += timings_.structure_solve_s;
+  timings_sum_.coupling_law_s += timings_.coupling_law_s;
+  timings_sum_.waiting_s += timings_.waiting_s;
+  ++timings_count_;
 }
 
 void CouplingRun::report_progress(long n, bool force) {
@@ -380,12 +387,16 @@ void CouplingRun::report_progress(long n, bool force) {
   last_progress_ = now;
   const double wall = std::chrono::duration<double>(now - start_).count();
   const double eta = wall * static_cast<double>(n_steps_ - n) / static_cast<double>(std::max(1L, n));
-  spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step (fluid {:.3g}, structure {:.3g}, "
-               "coupling overhead {:.3g} ms)",
+  const double per_step_ms = 1e3 / static_cast<double>(std::max(1L, timings_count_));
+  const StepTimings &sum = timings_sum_;
+  spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step: fluid {:.3g}, structure {:.3g}, "
+               "coupling overhead {:.3g}",
                n, n_steps_, static_cast<double>(n) * dt_, 100.0 * static_cast<double>(n) / static_cast<double>(n_steps_),
-               format_duration(wall), format_duration(eta), 1e3 * wall / static_cast<double>(std::max(1L, n)),
-               1e3 * (timings_.interpolation_s + timings_.fluid_solve_s), 1e3 * timings_.structure_solve_s,
-               1e3 * timings_.overhead_s());
+               format_duration(wall), format_duration(eta), per_step_ms * sum.step_wall_s,
+               per_step_ms * (sum.interpolation_s + sum.fluid_solve_s), per_step_ms * sum.structure_solve_s,
+               per_step_ms * sum.overhead_s());
+  timings_sum_ = StepTimings{};
+  timings_count_ = 0;
 }
 
 void CouplingRun::write_endpoint_file(const std::string &endpoint) const {

@@ -71,6 +71,8 @@ private:
 
   proto::Envelope request_, fluid_advance_, structure_advance_;
   StepTimings timings_;
+  StepTimings timings_sum_;   ///< since the last progress line
+  long timings_count_ = 0;
   std::chrono::steady_clock::time_point start_, last_progress_;
   long steps_done_ = 0;
 };

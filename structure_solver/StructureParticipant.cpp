@@ -57,7 +57,7 @@ int StructureParticipant::run() {
                               std::to_string(run_.n_steps()) + " steps of " +
                               std::to_string(run_.config().run.time_step_s) + " s");
     spdlog::info("joined: {} steps of {} s", welcome.n_steps(), welcome.time_step_s());
-    send_state(0, 0.0); // the initial state X^0, V^0
+    send_state(0, 0.0, true); // the initial state X^0, V^0
     for (step = 1; step <= run_.n_steps(); ++step) {
       const proto::Envelope &request = session_->next_request();
       check_request(request, step);
@@ -74,7 +74,7 @@ int StructureParticipant::run() {
                                static_cast<std::uint64_t>(step - 1));
         return 130;
       }
-      send_state(static_cast<std::uint64_t>(step - 1), solve_s);
+      send_state(static_cast<std::uint64_t>(step - 1), solve_s, false);
     }
     const proto::Envelope &last = session_->next_request();
     if (!last.has_shutdown())
@@ -140,7 +140,7 @@ void StructureParticipant::unpack_loads(const proto::PackedDoubles &field) {
   }
 }
 
-void StructureParticipant::send_state(std::uint64_t step, double solve_wall_s) {
+void StructureParticipant::send_state(std::uint64_t step, double solve_wall_s, bool with_velocity) {
   const auto &structures = run_.scene().structures();
   Eigen::Index total = 0;
   for (const auto &s : structures)
@@ -149,11 +149,13 @@ void StructureParticipant::send_state(std::uint64_t step, double solve_wall_s) {
   reply->set_time_s(run_.scene().time_s());
   reply->set_solve_wall_s(solve_wall_s);
   auto x = proto::resize_points(*reply->mutable_position_m(), total);
-  auto v = proto::resize_points(*reply->mutable_velocity_m_per_s(), total);
+  // Per step only X^{n+1}: the coupler has X^n, so V^{n+1} = (X^{n+1} - X^n) / dt is not sent.
+  auto v = proto::resize_points(*reply->mutable_velocity_m_per_s(), with_velocity ? total : 0);
   Eigen::Index at = 0;
   for (const auto &s : structures) {
     x.middleRows(at, s->n_points()) = s->positions_m();
-    v.middleRows(at, s->n_points()) = s->velocities_m_per_s();
+    if (with_velocity)
+      v.middleRows(at, s->n_points()) = s->velocities_m_per_s();
     at += s->n_points();
   }
   reply_.set_step(step);

@@ -19,7 +19,8 @@ public:
 
 private:
   std::vector<proto::v1::StructureTopology> topology() const;
-  void send_state(std::uint64_t step, double solve_wall_s);
+  /// X (and V, for the initial state only) of all structures, concatenated.
+  void send_state(std::uint64_t step, double solve_wall_s, bool with_velocity);
   void check_request(const proto::Envelope &request, long step) const;
   void unpack_loads(const proto::PackedDoubles &field);
 
