@@ -92,6 +92,30 @@ TEST(RunBehaviour, MalformedYamlAndWrongTypesAreRejected) {
   expect_bad_input(with("{s1_min: clamped}", "{s1_min: glued}"), "'glued' is not one of: free, pinned, clamped, fixed");
 }
 
+TEST(RunBehaviour, CouplingSectionsAreCheckedLikeEveryOther) {
+  const std::string flow = "fluid:\n  prescribed:\n    uniform: {velocity_m_per_s: [1, 0, 0]}\n";
+  const std::string coupling = "coupling:\n  law: penalty\n  stiffness_n_per_m3: 1.0e5\n";
+  expect_bad_input(std::string(valid_case) + coupling, "there is no `fluid` section");
+  expect_bad_input(std::string(valid_case) + flow, "needs a `coupling` section");
+  expect_bad_input(std::string(valid_case) + flow + "coupling: {law: penalti}\n",
+                   "unknown coupling law 'penalti'. Did you mean 'penalty'? Valid laws: penalty");
+  expect_bad_input(std::string(valid_case) + flow + "coupling: {stifness_n_per_m3: 1.0}\n",
+                   "Did you mean 'stiffness_n_per_m3'?");
+  expect_bad_input(std::string(valid_case) + "fluid:\n  prescribed:\n    uniform: {velocity_m_per_s: [1, 0, 0]}\n"
+                                             "    quiescent: {}\n" + coupling,
+                   "must hold exactly one of: quiescent, uniform, shear, rotation, table (found 2)");
+  expect_bad_input(std::string(valid_case) + flow + "coupling: {heartbeat_interval_s: 1.0, timeout_s: 1.5}\n",
+                   "must exceed twice heartbeat_interval_s");
+}
+
+TEST(RunBehaviour, CoupledParticipantWithPortZeroEndpointExplainsWhatToDo) {
+  const auto dir = testing::make_case_dir(std::string(valid_case) +
+                                          "fluid:\n  prescribed:\n    quiescent: {}\ncoupling: {law: penalty}\n");
+  const Outcome out = run_solver("--coupled " + dir.string());
+  EXPECT_EQ(out.exit_code, 2) << out.output;
+  EXPECT_NE(out.output.find("give --endpoint or a fixed port"), std::string::npos) << out.output;
+}
+
 TEST(RunBehaviour, MissingCaseFolderIsBadInput) {
   const Outcome out = run_solver("/nonexistent/case");
   EXPECT_EQ(out.exit_code, 2);

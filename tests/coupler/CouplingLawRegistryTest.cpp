@@ -1,0 +1,56 @@
+// The coupling-law registry: laws are found by name, unknown names are rejected with the valid
+// ones, and the penalty law's stability limit is the one its relaxation map predicts.
+
+#include "coupler/CouplingLawRegistry.hpp"
+#include "coupler/PenaltyCouplingLaw.hpp"
+#include "coupler/PenaltyLawConfig.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fsi::coupler {
+namespace {
+
+TEST(CouplingLawRegistry, BuildsThePenaltyLawByName) {
+  auto config = CouplingLawRegistry::builtin().make_config("penalty");
+  auto law = config->build();
+  EXPECT_EQ(law->name(), "penalty");
+}
+
+TEST(CouplingLawRegistry, UnknownLawListsTheValidOnes) {
+  try {
+    CouplingLawRegistry::builtin().make_config("penality");
+    FAIL() << "no error for an unknown law";
+  } catch (const common::ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find("Did you mean 'penalty'? Valid laws: penalty"), std::string::npos) << e.what();
+  }
+}
+
+// The relaxation map of one point, U - V^{n+1} = (1 - a)(U - V^n) with a = K dt^2 / rho_1, run
+// through the law itself: it decays just below the limit stable_time_step_s and grows above it.
+double relaxation_after(double dt, double rho, double k, int steps) {
+  PenaltyCouplingLaw law(k);
+  PointArray x_prev = PointArray::Zero(1, 3), x = PointArray::Zero(1, 3), u(1, 3);
+  u << 1.0, 0.0, 0.0;
+  for (int n = 0; n < steps; ++n) {
+    const CouplingOutputs out = law.compute({&x, &x_prev, &x, &u, dt});
+    // rho (X^{n+1} - 2 X^n + X^{n-1}) / dt^2 = -F (Eq. 3 without elastic terms)
+    const PointArray x_next = 2.0 * x - x_prev - dt * dt / rho * out.force_density_n_per_m2;
+    x_prev = x;
+    x = x_next;
+  }
+  return std::abs(1.0 - (x(0, 0) - x_prev(0, 0)) / dt); // |U - V|
+}
+
+TEST(PenaltyLawConfig, StabilityLimitMatchesTheRelaxationMap) {
+  PenaltyLawConfig config;
+  config.stiffness_n_per_m3 = 1.0e5;
+  const double rho = 0.08, limit = config.stable_time_step_s(rho);
+  EXPECT_NEAR(limit, std::sqrt(2.0 * rho / 1.0e5), 1e-15);
+  EXPECT_LT(relaxation_after(0.99 * limit, rho, 1.0e5, 2000), 1.0);
+  EXPECT_GT(relaxation_after(1.01 * limit, rho, 1.0e5, 2000), 1.0e3);
+}
+
+} // namespace
+} // namespace fsi::coupler
