@@ -1,8 +1,8 @@
 #pragma once
 // The prescribed-flow fluid participant (fsi-prescribed-flow): it speaks the same protocol as
 // the OpenFOAM fluid, but the velocity at the Lagrangian points comes from a FlowField, and the
-// FSI force has no effect on the flow (one-way coupling). It records the total force the
-// structures exert on the fluid so that the user can see what a two-way model would feel.
+// FSI force has no effect on the flow (one-way coupling). The coupler still records the total
+// force the structures exert on the fluid (coupling.h5), which a two-way model would feel.
 
 #include "FlowField.hpp"
 #include "proto/ParticipantSession.hpp"

@@ -12,6 +12,7 @@
 #include "CaseConfig.hpp"
 #include "SchemaDoc.hpp"
 #include "StructureParticipant.hpp"
+#include "prescribed_flow/FlowFactory.hpp"
 #include "StructureRun.hpp"
 #include "proto/TransportError.hpp"
 #include "structure_solver/collision/MeshErrors.hpp"
@@ -28,6 +29,8 @@ namespace {
 int check_case(const std::filesystem::path &case_dir) {
   const auto config = fsi::structure::CaseConfig::load(case_dir);
   fsi::structure::Scene scene(config); // builds geometry: catches missing/open STL meshes too
+  if (config.fluid && config.fluid->prescribed) // reads a velocity table, if any
+    spdlog::info("fluid: prescribed, {}", fsi::prescribed_flow::make_flow(*config.fluid->prescribed)->describe());
   for (const auto &warning : fsi::structure::StructureRun::time_step_warnings(scene, config.run.time_step_s))
     spdlog::warn("{}", warning);
   spdlog::info("case {} is valid: {} structure(s), {} steps", case_dir.string(), config.structures.size(),
