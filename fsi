@@ -8,7 +8,7 @@
 #                             start only that process (several machines; see README)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
-#   ./fsi bench [structure|transport]  run a benchmark
+#   ./fsi bench [structure|transport|coupling]  run a benchmark
 #   ./fsi schema              print the case-file reference (Markdown)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
@@ -113,7 +113,8 @@ cmd_bench() {
   case "$which" in
     structure) "$BUILD/bin/bench_structure" --benchmark_counters_tabular=true ;;
     transport) "$BUILD/bin/bench_transport" --benchmark_counters_tabular=true ;;
-    *) die "unknown benchmark '$which' (available: structure, transport)" ;;
+    coupling) shift || true; "$BUILD/bin/bench_coupling" "$@" ;;
+    *) die "unknown benchmark '$which' (available: structure, transport, coupling)" ;;
   esac
 }
 
