@@ -5,17 +5,21 @@
 namespace fsi::coupler {
 
 CouplingOutputs CouplingLaw::compute(const CouplingInputs &in) {
+  CouplingOutputs out;
+  compute(in, out);
+  return out;
+}
+
+void CouplingLaw::compute(const CouplingInputs &in, CouplingOutputs &out) {
   const auto n = in.x_now_m->rows();
   if (in.x_prev_m->rows() != n || in.x_ib_now_m->rows() != n || in.u_ib_now_m_per_s->rows() != n)
     throw std::logic_error("coupling law '" + name() + "': inputs have different numbers of points");
   if (!(in.dt_s > 0.0))
     throw std::logic_error("coupling law '" + name() + "': time step must be positive");
-  CouplingOutputs out;
   // Section 2.3: the immersed-boundary points move with the local fluid velocity,
   // X_ib^{n+1} = X_ib^n + U_ib^n dt (explicit Euler).
   out.x_ib_next_m = *in.x_ib_now_m + in.dt_s * *in.u_ib_now_m_per_s;
   compute_force(in, out);
-  return out;
 }
 
 } // namespace fsi::coupler

@@ -29,6 +29,8 @@ public:
   virtual std::string name() const = 0;
   /// Computes X_ib^{n+1} and F_fsi^n. Checks the input sizes (programmer errors).
   CouplingOutputs compute(const CouplingInputs &in);
+  /// As above, into out, reusing its arrays' memory (no allocation once sized).
+  void compute(const CouplingInputs &in, CouplingOutputs &out);
 
 protected:
   virtual void compute_force(const CouplingInputs &in, CouplingOutputs &out) = 0;

@@ -45,7 +45,11 @@ void CouplingResults::write_step(long step, double time_s, const StepTimings &ti
   const auto values = timings.values();
   for (std::size_t i = 0; i < values.size(); ++i)
     timings_[i].append_row(&values[i]);
-  structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_flush_ >= std::chrono::seconds(1)) {
+    last_flush_ = now;
+    structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+  }
 }
 
 void CouplingResults::set_status(const std::string &status) {

@@ -261,23 +261,19 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
     write_pose(name, *motion, t, *request->add_rigid_bodies());
   // The immersed-boundary points are the structure points at the start of the step,
   // X_ib^n = X^n (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5).
-  x_ib_ = x_now_;
-  proto::write_points(x_ib_, *request->mutable_position_m());
+  proto::write_points(x_now_, *request->mutable_position_m());
   participants_->send(fluid_id_, request_, static_cast<std::uint64_t>(n));
   const auto &reply = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply").interpolate_reply();
-  proto::read_points(reply.velocity_m_per_s(), x_ib_.rows(), "InterpolateReply.velocity_m_per_s", u_ib_);
+  proto::read_points(reply.velocity_m_per_s(), x_now_.rows(), "InterpolateReply.velocity_m_per_s", u_ib_);
   timings_.interpolation_s = reply.solve_wall_s();
 }
 
 void CouplingRun::apply_coupling_law() {
   const auto start = Clock::now();
-  coupled_ = law_->compute({&x_now_, &x_prev_, &x_ib_, &u_ib_, dt_});
-  // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
-  // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
-  load_ = -coupled_.force_density_n_per_m2;
-  if (!load_.allFinite()) {
+  law_->compute({&x_now_, &x_prev_, &x_now_, &u_ib_, dt_}, coupled_); // X_ib^n = X^n
+  if (!coupled_.force_density_n_per_m2.allFinite()) {
     Eigen::Index worst = 0;
-    (load_.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
+    (coupled_.force_density_n_per_m2.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
     throw ParticipantFailed(fluid_id_, "the FSI force is not finite at Lagrangian point " + std::to_string(worst) +
                                            ": the fluid velocity there is " +
                                            std::to_string(u_ib_.row(worst).norm()) + " m/s (NaN?)");
@@ -291,11 +287,14 @@ void CouplingRun::advance_fluid_and_structure(long n) {
   fluid->set_time_s(t);
   fluid->set_dt_s(dt_);
   // The fluid has X^n (= X_ib^n) from this step's InterpolateRequest: not sent again.
-  proto::write_points(coupled_.force_density_n_per_m2, *fluid->mutable_force_density_n_per_m2());
+  const PointArray &force = coupled_.force_density_n_per_m2;
+  proto::write_points(force, *fluid->mutable_force_density_n_per_m2());
   auto *structure = structure_advance_.mutable_structure_advance();
   structure->set_time_s(t);
   structure->set_dt_s(dt_);
-  proto::write_points(load_, *structure->mutable_load_density_n_per_m2());
+  // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
+  // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
+  proto::resize_points(*structure->mutable_load_density_n_per_m2(), force.rows()) = -force;
   participants_->send(structure_id_, structure_advance_, static_cast<std::uint64_t>(n));
   participants_->send(fluid_id_, fluid_advance_, static_cast<std::uint64_t>(n));
 

@@ -65,7 +65,7 @@ private:
   std::vector<std::pair<std::string, std::shared_ptr<const common::RigidMotion>>> moving_bodies_;
 
   // Lagrangian state of all structures, concatenated (N x 3, SI).
-  PointArray x_now_, x_prev_, x_ib_, u_ib_, load_;
+  PointArray x_now_, x_prev_, u_ib_;
   Eigen::VectorXd measures_;
   CouplingOutputs coupled_;
 

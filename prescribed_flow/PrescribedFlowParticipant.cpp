@@ -73,11 +73,11 @@ void PrescribedFlowParticipant::interpolate(const proto::Envelope &request) {
   proto::read_points(body.position_m(), "InterpolateRequest.position_m", positions_);
   velocities_.resize(positions_.rows(), 3);
   flow_->velocities(positions_, body.time_s(), velocities_);
-  auto *reply = reply_.mutable_interpolate_reply();
+  auto *reply = interpolate_reply_.mutable_interpolate_reply();
   proto::write_points(velocities_, *reply->mutable_velocity_m_per_s());
   reply->set_solve_wall_s(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  reply_.set_step(request.step());
-  session_->send(reply_);
+  interpolate_reply_.set_step(request.step());
+  session_->send(interpolate_reply_);
 }
 
 void PrescribedFlowParticipant::advance(const proto::Envelope &request) {
@@ -85,12 +85,11 @@ void PrescribedFlowParticipant::advance(const proto::Envelope &request) {
   // only, so that a broken coupler is caught here too.
   const auto &body = request.fluid_advance();
   proto::view_points(body.force_density_n_per_m2(), positions_.rows(), "FluidAdvance.force_density_n_per_m2");
-  auto *reply = reply_.mutable_advance_reply();
-  reply->Clear();
+  auto *reply = advance_reply_.mutable_advance_reply();
   reply->set_time_s(body.time_s() + body.dt_s());
   reply->set_solve_wall_s(0.0);
-  reply_.set_step(request.step());
-  session_->send(reply_);
+  advance_reply_.set_step(request.step());
+  session_->send(advance_reply_);
   ++steps_;
 }
 

@@ -29,7 +29,7 @@ private:
   proto::SessionSettings settings_;
   std::unique_ptr<proto::ParticipantSession> session_;
   PointArray positions_, velocities_;
-  proto::Envelope reply_;
+  proto::Envelope interpolate_reply_, advance_reply_; // reused: no per-step allocation
   long steps_ = 0;
 };
 
