@@ -161,6 +161,7 @@ void CouplingRun::handshake() {
     else
       participants_->answer_error(incoming->peer(), "the run has not started: wait for Welcome", 0);
   }
+  participants_->close_admission();
   welcome(structure_id_, false);
   welcome(fluid_id_, true);
   spdlog::info("participants joined: {} and {}", structure_id_, fluid_id_);

@@ -67,7 +67,8 @@ bool ParticipantTable::absorb(const proto::Incoming &incoming, std::uint64_t ste
   const std::string &peer = incoming.peer();
   if (incoming.is_malformed()) {
     const auto &bad = incoming.malformed();
-    if (bad.kind == proto::MalformedMessage::Kind::wrong_protocol_version && looks_like_participant(peer)) {
+    if (bad.kind == proto::MalformedMessage::Kind::wrong_protocol_version && looks_like_participant(peer) &&
+        admission_open_ && !knows(proto::participant_of(peer))) {
       const std::string message = "refused participant " + proto::printable(peer) + ": " + bad.reason +
                                   " (this coupler speaks protocol version " +
                                   std::to_string(proto::current_protocol_version) +

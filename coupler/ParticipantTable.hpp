@@ -29,6 +29,9 @@ public:
   /// A participant whose handshake was accepted: from now on it is heartbeated and watched.
   void add(const std::string &routing_id);
   const std::vector<std::string> &participants() const { return ids_; }
+  /// The handshake is over: from now on a stranger's message of another protocol version is
+  /// answered and ignored like any other malformed message, instead of refusing the run.
+  void close_admission() { admission_open_ = false; }
   bool knows(const std::string &routing_id) const { return last_seen_.count(routing_id) != 0; }
 
   /// Sends to a participant (stamped with the coupler's role and the step). A participant that
@@ -39,7 +42,8 @@ public:
   /// participant, or a Hello from anyone. Answers malformed bytes and messages from strangers
   /// with an ErrorReport and keeps waiting. Throws ParticipantFailed for an ErrorReport, a
   /// participant silent for the liveness timeout, or `deadline` passing (naming
-  /// `waiting_for`); HandshakeRefused for a participant of another protocol version;
+  /// `waiting_for`); HandshakeRefused for a would-be participant of another protocol version
+  /// while admission is open;
   /// StopRequested on a stop signal.
   proto::Incoming &next(Clock::time_point deadline, const std::string &waited_peer, const std::string &waiting_for,
                         std::uint64_t step);
@@ -65,6 +69,7 @@ private:
   Clock::time_point last_heartbeat_sent_{};
   proto::Incoming incoming_;
   double wait_s_ = 0.0;
+  bool admission_open_ = true;
 };
 
 } // namespace fsi::coupler

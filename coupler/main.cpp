@@ -9,6 +9,8 @@
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 
+#include "proto/ZmqContext.hpp"
+
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -35,6 +37,7 @@ int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::
 } // namespace
 
 int main(int argc, char **argv) {
+  const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-coupler: the coupling daemon of a fluid-structure run"};
   std::string case_dir, output_dir, endpoint;
   bool plan = false, verbose = false;

@@ -12,6 +12,8 @@
 #include "common/Logging.hpp"
 #include "proto/TransportError.hpp"
 
+#include "proto/ZmqContext.hpp"
+
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -22,6 +24,7 @@ extern "C" void on_stop_signal(int signal) { fsi::prescribed_flow::PrescribedFlo
 } // namespace
 
 int main(int argc, char **argv) {
+  const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-prescribed-flow: fluid participant with a prescribed velocity field (one-way coupling)"};
   std::string case_dir, output_dir, endpoint;
   bool verbose = false;

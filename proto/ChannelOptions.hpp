@@ -11,6 +11,9 @@ struct ChannelOptions {
   /// Messages queued per peer and direction before send() waits (ZeroMQ high-water marks).
   /// Bounded so that a stuck peer shows up as an error instead of growing memory.
   int queue_limit_messages = 100;
+  /// How long closing the socket may wait to deliver messages still queued (the coupler's
+  /// last Shutdown, a refusal, a participant's error report). 0 would drop them.
+  std::chrono::milliseconds linger{2000};
   /// How long send() waits for room in a full queue before it throws.
   std::chrono::milliseconds send_timeout{10000};
   /// Larger incoming messages are dropped and their connection closed (ZMQ_MAXMSGSIZE).

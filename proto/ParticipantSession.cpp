@@ -107,6 +107,7 @@ void ParticipantSession::heartbeat_loop(milliseconds interval) {
   try {
     ChannelOptions options = settings_.options;
     options.send_timeout = milliseconds(1);
+    options.linger = milliseconds(0); // stale heartbeats are worth nothing
     ParticipantChannel beat(settings_.coupler, settings_.role, settings_.name + std::string(heartbeat_suffix), options);
     const auto start = std::chrono::steady_clock::now();
     std::unique_lock lock(heartbeat_mutex_);

@@ -40,7 +40,7 @@ Socket::Socket(zmq::socket_type type, const ChannelOptions &options, std::string
 }
 
 void Socket::apply(const ChannelOptions &options) {
-  socket_.set(zmq::sockopt::linger, 0);
+  socket_.set(zmq::sockopt::linger, static_cast<int>(options.linger.count()));
   socket_.set(zmq::sockopt::sndhwm, options.queue_limit_messages);
   socket_.set(zmq::sockopt::rcvhwm, options.queue_limit_messages);
   socket_.set(zmq::sockopt::sndtimeo, static_cast<int>(options.send_timeout.count()));

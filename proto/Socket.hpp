@@ -1,5 +1,5 @@
 #pragma once
-// A ZeroMQ socket made from the shared context with the project's options (linger 0, bounded
+// A ZeroMQ socket made from the shared context with the project's options (bounded linger, bounded
 // queues, send timeout, message size limit, TCP keepalive), whose errors come back as
 // TransportError naming the owner and the endpoint. Used by the channels only.
 

@@ -19,6 +19,8 @@
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 
+#include "proto/ZmqContext.hpp"
+
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -41,6 +43,7 @@ int check_case(const std::filesystem::path &case_dir) {
 } // namespace
 
 int main(int argc, char **argv) {
+  const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-structure: membrane and filament solver with collisions (standalone, no fluid)"};
   std::string case_dir;
   std::string output_dir;
