@@ -61,7 +61,11 @@ build() {
   fi
 }
 
-prepare() { ensure_packages; build "$BUILD" -DCMAKE_BUILD_TYPE=Release; }
+# OpenFOAM v1912: Debian's package + the headers of the same version from its source package,
+# cached in build-deps/ (scripts/ensure_openfoam.sh; quiet when done).
+ensure_openfoam() { "$ROOT/scripts/ensure_openfoam.sh" || die "OpenFOAM provisioning failed (see above)"; }
+
+prepare() { ensure_packages; ensure_openfoam; build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON; }
 
 # The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
 # and starts them; the picture is drawn where the structure ran.
