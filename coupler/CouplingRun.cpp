@@ -86,6 +86,8 @@ int CouplingRun::run() {
     spdlog::info("completed: {} steps; timings and FSI force in {}", n_steps_, results_->path().string());
     return 0;
   } catch (const ParticipantFailed &e) {
+    if (stop_signal() != 0) // Ctrl-C reaches every process: a participant may stop first
+      return interrupted(step);
     spdlog::error("{}", e.what());
     if (participants_)
       participants_->shutdown_all(std::string("stopped by the coupler: ") + e.what(), false, step);
@@ -101,14 +103,18 @@ int CouplingRun::run() {
     if (results_)
       results_->set_status(std::string("refused: ") + e.what());
     return common::exit_code_bad_input;
-  } catch (const StopRequested &e) {
-    spdlog::warn("{} at step {}: telling the participants to stop", e.what(), step);
-    if (participants_)
-      participants_->shutdown_all("interrupted (signal at the coupler)", false, step);
-    if (results_)
-      results_->set_status("interrupted");
-    return 130;
+  } catch (const StopRequested &) {
+    return interrupted(step);
   }
+}
+
+int CouplingRun::interrupted(long step) {
+  spdlog::warn("interrupted by signal {} at step {}: telling the participants to stop", stop_signal().load(), step);
+  if (participants_)
+    participants_->shutdown_all("interrupted (signal at the coupler)", false, step);
+  if (results_)
+    results_->set_status("interrupted");
+  return 130;
 }
 
 // ---- the run, step by step ------------------------------------------------------------------

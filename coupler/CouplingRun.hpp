@@ -41,6 +41,7 @@ private:
   void advance_fluid_and_structure(long n);
 
   // Helpers.
+  int interrupted(long step);
   bool accept_hello(const proto::Incoming &incoming);
   void refuse(const std::string &peer, const std::string &message);
   void welcome(const std::string &id, bool with_structures);

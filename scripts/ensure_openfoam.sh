@@ -19,7 +19,7 @@ set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 CACHE=${1:-$ROOT/build-deps/openfoam-1912}
-STAMP_LAYOUT=1                          # bump when the cache layout below changes
+STAMP_LAYOUT=2  # bump when the cache layout changes (2: also applications/.../pimpleFoam, our solver starts from it)
 WANT_UPSTREAM=1912                      # the OpenFOAM release the project is written against
 PKG=openfoam
 
@@ -38,13 +38,15 @@ installed_src_version() {            # source version of the installed package, 
   dpkg-query -W -f='${source:Version}' "$PKG" 2>/dev/null || true
 }
 
+PIMPLE=applications/solvers/incompressible/pimpleFoam
+
 stamp_text() { printf 'openfoam-src %s layout %s\n' "$1" "$STAMP_LAYOUT"; }
 
 # ---- fast path: nothing to do ---------------------------------------------------------------
 srcver=$(installed_src_version)
 if [ -n "$srcver" ] && [ -f "$CACHE/.fsi-openfoam-stamp" ] &&
    [ "$(cat "$CACHE/.fsi-openfoam-stamp" 2>/dev/null)" = "$(stamp_text "$srcver")" ] &&
-   [ -e "$CACHE/src/finiteVolume/lnInclude/fvCFD.H" ]; then
+   [ -e "$CACHE/src/finiteVolume/lnInclude/fvCFD.H" ] && [ -e "$CACHE/$PIMPLE/pimpleFoam.C" ]; then
   exit 0
 fi
 
@@ -59,7 +61,7 @@ fi
 # The other one may have done the work meanwhile.
 srcver=$(installed_src_version)
 if [ -n "$srcver" ] && [ "$(cat "$CACHE/.fsi-openfoam-stamp" 2>/dev/null)" = "$(stamp_text "$srcver")" ] &&
-   [ -e "$CACHE/src/finiteVolume/lnInclude/fvCFD.H" ]; then
+   [ -e "$CACHE/src/finiteVolume/lnInclude/fvCFD.H" ] && [ -e "$CACHE/$PIMPLE/pimpleFoam.C" ]; then
   exit 0
 fi
 LOG=$CACHE/provision.log
@@ -164,13 +166,14 @@ orig=$(ls "$DL"/*.orig.tar.* 2>/dev/null | head -n 1)
 
 # Step 4: unpack src/ and wmake/ only (about 80 MB) into a fresh tree, then swap it in.
 say "unpacking src/ and wmake/ of $(basename "$orig")"
-rm -rf "$CACHE/.unpack" "$CACHE/src" "$CACHE/wmake" "$CACHE/.fsi-openfoam-stamp"
+rm -rf "$CACHE/.unpack" "$CACHE/src" "$CACHE/wmake" "$CACHE/applications" "$CACHE/.fsi-openfoam-stamp"
 mkdir -p "$CACHE/.unpack"
 FIX_HINT="is there room in $CACHE (about 100 MB)? the tarball is $orig"
 run_logged "unpack sources" tar -xf "$orig" -C "$CACHE/.unpack" --no-same-owner --strip-components=1 \
-  --wildcards --no-wildcards-match-slash '*/src' '*/wmake'
-[ -d "$CACHE/.unpack/src/OpenFOAM" ] && [ -x "$CACHE/.unpack/wmake/wmakeLnInclude" ] ||
-  die "the tarball $orig has no src/OpenFOAM or wmake/wmakeLnInclude"
+  --wildcards --no-wildcards-match-slash '*/src' '*/wmake' "*/$PIMPLE"
+[ -d "$CACHE/.unpack/src/OpenFOAM" ] && [ -x "$CACHE/.unpack/wmake/wmakeLnInclude" ] &&
+  [ -e "$CACHE/.unpack/$PIMPLE/pimpleFoam.C" ] ||
+  die "the tarball $orig has no src/OpenFOAM, wmake/wmakeLnInclude or $PIMPLE"
 
 # Step 5: lnInclude folders (relative links, so the cache can be moved) for every library.
 say "creating lnInclude folders"
@@ -184,6 +187,7 @@ done < <(find "$CACHE/.unpack/src" -type d -name Make -not -path '*/lnInclude/*'
   die "lnInclude creation did not produce finiteVolume/lnInclude/fvCFD.H (log: $LOG)"
 mv "$CACHE/.unpack/src" "$CACHE/src"
 mv "$CACHE/.unpack/wmake" "$CACHE/wmake"
+mv "$CACHE/.unpack/applications" "$CACHE/applications"
 rm -rf "$CACHE/.unpack" "$DL"
 
 stamp_text "$srcver" >"$CACHE/.fsi-openfoam-stamp"
