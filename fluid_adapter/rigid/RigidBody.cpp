@@ -1,0 +1,45 @@
+#include "fluid_adapter/rigid/RigidBody.hpp"
+
+#include "structure_solver/collision/StlIo.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace fsi::fluid::rigid {
+namespace {
+
+/// Voxel culling radius as a fraction of the body's bounding-box diagonal: voxels farther
+/// than this from the surface are classified inside/outside once, so that most points skip
+/// the exact test. Small enough for a fine voxel grid, large enough for short triangle lists.
+constexpr double kCullingFraction = 4e-3;
+
+} // namespace
+
+RigidBody::RigidBody(std::string name, Soup soup, std::unique_ptr<Surface> surface,
+                     std::shared_ptr<const common::RigidMotion> motion)
+    : name_(std::move(name)), soup_(std::move(soup)), surface_(std::move(surface)),
+      motion_(std::move(motion)) {
+  if (!motion_)
+    throw std::invalid_argument("rigid body '" + name_ + "': no motion given (use StaticPose)");
+  for (Eigen::Index v = 0; v < soup_.vertices_m.rows(); ++v)
+    body_box_m_.extend(Vec3(soup_.vertices_m.row(v).transpose()));
+  surface_->prepare_culling(kCullingFraction * body_box_m_.diagonal().norm());
+}
+
+std::unique_ptr<RigidBody> RigidBody::from_stl(const std::string &name, const std::string &stl_path,
+                                               std::shared_ptr<const common::RigidMotion> motion) {
+  Soup soup = structure::collision::read_stl(stl_path);
+  auto surface = Surface::from_triangles(soup.vertices_m, soup.triangles,
+                                         Surface::FluidSide::outside, stl_path);
+  return std::unique_ptr<RigidBody>(
+      new RigidBody(name, std::move(soup), std::move(surface), std::move(motion)));
+}
+
+std::unique_ptr<RigidBody> RigidBody::from_soup(const std::string &name, const Soup &soup,
+                                                std::shared_ptr<const common::RigidMotion> motion) {
+  auto surface = Surface::from_triangles(soup.vertices_m, soup.triangles,
+                                         Surface::FluidSide::outside, name);
+  return std::unique_ptr<RigidBody>(new RigidBody(name, soup, std::move(surface), std::move(motion)));
+}
+
+} // namespace fsi::fluid::rigid
