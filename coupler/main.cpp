@@ -27,7 +27,7 @@ int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::
   if (config.is_coupled()) {
     std::cout << "process coupler fsi-coupler\n";
     std::cout << "process structure fsi-structure\n";
-    std::cout << "process fluid fsi-" << config.fluid->model() << "-flow\n";
+    std::cout << "process fluid " << config.fluid->executable() << "\n";
   } else {
     std::cout << "process structure fsi-structure\n";
   }

@@ -6,7 +6,8 @@
 // 2 bad input, 130 interrupted.
 
 #include "FlowFactory.hpp"
-#include "PrescribedFlowParticipant.hpp"
+#include "PrescribedFlowModel.hpp"
+#include "proto/FluidParticipant.hpp"
 #include "structure_solver/CaseConfig.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
@@ -20,7 +21,7 @@
 #include <csignal>
 
 namespace {
-extern "C" void on_stop_signal(int signal) { fsi::prescribed_flow::PrescribedFlowParticipant::stop_signal() = signal; }
+extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_signal() = signal; }
 } // namespace
 
 int main(int argc, char **argv) {
@@ -57,8 +58,8 @@ int main(int argc, char **argv) {
         std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    fsi::prescribed_flow::PrescribedFlowParticipant participant(fsi::prescribed_flow::make_flow(*config.fluid->prescribed),
-                                                                std::move(settings));
+    fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed));
+    fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
   } catch (const fsi::common::ConfigError &e) {
     spdlog::error("{}", e.what());

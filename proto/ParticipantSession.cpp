@@ -26,7 +26,16 @@ const v1::Welcome &ParticipantSession::handshake(const std::vector<v1::Structure
   for (const auto &s : structures)
     *body->add_structures() = s;
   channel_.send(hello);
-  Envelope &reply = wait_for_message(settings_.handshake_timeout, "Welcome");
+  // The coupler heartbeats those who joined while it waits for the others: skip those.
+  const auto deadline = std::chrono::steady_clock::now() + settings_.handshake_timeout;
+  Envelope *welcome = nullptr;
+  while (!welcome) {
+    const auto left = std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
+    Envelope &message = wait_for_message(std::max(left, milliseconds(1)), "Welcome");
+    if (!message.has_heartbeat())
+      welcome = &message;
+  }
+  Envelope &reply = *welcome;
   if (!reply.has_welcome())
     throw CouplerLost("participant " + routing_id() + ": the coupler at " + settings_.coupler.str() +
                       " answered the handshake with " + std::string(body_name(reply)) + " instead of Welcome");

@@ -386,7 +386,14 @@ def exec_process(command):
         raise UserError("cannot run %s: %s" % (command[0], e.strerror), EXIT_RUN_FAILED)
 
 
+# Debian's OpenFOAM reads its etc/ through WM_PROJECT_DIR while its libraries load, before
+# main(): the fluid process must be started with it set.
+OPENFOAM_ENVIRONMENT = {"WM_PROJECT_DIR": "/usr/share/openfoam", "FOAM_ETC": "/usr/share/openfoam/etc"}
+
+
 def main(argv):
+    for name, value in OPENFOAM_ENVIRONMENT.items():
+        os.environ.setdefault(name, value)
     args = parse_args(argv)
     if not os.path.isdir(args.bin_dir):
         raise UserError("build folder %s not found (build first: ./fsi build)" % args.bin_dir)

@@ -1,0 +1,42 @@
+#pragma once
+// The OpenFOAM flow solver as the rest of the code sees it: no OpenFOAM header here. The
+// implementation (solver/FoamFlow.C) is the only translation unit that includes OpenFOAM:
+// a PIMPLE step of pimpleFoam (v1912) with an extra momentum source, the FSI acceleration.
+
+#include "common/Types.hpp"
+
+#include <filesystem>
+#include <memory>
+
+namespace fsi::fluid {
+
+struct FoamFlowSettings {
+  std::filesystem::path case_directory; ///< prepared OpenFOAM case (mesh present)
+  double time_step_s = 1e-4;
+  double end_time_s = 1.0;
+};
+
+class FoamFlow {
+public:
+  /// Reads the mesh and fields at the case's start time; throws std::runtime_error (with
+  /// OpenFOAM's message) when the case is unusable.
+  static std::unique_ptr<FoamFlow> create(const FoamFlowSettings &settings);
+  virtual ~FoamFlow() = default;
+
+  virtual std::string describe() const = 0;
+  virtual const PointArray &cell_centres_m() const = 0;
+  virtual const Eigen::VectorXd &cell_volumes_m3() const = 0;
+  /// Cell-centre velocities (m/s), N_cells x 3.
+  virtual void cell_velocities(PointArray &u_m_per_s) const = 0;
+  /// Cell-centre velocity gradients, N_cells x 9, row-major J_ij = du_i / dx_j (1/s).
+  virtual void cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const = 0;
+  /// The FSI source of the next step, per unit mass (f_fsi / rho_f, m/s^2), N_cells x 3.
+  virtual void set_fsi_acceleration(const PointArray &a_m_per_s2) = 0;
+  /// One PIMPLE time step of dt; writes fields at the case's write interval.
+  virtual void advance(double dt_s) = 0;
+  virtual double time_s() const = 0;
+  /// Writes the current fields now (end of run, or last good state).
+  virtual void write_now() = 0;
+};
+
+} // namespace fsi::fluid

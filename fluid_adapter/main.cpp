@@ -1,0 +1,110 @@
+// fsi-openfoam-fluid: the OpenFOAM fluid participant (PIMPLE, incompressible) with the diffuse
+// immersed-boundary forcing of Eqs. (6-8). The case's `fluid.openfoam.case_directory` is
+// copied to <output>/openfoam, meshed with blockMesh when it has no mesh, and run there.
+//   fsi-openfoam-fluid CASE_DIR [--endpoint E] [-o DIR] [-v]
+// Exit codes: 0 success, 1 the run stopped (coupler lost, another participant failed, OpenFOAM
+// failed), 2 bad input, 130 interrupted.
+
+#include "FoamFlow.hpp"
+#include "OpenFoamFluidModel.hpp"
+#include "structure_solver/CaseConfig.hpp"
+#include "common/ConfigError.hpp"
+#include "common/Logging.hpp"
+#include "proto/FluidParticipant.hpp"
+#include "proto/TransportError.hpp"
+#include "proto/ZmqContext.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+
+namespace {
+
+extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_signal() = signal; }
+
+/// Copies the OpenFOAM case into the output folder and meshes it if it has no mesh yet.
+std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const std::string &template_dir,
+                                            const std::filesystem::path &out) {
+  namespace fs = std::filesystem;
+  const fs::path source = case_dir / template_dir, target = out / "openfoam";
+  if (!fs::is_directory(source / "system") || !fs::is_directory(source / "constant"))
+    throw fsi::common::ConfigError((source).string() + ": fluid.openfoam.case_directory must be an OpenFOAM case "
+                                                       "(folders system/, constant/ and 0/).");
+  fs::remove_all(target);
+  fs::create_directories(target);
+  fs::copy(source, target, fs::copy_options::recursive);
+  if (!fs::exists(target / "constant" / "polyMesh" / "owner")) {
+    if (!fs::exists(target / "system" / "blockMeshDict"))
+      throw fsi::common::ConfigError(source.string() + ": no mesh (constant/polyMesh) and no system/blockMeshDict.");
+    const std::string command = "blockMesh -case '" + target.string() + "' > '" + (target / "log.blockMesh").string() +
+                                "' 2>&1";
+    spdlog::info("meshing: {}", command);
+    if (std::system(command.c_str()) != 0)
+      throw std::runtime_error("blockMesh failed: see " + (target / "log.blockMesh").string());
+  }
+  return target;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
+  CLI::App app{"fsi-openfoam-fluid: OpenFOAM fluid participant with the diffuse immersed boundary"};
+  std::string case_dir, output_dir, endpoint;
+  bool verbose = false;
+  app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
+  app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
+  app.add_option("-o,--output-dir", output_dir, "Results folder (default: run.output_directory)");
+  app.add_flag("-v,--verbose", verbose, "Debug logging");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError &e) {
+    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
+  }
+  fsi::common::setup_logging("fluid", verbose);
+  // Debian's OpenFOAM finds its etc/ through WM_PROJECT_DIR, read while its libraries load
+  // (before main): the launcher sets it; blockMesh, started from here, needs it as well.
+  if (!std::getenv("WM_PROJECT_DIR")) {
+    std::cerr << "fsi-openfoam-fluid: WM_PROJECT_DIR is not set; start it through ./fsi run, or export "
+                 "WM_PROJECT_DIR=/usr/share/openfoam\n";
+    return fsi::common::exit_code_bad_input;
+  }
+  try {
+    const auto config = fsi::structure::CaseConfig::load(case_dir);
+    if (!config.fluid || !config.fluid->openfoam) {
+      spdlog::error("case {} has no `fluid.openfoam` section: there is no OpenFOAM fluid to run", case_dir);
+      return fsi::common::exit_code_bad_input;
+    }
+    const std::filesystem::path out = output_dir.empty()
+                                          ? std::filesystem::path(case_dir) / config.run.output_directory
+                                          : std::filesystem::path(output_dir);
+    std::filesystem::create_directories(out);
+    fsi::common::add_log_file(out / "fluid.log");
+    fsi::proto::SessionSettings settings;
+    settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
+    settings.coupler.check_connectable();
+    settings.case_fingerprint = config.fingerprint();
+    settings.handshake_timeout =
+        std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
+    const auto foam_case = prepare_openfoam_case(case_dir, config.fluid->openfoam->case_directory, out);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    auto flow = fsi::fluid::FoamFlow::create(
+        {std::filesystem::absolute(foam_case), config.run.time_step_s, config.run.end_time_s});
+    fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow);
+    fsi::proto::FluidParticipant participant(model, std::move(settings));
+    return participant.run();
+  } catch (const fsi::common::ConfigError &e) {
+    spdlog::error("{}", e.what());
+    return fsi::common::exit_code_bad_input;
+  } catch (const fsi::proto::TransportError &e) {
+    spdlog::error("{}", e.what());
+    return fsi::common::exit_code_bad_input;
+  } catch (const std::exception &e) {
+    spdlog::error("OpenFOAM fluid failed: {}", e.what());
+    return fsi::common::exit_code_run_failed;
+  }
+}

@@ -1,0 +1,216 @@
+// The one translation unit of the fluid adapter that includes OpenFOAM: pimpleFoam's PIMPLE
+// step (OpenFOAM v1912, applications/solvers/incompressible/pimpleFoam: UEqn.H, pEqn.H) on a
+// static mesh, with one extra momentum source, the FSI acceleration f_fsi / rho_f of Eq. (1).
+// Not kept from pimpleFoam: mesh motion, MRF and fvOptions (the immersed boundaries replace
+// them here).
+
+#include "fluid_adapter/FoamFlow.hpp"
+
+#include "fvCFD.H"
+#include "pimpleControl.H"
+#include "singlePhaseTransportModel.H"
+#include "turbulentTransportModel.H"
+
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace fsi::fluid {
+
+namespace {
+
+/// OpenFOAM reports fatal errors by throwing Foam::error when asked to (instead of aborting).
+struct ThrowOnFatalError {
+  ThrowOnFatalError() {
+    Foam::FatalError.throwExceptions();
+    Foam::FatalIOError.throwExceptions();
+  }
+};
+
+class OpenFoamFlow final : public FoamFlow {
+public:
+  explicit OpenFoamFlow(const FoamFlowSettings &settings);
+
+  std::string describe() const override { return description_; }
+  const PointArray &cell_centres_m() const override { return centres_; }
+  const Eigen::VectorXd &cell_volumes_m3() const override { return volumes_; }
+  void cell_velocities(PointArray &u) const override;
+  void cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const override;
+  void set_fsi_acceleration(const PointArray &a) override;
+  void advance(double dt_s) override;
+  double time_s() const override { return runTime_->value(); }
+  void write_now() override { runTime_->writeNow(); }
+
+private:
+  void step(double dt_s);
+  void solve_momentum_and_pressure();
+
+  ThrowOnFatalError throw_on_fatal_error_;
+  std::vector<std::string> argument_storage_;
+  std::vector<char *> argument_pointers_;
+  int argc_ = 0;
+  char **argv_ = nullptr;
+  std::unique_ptr<Foam::argList> args_;
+  std::unique_ptr<Foam::Time> runTime_;
+  std::unique_ptr<Foam::fvMesh> mesh_;
+  std::unique_ptr<Foam::pimpleControl> pimple_;
+  std::unique_ptr<Foam::volScalarField> p_;
+  std::unique_ptr<Foam::volVectorField> U_;
+  std::unique_ptr<Foam::surfaceScalarField> phi_;
+  std::unique_ptr<Foam::volVectorField> fsiAcceleration_;
+  std::unique_ptr<Foam::singlePhaseTransportModel> laminarTransport_;
+  Foam::autoPtr<Foam::incompressible::turbulenceModel> turbulence_;
+  Foam::label pRefCell_ = 0;
+  Foam::scalar pRefValue_ = 0.0;
+  PointArray centres_;
+  Eigen::VectorXd volumes_;
+  std::string description_;
+};
+
+OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
+  using namespace Foam;
+  argument_storage_ = {"fsi-openfoam-fluid", "-case", settings.case_directory.string()};
+  for (auto &a : argument_storage_)
+    argument_pointers_.push_back(a.data());
+  argument_pointers_.push_back(nullptr);
+  argc_ = static_cast<int>(argument_storage_.size());
+  argv_ = argument_pointers_.data();
+  argList::noBanner();
+  argList::noParallel();
+  args_ = std::make_unique<argList>(argc_, argv_);
+  runTime_ = std::make_unique<Time>(Time::controlDictName, *args_);
+  runTime_->setDeltaT(settings.time_step_s);
+  runTime_->setEndTime(settings.end_time_s);
+  mesh_ = std::make_unique<fvMesh>(
+      IOobject(fvMesh::defaultRegion, runTime_->timeName(), *runTime_, IOobject::MUST_READ));
+  fvMesh &mesh = *mesh_;
+  pimple_ = std::make_unique<pimpleControl>(mesh);
+  p_ = std::make_unique<volScalarField>(
+      IOobject("p", runTime_->timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE), mesh);
+  U_ = std::make_unique<volVectorField>(
+      IOobject("U", runTime_->timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE), mesh);
+  phi_ = std::make_unique<surfaceScalarField>(
+      IOobject("phi", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::AUTO_WRITE), fvc::flux(*U_));
+  fsiAcceleration_ = std::make_unique<volVectorField>(
+      IOobject("fsiAcceleration", runTime_->timeName(), mesh, IOobject::NO_READ, IOobject::AUTO_WRITE), mesh,
+      dimensionedVector(dimAcceleration, Zero));
+  setRefCell(*p_, pimple_->dict(), pRefCell_, pRefValue_);
+  mesh.setFluxRequired(p_->name());
+  laminarTransport_ = std::make_unique<singlePhaseTransportModel>(*U_, *phi_);
+  turbulence_ = incompressible::turbulenceModel::New(*U_, *phi_, *laminarTransport_);
+  turbulence_->validate();
+
+  const label n = mesh.nCells();
+  centres_.resize(n, 3);
+  volumes_.resize(n);
+  forAll(mesh.C(), c) {
+    const vector &x = mesh.C()[c];
+    centres_.row(c) << x.x(), x.y(), x.z();
+    volumes_[c] = mesh.V()[c];
+  }
+  std::ostringstream text;
+  text << "OpenFOAM v1912 PIMPLE, " << n << " cells, turbulence " << turbulence_->type() << ", case "
+       << settings.case_directory.string();
+  description_ = text.str();
+}
+
+void OpenFoamFlow::cell_velocities(PointArray &u) const {
+  const auto &field = U_->primitiveField();
+  u.resize(field.size(), 3);
+  forAll(field, c) u.row(c) << field[c].x(), field[c].y(), field[c].z();
+}
+
+void OpenFoamFlow::cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const {
+  // fvc::grad(U) is T_ij = d u_j / d x_i; the library wants J_ij = d u_i / d x_j = T_ji.
+  const Foam::volTensorField T(Foam::fvc::grad(*U_));
+  grad.resize(T.primitiveField().size(), 9);
+  forAll(T.primitiveField(), c) {
+    const Foam::tensor &t = T.primitiveField()[c];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        grad(c, 3 * i + j) = t[3 * j + i];
+  }
+}
+
+void OpenFoamFlow::set_fsi_acceleration(const PointArray &a) {
+  auto &field = fsiAcceleration_->primitiveFieldRef();
+  forAll(field, c) field[c] = Foam::vector(a(c, 0), a(c, 1), a(c, 2));
+  fsiAcceleration_->correctBoundaryConditions();
+}
+
+void OpenFoamFlow::advance(double dt_s) {
+  try {
+    step(dt_s);
+  } catch (const Foam::error &e) {
+    throw std::runtime_error("OpenFOAM failed at t = " + std::to_string(runTime_->value()) + " s: " +
+                             std::string(e.message()));
+  }
+}
+
+void OpenFoamFlow::step(double dt_s) {
+  runTime_->setDeltaT(dt_s);
+  ++(*runTime_);
+  while (pimple_->loop()) {
+    solve_momentum_and_pressure();
+    if (pimple_->turbCorr()) {
+      laminarTransport_->correct();
+      turbulence_->correct();
+    }
+  }
+  runTime_->write();
+}
+
+void OpenFoamFlow::solve_momentum_and_pressure() {
+  using namespace Foam;
+  fvMesh &mesh = *mesh_;
+  volScalarField &p = *p_;
+  volVectorField &U = *U_;
+  surfaceScalarField &phi = *phi_;
+  pimpleControl &pimple = *pimple_;
+
+  // UEqn.H of pimpleFoam, with the FSI source of Eq. (1): +f_fsi / rho_f.
+  tmp<fvVectorMatrix> tUEqn(fvm::ddt(U) + fvm::div(phi, U) + turbulence_->divDevReff(U) == *fsiAcceleration_);
+  fvVectorMatrix &UEqn = tUEqn.ref();
+  UEqn.relax();
+  if (pimple.momentumPredictor())
+    solve(UEqn == -fvc::grad(p));
+
+  // pEqn.H of pimpleFoam (static mesh, no MRF).
+  while (pimple.correct()) {
+    volScalarField rAU(1.0 / UEqn.A());
+    volVectorField HbyA(constrainHbyA(rAU * UEqn.H(), U, p));
+    surfaceScalarField phiHbyA("phiHbyA", fvc::flux(HbyA) + fvc::interpolate(rAU) * fvc::ddtCorr(U, phi));
+    if (p.needReference())
+      adjustPhi(phiHbyA, U, p);
+    tmp<volScalarField> rAtU(rAU);
+    if (pimple.consistent()) {
+      rAtU = 1.0 / max(1.0 / rAU - UEqn.H1(), 0.1 / rAU);
+      phiHbyA += fvc::interpolate(rAtU() - rAU) * fvc::snGrad(p) * mesh.magSf();
+      HbyA -= (rAU - rAtU()) * fvc::grad(p);
+    }
+    constrainPressure(p, U, phiHbyA, rAtU());
+    while (pimple.correctNonOrthogonal()) {
+      fvScalarMatrix pEqn(fvm::laplacian(rAtU(), p) == fvc::div(phiHbyA));
+      pEqn.setReference(pRefCell_, pRefValue_);
+      pEqn.solve(mesh.solver(p.select(pimple.finalInnerIter())));
+      if (pimple.finalNonOrthogonalIter())
+        phi = phiHbyA - pEqn.flux();
+    }
+    p.relax();
+    U = HbyA - rAtU * fvc::grad(p);
+    U.correctBoundaryConditions();
+  }
+}
+
+} // namespace
+
+std::unique_ptr<FoamFlow> FoamFlow::create(const FoamFlowSettings &settings) {
+  try {
+    return std::make_unique<OpenFoamFlow>(settings);
+  } catch (const Foam::error &e) {
+    throw std::runtime_error("OpenFOAM could not set up the case " + settings.case_directory.string() + ": " +
+                             std::string(e.message()));
+  }
+}
+
+} // namespace fsi::fluid

@@ -1,0 +1,33 @@
+#pragma once
+// What a fluid participant computes, apart from the protocol: FluidParticipant runs the
+// protocol loop and calls these. Models: the prescribed flow (prescribed_flow/) and the
+// OpenFOAM solver (fluid_adapter/). All arrays are N x 3, SI, all structures concatenated.
+
+#include "PackedPoints.hpp"
+#include "Protocol.hpp"
+
+#include <string>
+
+namespace fsi::proto {
+
+class FluidModel {
+public:
+  virtual ~FluidModel() = default;
+  virtual std::string describe() const = 0;
+
+  /// Once, after the handshake: time step, number of steps and the structures' topology
+  /// (point measures, to turn force densities into forces).
+  virtual void start(const v1::Welcome &welcome) = 0;
+
+  /// U_ib^n: the fluid velocity at the points at time t (m/s), with the rigid-body poses at t.
+  virtual void interpolate(const v1::InterpolateRequest &request, PointsView x_m, MutablePointsView u_m_per_s) = 0;
+
+  /// Spreads F_fsi^n (Eq. 8) at the points of the last interpolate() and advances the flow
+  /// from t to t + dt; may fill rigid_body_loads of the reply.
+  virtual void advance(const v1::FluidAdvance &request, PointsView force_density_n_per_m2, v1::AdvanceReply &reply) = 0;
+
+  /// The run is over (success: completed): write what is worth keeping.
+  virtual void finish(bool success) = 0;
+};
+
+} // namespace fsi::proto

@@ -1,0 +1,99 @@
+#include "FluidParticipant.hpp"
+
+#include "TransportError.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+namespace fsi::proto {
+
+namespace {
+constexpr int exit_code_run_failed = 1;
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+} // namespace
+
+std::atomic<int> &FluidParticipant::stop_signal() {
+  static std::atomic<int> signal{0};
+  return signal;
+}
+
+FluidParticipant::FluidParticipant(FluidModel &model, SessionSettings settings)
+    : model_(model), settings_(std::move(settings)) {
+  settings_.role = v1::ROLE_FLUID;
+  settings_.stop_signal = &stop_signal();
+}
+
+int FluidParticipant::run() {
+  spdlog::info("fluid: {}", model_.describe());
+  try {
+    session_ = std::make_unique<ParticipantSession>(settings_);
+    spdlog::info("joining the coupler at {} as {}", settings_.coupler.str(), session_->routing_id());
+    const auto &welcome = session_->handshake();
+    for (const auto &s : welcome.structures())
+      n_points_ += static_cast<Eigen::Index>(s.n1()) * s.n2();
+    spdlog::info("joined: {} steps of {} s, {} Lagrangian points", welcome.n_steps(), welcome.time_step_s(), n_points_);
+    model_.start(welcome);
+    while (true) {
+      const Envelope &request = session_->next_request();
+      if (request.has_shutdown()) {
+        model_.finish(true);
+        spdlog::info("completed: {} steps ({})", steps_, request.shutdown().reason());
+        return 0;
+      }
+      if (request.has_interpolate_request())
+        interpolate(request);
+      else if (request.has_fluid_advance())
+        advance(request);
+      else
+        throw MalformedMessageError("expected InterpolateRequest or FluidAdvance, got " +
+                                    std::string(body_name(request)) + " at step " + std::to_string(request.step()));
+    }
+  } catch (const Interrupted &e) {
+    spdlog::warn("{} at step {}", e.what(), steps_);
+    model_.finish(false);
+    if (session_)
+      session_->report_error("participant " + session_->routing_id() + " " + e.what(), steps_);
+    return 130;
+  } catch (const RunStopped &e) {
+    spdlog::error("the coupler stopped the run at step {}: {}", steps_, e.what());
+  } catch (const CouplerLost &e) {
+    spdlog::error("{}", e.what());
+  } catch (const std::exception &e) { // the transport, a bad message, or the model itself
+    const std::string message = "participant fluid failed at step " + std::to_string(steps_) + ": " + e.what();
+    spdlog::error("{}", message);
+    if (session_)
+      session_->report_error(message, steps_);
+  }
+  model_.finish(false);
+  return exit_code_run_failed;
+}
+
+void FluidParticipant::interpolate(const Envelope &request) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto &body = request.interpolate_request();
+  const PointsView x = view_points(body.position_m(), n_points_, "InterpolateRequest.position_m");
+  auto *reply = interpolate_reply_.mutable_interpolate_reply();
+  model_.interpolate(body, x, resize_points(*reply->mutable_velocity_m_per_s(), n_points_));
+  reply->set_solve_wall_s(seconds_since(start));
+  interpolate_reply_.set_step(request.step());
+  session_->send(interpolate_reply_);
+}
+
+void FluidParticipant::advance(const Envelope &request) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto &body = request.fluid_advance();
+  const PointsView force = view_points(body.force_density_n_per_m2(), n_points_, "FluidAdvance.force_density_n_per_m2");
+  auto *reply = advance_reply_.mutable_advance_reply();
+  reply->mutable_rigid_body_loads()->Clear();
+  model_.advance(body, force, *reply);
+  reply->set_time_s(body.time_s() + body.dt_s());
+  reply->set_solve_wall_s(seconds_since(start));
+  advance_reply_.set_step(request.step());
+  session_->send(advance_reply_);
+  ++steps_;
+}
+
+} // namespace fsi::proto
