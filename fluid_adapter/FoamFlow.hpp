@@ -32,6 +32,12 @@ public:
   virtual void cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const = 0;
   /// The FSI source of the next step, per unit mass (f_fsi / rho_f, m/s^2), N_cells x 3.
   virtual void set_fsi_acceleration(const PointArray &a_m_per_s2) = 0;
+  /// Penalization of rigid bodies (Eqs. 9-10), implicit in the momentum matrix: per cell the
+  /// rate chi / tau (1/s, 0 outside bodies) and the body velocity u_rib (m/s). Until this is
+  /// called the momentum equation has no penalization term at all.
+  virtual void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib_m_per_s) = 0;
+  /// After advance(): the penalization source per unit density, -rate (u - u_rib) (m/s^2).
+  virtual void penalization_acceleration(PointArray &a_m_per_s2) const = 0;
   /// One PIMPLE time step of dt; writes fields at the case's write interval.
   virtual void advance(double dt_s) = 0;
   virtual double time_s() const = 0;

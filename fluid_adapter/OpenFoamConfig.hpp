@@ -15,6 +15,7 @@ struct OpenFoamConfig {
   double density_kg_per_m3 = 1000.0;
   InterpolationChoice interpolation = InterpolationChoice::kernel;
   bool normalise_kernel = true;
+  double penalization_time_s = 1.0e-6;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -30,6 +31,10 @@ struct OpenFoamConfig {
     v.flag("normalise_kernel", normalise_kernel,
            "Divide kernel weights by their sum: keeps force conservation and second-order interpolation near walls "
            "and on stretched cells (the raw kernel sums to 1 only on uniform cubes).");
+    v.number("penalization_time_s", penalization_time_s, common::Range::positive("s"),
+             "Rigid bodies (every closed STL mesh of collisions.surfaces, with its motion) are penalized in the fluid "
+             "(Eqs. 9-10): f_ibm / rho_f = -chi (u - u_rib) / tau, implicit. The paper's K_ibm = 1e-6 read as this "
+             "time (read as a permeability in m^2 with water's viscosity it would give a 1/s sponge, not a solid).");
   }
 };
 

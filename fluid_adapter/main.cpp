@@ -9,6 +9,7 @@
 #include "OpenFoamFluidModel.hpp"
 #include "structure_solver/CaseConfig.hpp"
 #include "common/ConfigError.hpp"
+#include "common/MotionFactory.hpp"
 #include "common/Logging.hpp"
 #include "proto/FluidParticipant.hpp"
 #include "proto/TransportError.hpp"
@@ -46,6 +47,32 @@ std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_di
       throw std::runtime_error("blockMesh failed: see " + (target / "log.blockMesh").string());
   }
   return target;
+}
+
+/// The rigid bodies the fluid penalizes: the closed STL meshes among the collision surfaces,
+/// with their motions (the structure collides with the very same surfaces).
+std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> rigid_bodies(const fsi::structure::CaseConfig &config) {
+  std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> bodies;
+  if (!config.collisions)
+    return bodies;
+  for (std::size_t i = 0; i < config.collisions->surfaces.size(); ++i) {
+    const auto &surface = config.collisions->surfaces[i];
+    const std::string name = "surface" + std::to_string(i);
+    if (!surface.mesh) {
+      spdlog::warn("collisions.surfaces[{}] is an analytic surface: the fluid does not see it (give it as a closed STL "
+                   "mesh to penalize it, or make it a wall of the OpenFOAM mesh)",
+                   i);
+      continue;
+    }
+    if (surface.mesh->fluid_side != fsi::structure::FluidSide::outside) {
+      spdlog::warn("collisions.surfaces[{}] has the fluid inside: it is a container, left to the OpenFOAM mesh", i);
+      continue;
+    }
+    auto motion = surface.motion ? fsi::common::make_motion(*surface.motion, config.gravity_m_per_s2.norm())
+                                 : std::make_shared<const fsi::common::StaticPose>();
+    bodies.push_back(fsi::fluid::rigid::RigidBody::from_stl(name, surface.mesh->file.string(), std::move(motion)));
+  }
+  return bodies;
 }
 
 } // namespace
@@ -94,7 +121,7 @@ int main(int argc, char **argv) {
     std::signal(SIGTERM, on_stop_signal);
     auto flow = fsi::fluid::FoamFlow::create(
         {std::filesystem::absolute(foam_case), config.run.time_step_s, config.run.end_time_s});
-    fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow);
+    fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, rigid_bodies(config));
     fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
   } catch (const fsi::common::ConfigError &e) {

@@ -37,6 +37,8 @@ public:
   void cell_velocities(PointArray &u) const override;
   void cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const override;
   void set_fsi_acceleration(const PointArray &a) override;
+  void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) override;
+  void penalization_acceleration(PointArray &a) const override;
   void advance(double dt_s) override;
   double time_s() const override { return runTime_->value(); }
   void write_now() override { runTime_->writeNow(); }
@@ -58,6 +60,8 @@ private:
   std::unique_ptr<Foam::volVectorField> U_;
   std::unique_ptr<Foam::surfaceScalarField> phi_;
   std::unique_ptr<Foam::volVectorField> fsiAcceleration_;
+  std::unique_ptr<Foam::volScalarField> penalizationRate_; ///< chi / tau (1/s); null: no rigid bodies
+  std::unique_ptr<Foam::volVectorField> rigidVelocity_;    ///< u_rib (m/s)
   std::unique_ptr<Foam::singlePhaseTransportModel> laminarTransport_;
   Foam::autoPtr<Foam::incompressible::turbulenceModel> turbulence_;
   Foam::label pRefCell_ = 0;
@@ -138,6 +142,39 @@ void OpenFoamFlow::set_fsi_acceleration(const PointArray &a) {
   fsiAcceleration_->correctBoundaryConditions();
 }
 
+void OpenFoamFlow::set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) {
+  using namespace Foam;
+  if (!penalizationRate_) {
+    penalizationRate_ = std::make_unique<volScalarField>(
+        IOobject("penalizationRate", runTime_->timeName(), *mesh_, IOobject::NO_READ, IOobject::AUTO_WRITE), *mesh_,
+        dimensionedScalar(dimless / dimTime, Zero));
+    rigidVelocity_ = std::make_unique<volVectorField>(
+        IOobject("rigidVelocity", runTime_->timeName(), *mesh_, IOobject::NO_READ, IOobject::NO_WRITE), *mesh_,
+        dimensionedVector(dimVelocity, Zero));
+  }
+  auto &rate = penalizationRate_->primitiveFieldRef();
+  auto &velocity = rigidVelocity_->primitiveFieldRef();
+  forAll(rate, c) {
+    rate[c] = rate_per_s[c];
+    velocity[c] = vector(u_rib(c, 0), u_rib(c, 1), u_rib(c, 2));
+  }
+}
+
+void OpenFoamFlow::penalization_acceleration(PointArray &a) const {
+  a.setZero(mesh_->nCells(), 3);
+  if (!penalizationRate_)
+    return;
+  const auto &rate = penalizationRate_->primitiveField();
+  const auto &u = U_->primitiveField();
+  const auto &u_rib = rigidVelocity_->primitiveField();
+  forAll(rate, c) {
+    if (rate[c] == 0.0)
+      continue;
+    const Foam::vector f = -rate[c] * (u[c] - u_rib[c]);
+    a.row(c) << f.x(), f.y(), f.z();
+  }
+}
+
 void OpenFoamFlow::advance(double dt_s) {
   try {
     step(dt_s);
@@ -168,8 +205,12 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
   surfaceScalarField &phi = *phi_;
   pimpleControl &pimple = *pimple_;
 
-  // UEqn.H of pimpleFoam, with the FSI source of Eq. (1): +f_fsi / rho_f.
+  // UEqn.H of pimpleFoam, with the FSI source of Eq. (1): +f_fsi / rho_f, and for rigid bodies
+  // the penalization of Eq. (9), f_ibm / rho_f = -chi (u - u_rib) / tau, implicit in u (its
+  // diagonal enters A(), so a tiny tau does not limit the time step).
   tmp<fvVectorMatrix> tUEqn(fvm::ddt(U) + fvm::div(phi, U) + turbulence_->divDevReff(U) == *fsiAcceleration_);
+  if (penalizationRate_)
+    tUEqn.ref() += fvm::Sp(*penalizationRate_, U) - (*penalizationRate_) * (*rigidVelocity_);
   fvVectorMatrix &UEqn = tUEqn.ref();
   UEqn.relax();
   if (pimple.momentumPredictor())
