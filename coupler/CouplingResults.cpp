@@ -52,6 +52,27 @@ void CouplingResults::write_step(long step, double time_s, const StepTimings &ti
   }
 }
 
+void CouplingResults::write_rigid_body_load(const std::string &name, const double force_n[3],
+                                            const double torque_n_m[3]) {
+  auto found = bodies_.find(name);
+  if (found == bodies_.end()) {
+    if (!bodies_group_.valid())
+      bodies_group_ = H5Handle::group(H5Gcreate2(file_.get(), "rigid_bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                      "cannot create /rigid_bodies in " + path_.string());
+    BodySeries series;
+    series.group = H5Handle::group(H5Gcreate2(bodies_group_.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                   "cannot create /rigid_bodies/" + name + " in " + path_.string());
+    series.force = std::make_unique<ExtendableDataset>(series.group.get(), "force_n", ExtendableDataset::ElementType::float64,
+                                                       std::vector<hsize_t>{3}, 256, "N");
+    series.torque = std::make_unique<ExtendableDataset>(series.group.get(), "torque_n_m",
+                                                        ExtendableDataset::ElementType::float64, std::vector<hsize_t>{3},
+                                                        256, "N m");
+    found = bodies_.emplace(name, std::move(series)).first;
+  }
+  found->second.force->append_row(force_n);
+  found->second.torque->append_row(torque_n_m);
+}
+
 void CouplingResults::set_status(const std::string &status) {
   structure::output::write_string_attribute(file_.get(), "status", status);
   structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,9 @@ public:
   ~CouplingResults();
 
   void write_step(long step, double time_s, const StepTimings &timings, const double total_force_on_fluid_n[3]);
+  /// Force (N) and torque (N m) of the fluid on a rigid body at this step, in
+  /// /rigid_bodies/<name>/ (created at the first call for that name).
+  void write_rigid_body_load(const std::string &name, const double force_n[3], const double torque_n_m[3]);
   /// "running", "completed", "failed: ...", "interrupted".
   void set_status(const std::string &status);
   const std::filesystem::path &path() const { return path_; }
@@ -32,6 +36,12 @@ private:
   structure::output::H5Handle file_, timings_group_;
   std::unique_ptr<structure::output::ExtendableDataset> step_, time_, force_;
   std::vector<structure::output::ExtendableDataset> timings_;
+  struct BodySeries {
+    structure::output::H5Handle group;
+    std::unique_ptr<structure::output::ExtendableDataset> force, torque;
+  };
+  structure::output::H5Handle bodies_group_;
+  std::map<std::string, BodySeries> bodies_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
 

@@ -326,6 +326,7 @@ void CouplingRun::advance_fluid_and_structure(long n) {
     done = true;
     if (from_fluid) {
       timings_.fluid_solve_s = reply.solve_wall_s();
+      record_rigid_body_loads(reply);
       continue;
     }
     timings_.structure_solve_s = reply.solve_wall_s();
@@ -384,6 +385,18 @@ void CouplingRun::record_step(long n) {
   timings_sum_.coupling_law_s += timings_.coupling_law_s;
   timings_sum_.waiting_s += timings_.waiting_s;
   ++timings_count_;
+}
+
+void CouplingRun::record_rigid_body_loads(const proto::v1::AdvanceReply &reply) {
+  for (const auto &load : reply.rigid_body_loads()) {
+    try {
+      const Vec3 force = proto::read_vector3(load.force_n(), "RigidBodyLoad.force_n");
+      const Vec3 torque = proto::read_vector3(load.torque_n_m(), "RigidBodyLoad.torque_n_m");
+      results_->write_rigid_body_load(load.name(), force.data(), torque.data());
+    } catch (const proto::MalformedMessageError &e) {
+      throw ParticipantFailed(fluid_id_, "participant " + fluid_id_ + " sent a bad rigid-body load: " + e.what());
+    }
+  }
 }
 
 void CouplingRun::report_progress(long n, bool force) {

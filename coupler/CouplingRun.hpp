@@ -48,6 +48,7 @@ private:
   proto::Envelope &await(const std::string &peer, proto::v1::Envelope::BodyCase body, long step, const std::string &what);
   void check_stability() const;
   void record_step(long n);
+  void record_rigid_body_loads(const proto::v1::AdvanceReply &reply);
   void report_progress(long n, bool force);
   void write_endpoint_file(const std::string &endpoint) const;
 
