@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 namespace fsi::fluid {
 
@@ -14,6 +15,7 @@ struct FoamFlowSettings {
   std::filesystem::path case_directory; ///< prepared OpenFOAM case (mesh present)
   double time_step_s = 1e-4;
   double end_time_s = 1.0;
+  bool parallel = false; ///< started by mpirun on a decomposed case (processor*/ folders)
 };
 
 class FoamFlow {
@@ -43,6 +45,16 @@ public:
   virtual double time_s() const = 0;
   /// Writes the current fields now (end of run, or last good state).
   virtual void write_now() = 0;
+
+  // MPI (OpenFOAM's Pstream): this rank, the number of ranks, and the collective operations
+  // the immersed boundary needs. Serial runs: rank 0 of 1, and the operations do nothing.
+  virtual int rank() const = 0;
+  virtual int n_ranks() const = 0;
+  /// The master's data on every rank (resized to the master's size).
+  virtual void broadcast_from_master(std::vector<double> &data) const = 0;
+  /// Element-wise sum / minimum over the ranks, on every rank.
+  virtual void sum_over_ranks(double *data, std::size_t n) const = 0;
+  virtual void min_over_ranks(double *data, std::size_t n) const = 0;
 };
 
 } // namespace fsi::fluid

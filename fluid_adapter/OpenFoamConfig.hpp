@@ -16,6 +16,7 @@ struct OpenFoamConfig {
   InterpolationChoice interpolation = InterpolationChoice::kernel;
   bool normalise_kernel = true;
   double penalization_time_s = 1.0e-6;
+  int mpi_ranks = 1;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -35,6 +36,9 @@ struct OpenFoamConfig {
              "Rigid bodies (every closed STL mesh of collisions.surfaces, with its motion) are penalized in the fluid "
              "(Eqs. 9-10): f_ibm / rho_f = -chi (u - u_rib) / tau, implicit. The paper's K_ibm = 1e-6 read as this "
              "time (read as a permeability in m^2 with water's viscosity it would give a 1/s sponge, not a solid).");
+    v.integer("mpi_ranks", mpi_ranks, common::Range::at_least(1, "1"),
+              "MPI ranks of the fluid: > 1 decomposes the OpenFOAM case (decomposePar, hierarchical along x) and "
+              "runs the fluid with mpirun; only rank 0 talks to the coupler.");
   }
 };
 

@@ -1,10 +1,12 @@
 #include "OpenFoamFluidModel.hpp"
 
 #include "fluid_adapter/ibm/ClosestCellLinear.hpp"
-#include "fluid_adapter/rigid/BodyLoads.hpp"
 #include "proto/PackedPoints.hpp"
 
 #include <spdlog/spdlog.h>
+
+#include <limits>
+#include <stdexcept>
 
 namespace fsi::fluid {
 
@@ -12,6 +14,9 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
                                        std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies)
     : config_(config), flow_(flow), cells_(flow.cell_centres_m(), flow.cell_volumes_m3()), index_(cells_),
       bodies_(std::move(rigid_bodies)) {
+  if (flow_.n_ranks() > 1 && config_.interpolation == InterpolationChoice::closest_cell_linear)
+    throw std::runtime_error("fluid.openfoam.interpolation: closest_cell_linear is not available with MPI yet; use "
+                             "kernel");
   for (const auto &body : bodies_) {
     indicators_.push_back(std::make_unique<rigid::BodyIndicator>(*body, cells_.centres_m()));
     spdlog::info("rigid body '{}': {} candidate cells of {} (swept region)", body->name(),
@@ -25,49 +30,155 @@ std::string OpenFoamFluidModel::describe() const {
          (config_.normalise_kernel ? ", normalised weights" : ", raw weights");
 }
 
+// ---- the master: requests of the coupler, broadcast to the other ranks ----------------------
+
 void OpenFoamFluidModel::start(const proto::v1::Welcome &welcome) {
-  Eigen::Index n = 0;
+  message_.clear();
   for (const auto &s : welcome.structures())
-    n += static_cast<Eigen::Index>(s.n1()) * s.n2();
-  point_measures_.resize(n);
-  Eigen::Index at = 0;
-  for (const auto &s : welcome.structures())
-    for (const double m : s.point_measure())
-      point_measures_[at++] = m;
+    message_.insert(message_.end(), s.point_measure().begin(), s.point_measure().end());
+  broadcast(Command::start, message_);
+  do_start(message_);
   spdlog::info("{}", describe());
 }
 
 void OpenFoamFluidModel::interpolate(const proto::v1::InterpolateRequest &, proto::PointsView x_m,
                                      proto::MutablePointsView u_m_per_s) {
-  // X_ib^n: the kernel width is the size of the cell nearest to each point (local h, Eq. 6).
+  message_.assign(x_m.data(), x_m.data() + x_m.size());
+  broadcast(Command::interpolate, message_);
   positions_ = x_m;
-  nearest_ = std::make_unique<ibm::NearestCells>(index_, positions_);
-  stencil_ = std::make_unique<ibm::KernelStencil>(index_, positions_, nearest_->kernel_width_m());
-  if (config_.normalise_kernel)
-    stencil_->normalise_weights(stencil_->weight_sums());
+  PointArray u;
+  do_interpolate(u);
+  u_m_per_s = u;
+}
+
+void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_m2,
+                                 proto::v1::AdvanceReply &reply) {
+  message_.assign({request.time_s(), request.dt_s()});
+  message_.insert(message_.end(), force_density_n_per_m2.data(),
+                  force_density_n_per_m2.data() + force_density_n_per_m2.size());
+  broadcast(Command::advance, message_);
+  force_density_ = force_density_n_per_m2;
+  std::vector<rigid::BodyLoad> loads;
+  do_advance(request.time_s(), request.dt_s(), loads);
+  for (std::size_t b = 0; b < loads.size(); ++b) {
+    auto *out = reply.add_rigid_body_loads();
+    out->set_name(bodies_[b]->name());
+    proto::write_vector3(loads[b].force_n, *out->mutable_force_n());
+    proto::write_vector3(loads[b].torque_n_m, *out->mutable_torque_n_m());
+  }
+}
+
+void OpenFoamFluidModel::finish(bool success) {
+  message_.assign({success ? 1.0 : 0.0});
+  broadcast(Command::finish, message_);
+  flow_.write_now();
+  spdlog::info("fluid fields written at t = {} s ({})", flow_.time_s(), success ? "completed" : "stopped");
+}
+
+void OpenFoamFluidModel::broadcast(Command command, std::vector<double> &payload) const {
+  if (flow_.n_ranks() == 1)
+    return;
+  payload.insert(payload.begin(), static_cast<double>(command));
+  flow_.broadcast_from_master(payload);
+  payload.erase(payload.begin());
+}
+
+// ---- the other ranks -----------------------------------------------------------------------
+
+void OpenFoamFluidModel::follow() {
+  while (true) {
+    message_.clear();
+    flow_.broadcast_from_master(message_);
+    const auto command = static_cast<Command>(static_cast<int>(message_.at(0)));
+    const double *payload = message_.data() + 1;
+    const std::size_t n = message_.size() - 1;
+    switch (command) {
+    case Command::start:
+      do_start(std::vector<double>(payload, payload + n));
+      break;
+    case Command::interpolate: {
+      positions_ = Eigen::Map<const PointArray>(payload, static_cast<Eigen::Index>(n / 3), 3);
+      PointArray u;
+      do_interpolate(u);
+      break;
+    }
+    case Command::advance: {
+      force_density_ = Eigen::Map<const PointArray>(payload + 2, static_cast<Eigen::Index>((n - 2) / 3), 3);
+      std::vector<rigid::BodyLoad> loads;
+      do_advance(payload[0], payload[1], loads);
+      break;
+    }
+    case Command::finish:
+      flow_.write_now();
+      return;
+    }
+  }
+}
+
+// ---- collective work (every rank) ----------------------------------------------------------
+
+void OpenFoamFluidModel::do_start(const std::vector<double> &point_measures) {
+  point_measures_ = Eigen::Map<const Eigen::VectorXd>(point_measures.data(), static_cast<Eigen::Index>(point_measures.size()));
+}
+
+void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) const {
+  // Eq. (6): h is the size of the cell nearest to each point, over all ranks (lowest rank on
+  // ties), so every rank spreads and interpolates with the same kernel.
+  const Eigen::Index n = positions_.rows();
+  Eigen::VectorXd distance(n), local_width(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto nearest = index_.nearest(positions_.row(k).transpose());
+    distance[k] = nearest.distance_m;
+    local_width[k] = nearest.cell >= 0 ? cells_.size_m(nearest.cell) : 0.0;
+  }
+  Eigen::VectorXd best = distance;
+  flow_.min_over_ranks(best.data(), static_cast<std::size_t>(n));
+  Eigen::VectorXd owner(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    owner[k] = distance[k] == best[k] ? flow_.rank() : std::numeric_limits<double>::infinity();
+  flow_.min_over_ranks(owner.data(), static_cast<std::size_t>(n));
+  widths_m.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    widths_m[k] = owner[k] == flow_.rank() ? local_width[k] : 0.0;
+  flow_.sum_over_ranks(widths_m.data(), static_cast<std::size_t>(n));
+}
+
+void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
+  Eigen::VectorXd widths;
+  kernel_widths(widths);
+  stencil_ = std::make_unique<ibm::KernelStencil>(index_, positions_, widths);
+  if (config_.normalise_kernel) {
+    Eigen::VectorXd sums = stencil_->weight_sums();
+    flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size()));
+    stencil_->normalise_weights(sums);
+  }
   flow_.cell_velocities(cell_velocity_);
   if (config_.interpolation == InterpolationChoice::kernel) {
-    u_m_per_s = stencil_->interpolate(cell_velocity_);
+    u_m_per_s = stencil_->interpolate(cell_velocity_); // this rank's part of the kernel sum
+    flow_.sum_over_ranks(u_m_per_s.data(), static_cast<std::size_t>(u_m_per_s.size()));
     return;
   }
+  nearest_ = std::make_unique<ibm::NearestCells>(index_, positions_);
   ibm::CellGradientArray gradients;
   flow_.cell_velocity_gradients(gradients);
   u_m_per_s = ibm::ClosestCellLinear(cells_, *nearest_).interpolate(positions_, cell_velocity_, gradients);
 }
 
-void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_m2,
-                                 proto::v1::AdvanceReply &reply) {
+void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
   // Eq. (8) at the points of this step's interpolation (X^n): N/m^2 x m^2 -> N/m^3 per cell,
   // then per unit density for OpenFOAM's kinematic momentum equation (Eq. 1: +f_fsi).
-  force_density_ = force_density_n_per_m2;
   acceleration_ = stencil_->spread(force_density_, point_measures_) / config_.density_kg_per_m3;
   flow_.set_fsi_acceleration(acceleration_);
-  const double t_next = request.time_s() + request.dt_s();
+  const double t_next = time_s + dt_s;
   if (!bodies_.empty())
     penalize_rigid_bodies(t_next);
-  flow_.advance(request.dt_s());
-  if (!bodies_.empty())
-    report_rigid_body_loads(t_next, reply);
+  flow_.advance(dt_s);
+  if (bodies_.empty())
+    return;
+  flow_.penalization_acceleration(penalization_acceleration_);
+  penalization_force_ = penalization_acceleration_ * config_.density_kg_per_m3; // N/m^3 on the fluid
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    loads.push_back(rigid_body_load(b, t_next));
 }
 
 void OpenFoamFluidModel::penalize_rigid_bodies(double time_s) {
@@ -87,27 +198,21 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s) {
     }
   }
   penalization_rate_ /= config_.penalization_time_s;
+  flow_.set_penalization(penalization_rate_, rigid_velocity_);
 }
 
-void OpenFoamFluidModel::report_rigid_body_loads(double time_s, proto::v1::AdvanceReply &reply) {
-  flow_.penalization_acceleration(penalization_acceleration_);
-  penalization_force_ = penalization_acceleration_ * config_.density_kg_per_m3; // N/m^3 on the fluid
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    const auto &body = *bodies_[b];
-    // Torque about the body's centre (the centre of its bounding box, carried by its motion).
-    const Vec3 centre = body.motion().pose_at(time_s) * body.body_box_m().center();
-    const rigid::BodyLoad load = rigid::BodyLoads::from_source_on_fluid(
-        *indicators_[b], cells_.centres_m(), penalization_force_, cells_.volumes_m3(), centre);
-    auto *out = reply.add_rigid_body_loads();
-    out->set_name(body.name());
-    proto::write_vector3(load.force_n, *out->mutable_force_n());
-    proto::write_vector3(load.torque_n_m, *out->mutable_torque_n_m());
-  }
-}
-
-void OpenFoamFluidModel::finish(bool success) {
-  flow_.write_now();
-  spdlog::info("fluid fields written at t = {} s ({})", flow_.time_s(), success ? "completed" : "stopped");
+rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s) {
+  const auto &body = *bodies_[b];
+  // Torque about the body's centre (the centre of its bounding box, carried by its motion).
+  const Vec3 centre = body.motion().pose_at(time_s) * body.body_box_m().center();
+  rigid::BodyLoad load = rigid::BodyLoads::from_source_on_fluid(*indicators_[b], cells_.centres_m(), penalization_force_,
+                                                                cells_.volumes_m3(), centre);
+  double sums[6] = {load.force_n.x(), load.force_n.y(), load.force_n.z(),
+                    load.torque_n_m.x(), load.torque_n_m.y(), load.torque_n_m.z()};
+  flow_.sum_over_ranks(sums, 6); // each rank has the part of the body in its cells
+  load.force_n = Vec3(sums[0], sums[1], sums[2]);
+  load.torque_n_m = Vec3(sums[3], sums[4], sums[5]);
+  return load;
 }
 
 } // namespace fsi::fluid

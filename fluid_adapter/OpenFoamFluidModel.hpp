@@ -7,6 +7,11 @@
 // surfaces with a prescribed motion) are penalized (Eqs. 9-10): chi and u_rib at t^{n+1} from
 // each body's swept candidate cells, the penalization implicit in the momentum matrix; the
 // force and torque of the fluid on each body go back to the coupler.
+//
+// MPI: every rank holds a model over its own cells. The master (rank 0) talks to the coupler
+// through FluidParticipant and broadcasts each request to the other ranks, which run follow().
+// Kernel widths (the nearest cell over all ranks), weight sums and interpolated velocities are
+// reduced over the ranks; spreading touches only local cells.
 
 #include "FoamFlow.hpp"
 #include "OpenFoamConfig.hpp"
@@ -14,6 +19,7 @@
 #include "fluid_adapter/ibm/KernelStencil.hpp"
 #include "fluid_adapter/ibm/NearestCells.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
+#include "fluid_adapter/rigid/BodyLoads.hpp"
 #include "fluid_adapter/rigid/RigidBody.hpp"
 #include "proto/FluidModel.hpp"
 
@@ -34,9 +40,18 @@ public:
                proto::v1::AdvanceReply &reply) override;
   void finish(bool success) override;
 
+  /// Ranks other than the master: serve the master's broadcasts until it finishes.
+  void follow();
+
 private:
+  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
+  void broadcast(Command command, std::vector<double> &payload) const;
+  void do_start(const std::vector<double> &point_measures);
+  void do_interpolate(PointArray &u_m_per_s);
+  void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
+  void kernel_widths(Eigen::VectorXd &widths_m) const;
   void penalize_rigid_bodies(double time_s);
-  void report_rigid_body_loads(double time_s, proto::v1::AdvanceReply &reply);
+  rigid::BodyLoad rigid_body_load(std::size_t body, double time_s);
 
   OpenFoamConfig config_;
   FoamFlow &flow_;
@@ -50,6 +65,7 @@ private:
   std::vector<std::unique_ptr<rigid::BodyIndicator>> indicators_;
   Eigen::VectorXd penalization_rate_;
   PointArray rigid_velocity_, penalization_acceleration_, penalization_force_;
+  std::vector<double> message_;
 };
 
 } // namespace fsi::fluid

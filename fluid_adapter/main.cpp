@@ -2,6 +2,9 @@
 // immersed-boundary forcing of Eqs. (6-8). The case's `fluid.openfoam.case_directory` is
 // copied to <output>/openfoam, meshed with blockMesh when it has no mesh, and run there.
 //   fsi-openfoam-fluid CASE_DIR [--endpoint E] [-o DIR] [-v]
+// With fluid.openfoam.mpi_ranks = N > 1 it prepares and decomposes the case, then replaces
+// itself by `mpirun -np N fsi-openfoam-fluid ... --mpi-rank` (same process id, so signals and
+// the exit code reach the launcher); rank 0 talks to the coupler, the others follow it.
 // Exit codes: 0 success, 1 the run stopped (coupler lost, another participant failed, OpenFOAM
 // failed), 2 bad input, 130 interrupted.
 
@@ -19,7 +22,11 @@
 #include <spdlog/spdlog.h>
 
 #include <csignal>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <unistd.h>
 #include <iostream>
 
 namespace {
@@ -75,17 +82,53 @@ std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> rigid_bodies(const fs
   return bodies;
 }
 
+/// decomposePar into n subdomains, cut along x (Debian's scotch is a stub).
+void decompose(const std::filesystem::path &foam_case, int n) {
+  std::ofstream(foam_case / "system" / "decomposeParDict")
+      << "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"
+      << "numberOfSubdomains " << n << ";\nmethod hierarchical;\n"
+      << "coeffs { n (" << n << " 1 1); order xyz; }\n";
+  const std::string command = "decomposePar -force -case '" + foam_case.string() + "' > '" +
+                              (foam_case / "log.decomposePar").string() + "' 2>&1";
+  spdlog::info("decomposing for {} MPI ranks: {}", n, command);
+  if (std::system(command.c_str()) != 0)
+    throw std::runtime_error("decomposePar failed: see " + (foam_case / "log.decomposePar").string());
+}
+
+/// Replaces this process by mpirun running n ranks of this program on the prepared case.
+[[noreturn]] void exec_mpirun(int n, int argc, char **argv) {
+  std::vector<std::string> args = {"mpirun", "-np", std::to_string(n), "--oversubscribe", "-x", "WM_PROJECT_DIR",
+                                   "-x", "FOAM_ETC"};
+  if (geteuid() == 0)
+    args.push_back("--allow-run-as-root");
+  args.push_back(std::filesystem::read_symlink("/proc/self/exe").string());
+  for (int i = 1; i < argc; ++i)
+    args.emplace_back(argv[i]);
+  args.emplace_back("--mpi-rank");
+  std::vector<char *> pointers;
+  for (auto &a : args)
+    pointers.push_back(a.data());
+  pointers.push_back(nullptr);
+  spdlog::info("starting {} MPI ranks with mpirun", n);
+  spdlog::default_logger()->flush();
+  execvp("mpirun", pointers.data());
+  throw std::runtime_error(std::string("cannot start mpirun: ") + std::strerror(errno) +
+                           " (install the Debian package openmpi-bin)");
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-openfoam-fluid: OpenFOAM fluid participant with the diffuse immersed boundary"};
   std::string case_dir, output_dir, endpoint;
-  bool verbose = false;
+  bool verbose = false, mpi_rank = false;
   app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
   app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
   app.add_option("-o,--output-dir", output_dir, "Results folder (default: run.output_directory)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
+  app.add_flag("--mpi-rank", mpi_rank, "Internal: this process is one rank under mpirun (the case is prepared)")
+      ->group("");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
@@ -109,19 +152,33 @@ int main(int argc, char **argv) {
                                           ? std::filesystem::path(case_dir) / config.run.output_directory
                                           : std::filesystem::path(output_dir);
     std::filesystem::create_directories(out);
-    fsi::common::add_log_file(out / "fluid.log");
+    const int n_ranks = config.fluid->openfoam->mpi_ranks;
+    if (!mpi_rank)
+      fsi::common::add_log_file(out / "fluid.log");
     fsi::proto::SessionSettings settings;
     settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
     settings.coupler.check_connectable();
     settings.case_fingerprint = config.fingerprint();
     settings.handshake_timeout =
         std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
-    const auto foam_case = prepare_openfoam_case(case_dir, config.fluid->openfoam->case_directory, out);
+    const auto foam_case = mpi_rank ? out / "openfoam"
+                                    : prepare_openfoam_case(case_dir, config.fluid->openfoam->case_directory, out);
+    if (n_ranks > 1 && !mpi_rank) {
+      decompose(foam_case, n_ranks);
+      exec_mpirun(n_ranks, argc, argv);
+    }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     auto flow = fsi::fluid::FoamFlow::create(
-        {std::filesystem::absolute(foam_case), config.run.time_step_s, config.run.end_time_s});
+        {std::filesystem::absolute(foam_case), config.run.time_step_s, config.run.end_time_s, mpi_rank});
     fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, rigid_bodies(config));
+    if (flow->rank() != 0) { // MPI: only rank 0 talks to the coupler
+      spdlog::set_level(spdlog::level::warn);
+      model.follow();
+      return 0;
+    }
+    if (mpi_rank)
+      fsi::common::add_log_file(out / "fluid.log");
     fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
   } catch (const fsi::common::ConfigError &e) {

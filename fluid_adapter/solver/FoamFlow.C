@@ -42,6 +42,11 @@ public:
   void advance(double dt_s) override;
   double time_s() const override { return runTime_->value(); }
   void write_now() override { runTime_->writeNow(); }
+  int rank() const override { return Foam::Pstream::myProcNo(); }
+  int n_ranks() const override { return Foam::Pstream::nProcs(); }
+  void broadcast_from_master(std::vector<double> &data) const override;
+  void sum_over_ranks(double *data, std::size_t n) const override;
+  void min_over_ranks(double *data, std::size_t n) const override;
 
 private:
   void step(double dt_s);
@@ -74,13 +79,16 @@ private:
 OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   using namespace Foam;
   argument_storage_ = {"fsi-openfoam-fluid", "-case", settings.case_directory.string()};
+  if (settings.parallel)
+    argument_storage_.push_back("-parallel");
   for (auto &a : argument_storage_)
     argument_pointers_.push_back(a.data());
   argument_pointers_.push_back(nullptr);
   argc_ = static_cast<int>(argument_storage_.size());
   argv_ = argument_pointers_.data();
   argList::noBanner();
-  argList::noParallel();
+  if (!settings.parallel)
+    argList::noParallel();
   args_ = std::make_unique<argList>(argc_, argv_);
   runTime_ = std::make_unique<Time>(Time::controlDictName, *args_);
   runTime_->setDeltaT(settings.time_step_s);
@@ -113,9 +121,41 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
     volumes_[c] = mesh.V()[c];
   }
   std::ostringstream text;
-  text << "OpenFOAM v1912 PIMPLE, " << n << " cells, turbulence " << turbulence_->type() << ", case "
+  text << "OpenFOAM v1912 PIMPLE, " << returnReduce(n, sumOp<label>()) << " cells";
+  if (Pstream::parRun())
+    text << " on " << Pstream::nProcs() << " MPI ranks";
+  text << ", turbulence " << turbulence_->type() << ", case "
        << settings.case_directory.string();
   description_ = text.str();
+}
+
+void OpenFoamFlow::broadcast_from_master(std::vector<double> &data) const {
+  if (!Foam::Pstream::parRun())
+    return;
+  Foam::List<Foam::scalar> list(static_cast<Foam::label>(data.size()));
+  forAll(list, i) list[i] = data[i];
+  Foam::Pstream::scatter(list);
+  data.assign(list.begin(), list.end());
+}
+
+void OpenFoamFlow::sum_over_ranks(double *data, std::size_t n) const {
+  if (!Foam::Pstream::parRun())
+    return;
+  Foam::List<Foam::scalar> list(static_cast<Foam::label>(n));
+  forAll(list, i) list[i] = data[i];
+  Foam::Pstream::listCombineGather(list, Foam::plusEqOp<Foam::scalar>());
+  Foam::Pstream::listCombineScatter(list);
+  forAll(list, i) data[i] = list[i];
+}
+
+void OpenFoamFlow::min_over_ranks(double *data, std::size_t n) const {
+  if (!Foam::Pstream::parRun())
+    return;
+  Foam::List<Foam::scalar> list(static_cast<Foam::label>(n));
+  forAll(list, i) list[i] = data[i];
+  Foam::Pstream::listCombineGather(list, Foam::minEqOp<Foam::scalar>());
+  Foam::Pstream::listCombineScatter(list);
+  forAll(list, i) data[i] = list[i];
 }
 
 void OpenFoamFlow::cell_velocities(PointArray &u) const {
