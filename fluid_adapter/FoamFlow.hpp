@@ -40,6 +40,13 @@ public:
   virtual void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib_m_per_s) = 0;
   /// After advance(): the penalization source per unit density, -rate (u - u_rib) (m/s^2).
   virtual void penalization_acceleration(PointArray &a_m_per_s2) const = 0;
+  /// True when the turbulence model uses the wall distance (Spalart-Allmaras RAS/DES/DDES).
+  virtual bool uses_wall_distance() const = 0;
+  /// Immersed rigid bodies as walls for the turbulence model (section 2.6): the wall distance
+  /// becomes min(distance to the mesh's walls, wall_distance_m) per cell (+inf: unchanged),
+  /// and after each turbulence update nuTilda and nut are set to 0 in cells with
+  /// inside_fraction >= 0.5 (the condition nuTilda = 0 at immersed walls). Laminar: no effect.
+  virtual void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) = 0;
   /// One PIMPLE time step of dt; writes fields at the case's write interval.
   virtual void advance(double dt_s) = 0;
   virtual double time_s() const = 0;

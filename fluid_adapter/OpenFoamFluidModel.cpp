@@ -22,6 +22,19 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
     spdlog::info("rigid body '{}': {} candidate cells of {} (swept region)", body->name(),
                  indicators_.back()->candidate_cells().size(), cells_.n_cells());
   }
+  if (!bodies_.empty() && flow_.uses_wall_distance()) {
+    // Section 2.6: immersed bodies are walls for Spalart-Allmaras. Beyond C_DES Delta from every
+    // wall, DES runs in LES mode whatever the distance, so measure within twice that.
+    constexpr double c_des = 0.65;
+    const double margin = 2.0 * c_des * (cells_.n_cells() > 0 ? cells_.sizes_m().maxCoeff() : 0.0);
+    std::vector<const rigid::RigidBody *> bodies;
+    for (const auto &b : bodies_)
+      bodies.push_back(b.get());
+    wall_distance_ = std::make_unique<rigid::ImmersedWallDistance>(bodies, cells_.centres_m(), margin);
+    spdlog::info("turbulence: immersed bodies are walls (nuTilda = 0 inside, wall distance measured in {} cells "
+                 "within {:.3g} m)",
+                 wall_distance_->n_measured_cells(), margin);
+  }
 }
 
 std::string OpenFoamFluidModel::describe() const {
@@ -196,6 +209,10 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s) {
       penalization_rate_[c] = std::min(1.0, penalization_rate_[c] + chi);
       rigid_velocity_.row(c) += chi * indicator->body_velocity_m_per_s().row(c);
     }
+  }
+  if (wall_distance_) {
+    wall_distance_->update(time_s);
+    flow_.set_immersed_walls(wall_distance_->distance_m(), penalization_rate_);
   }
   penalization_rate_ /= config_.penalization_time_s;
   flow_.set_penalization(penalization_rate_, rigid_velocity_);

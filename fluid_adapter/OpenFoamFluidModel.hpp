@@ -20,6 +20,7 @@
 #include "fluid_adapter/ibm/NearestCells.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
 #include "fluid_adapter/rigid/BodyLoads.hpp"
+#include "fluid_adapter/rigid/ImmersedWallDistance.hpp"
 #include "fluid_adapter/rigid/RigidBody.hpp"
 #include "proto/FluidModel.hpp"
 
@@ -63,6 +64,7 @@ private:
   std::unique_ptr<ibm::KernelStencil> stencil_;
   std::vector<std::unique_ptr<rigid::RigidBody>> bodies_;
   std::vector<std::unique_ptr<rigid::BodyIndicator>> indicators_;
+  std::unique_ptr<rigid::ImmersedWallDistance> wall_distance_; ///< only with a wall-distance turbulence model
   Eigen::VectorXd penalization_rate_;
   PointArray rigid_velocity_, penalization_acceleration_, penalization_force_;
   std::vector<double> message_;

@@ -10,6 +10,7 @@
 #include "pimpleControl.H"
 #include "singlePhaseTransportModel.H"
 #include "turbulentTransportModel.H"
+#include "wallDist.H"
 
 #include <sstream>
 #include <stdexcept>
@@ -39,6 +40,8 @@ public:
   void set_fsi_acceleration(const PointArray &a) override;
   void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) override;
   void penalization_acceleration(PointArray &a) const override;
+  bool uses_wall_distance() const override;
+  void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) override;
   void advance(double dt_s) override;
   double time_s() const override { return runTime_->value(); }
   void write_now() override { runTime_->writeNow(); }
@@ -67,6 +70,9 @@ private:
   std::unique_ptr<Foam::volVectorField> fsiAcceleration_;
   std::unique_ptr<Foam::volScalarField> penalizationRate_; ///< chi / tau (1/s); null: no rigid bodies
   std::unique_ptr<Foam::volVectorField> rigidVelocity_;    ///< u_rib (m/s)
+  std::unique_ptr<Foam::scalarField> patchWallDistance_;   ///< y from the mesh's walls alone
+  std::vector<Foam::label> insideCells_;                   ///< cells inside immersed bodies
+  void zero_turbulence_inside_bodies();
   std::unique_ptr<Foam::singlePhaseTransportModel> laminarTransport_;
   Foam::autoPtr<Foam::incompressible::turbulenceModel> turbulence_;
   Foam::label pRefCell_ = 0;
@@ -215,6 +221,39 @@ void OpenFoamFlow::penalization_acceleration(PointArray &a) const {
   }
 }
 
+bool OpenFoamFlow::uses_wall_distance() const {
+  return mesh_->thisDb().foundObject<Foam::wallDist>(Foam::wallDist::typeName);
+}
+
+void OpenFoamFlow::set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) {
+  insideCells_.clear();
+  for (Eigen::Index c = 0; c < inside_fraction.size(); ++c)
+    if (inside_fraction[c] >= 0.5)
+      insideCells_.push_back(static_cast<Foam::label>(c));
+  if (!uses_wall_distance())
+    return;
+  // The Spalart-Allmaras models hold a reference to this field (wallDist::New(mesh).y()).
+  auto &y = const_cast<Foam::volScalarField &>(Foam::wallDist::New(*mesh_).y());
+  if (!patchWallDistance_)
+    patchWallDistance_ = std::make_unique<Foam::scalarField>(y.primitiveField());
+  auto &field = y.primitiveFieldRef();
+  forAll(field, c) field[c] = Foam::min((*patchWallDistance_)[c], Foam::scalar(wall_distance_m[c]));
+}
+
+void OpenFoamFlow::zero_turbulence_inside_bodies() {
+  if (insideCells_.empty())
+    return;
+  for (const char *name : {"nuTilda", "nut"}) {
+    if (!mesh_->thisDb().foundObject<Foam::volScalarField>(name))
+      continue;
+    auto &field = mesh_->thisDb().lookupObjectRef<Foam::volScalarField>(name);
+    auto &values = field.primitiveFieldRef();
+    for (const Foam::label c : insideCells_)
+      values[c] = 0.0;
+    field.correctBoundaryConditions();
+  }
+}
+
 void OpenFoamFlow::advance(double dt_s) {
   try {
     step(dt_s);
@@ -232,6 +271,7 @@ void OpenFoamFlow::step(double dt_s) {
     if (pimple_->turbCorr()) {
       laminarTransport_->correct();
       turbulence_->correct();
+      zero_turbulence_inside_bodies();
     }
   }
   runTime_->write();
