@@ -46,7 +46,8 @@ proto::Incoming &ParticipantTable::next(Clock::time_point deadline, const std::s
     if (stop_signal_ && *stop_signal_ != 0)
       throw StopRequested(*stop_signal_);
     send_heartbeats_if_due(step);
-    check_liveness(step);
+    if (!admission_open_) // heartbeats start with Welcome, sent when everyone has joined
+      check_liveness(step);
     const auto now = Clock::now();
     if (now >= deadline)
       throw ParticipantFailed(waited_peer, "no " + waiting_for + " from " + waited_peer + " at step " +

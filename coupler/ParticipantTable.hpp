@@ -30,7 +30,8 @@ public:
   void add(const std::string &routing_id);
   const std::vector<std::string> &participants() const { return ids_; }
   /// The handshake is over: from now on a stranger's message of another protocol version is
-  /// answered and ignored like any other malformed message, instead of refusing the run.
+  /// answered and ignored like any other malformed message, instead of refusing the run, and
+  /// the participants' liveness is watched (their heartbeats start with Welcome).
   void close_admission() { admission_open_ = false; }
   bool knows(const std::string &routing_id) const { return last_seen_.count(routing_id) != 0; }
 

@@ -1,9 +1,14 @@
 #include "ImmersedWallDistance.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace fsi::fluid::rigid {
+
+namespace {
+constexpr double min_distance_m = 1e-9; // a cell centre exactly on the surface
+} // namespace
 
 ImmersedWallDistance::ImmersedWallDistance(const std::vector<const RigidBody *> &bodies,
                                            const PointArray &cell_centres_m, double margin_m)
@@ -34,7 +39,9 @@ void ImmersedWallDistance::update(double time_s) {
     const Eigen::Isometry3d world_to_body = c.body->motion().pose_at(time_s).inverse();
     for (const auto cell : c.cells) {
       const Vec3 x_body = world_to_body * Vec3(centres_m_.row(cell).transpose());
-      const double d = std::max(0.0, c.body->surface().distance(x_body).signed_distance_m);
+      // Inside a body the distance to its surface (not 0): the Spalart-Allmaras models divide
+      // by (kappa d)^2 before the solver zeroes nuTilda there.
+      const double d = std::max(std::abs(c.body->surface().distance(x_body).signed_distance_m), min_distance_m);
       distance_m_[cell] = std::min(distance_m_[cell], d);
     }
   }

@@ -21,7 +21,7 @@ public:
   ImmersedWallDistance(const std::vector<const RigidBody *> &bodies, const PointArray &cell_centres_m, double margin_m);
 
   /// Distances at time t (bodies at their poses): per cell, the distance (m) to the nearest
-  /// immersed surface, 0 inside a body, +infinity for cells not measured.
+  /// immersed surface (inside a body too, never 0), +infinity for cells not measured.
   void update(double time_s);
   const Eigen::VectorXd &distance_m() const { return distance_m_; }
   std::size_t n_measured_cells() const;

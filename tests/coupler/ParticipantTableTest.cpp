@@ -44,6 +44,7 @@ protected:
     welcome.mutable_welcome()->set_heartbeat_interval_s(heartbeat_s);
     welcome.mutable_welcome()->set_timeout_s(timeout_s);
     table.send(id, welcome, 0);
+    table.close_admission(); // the handshake is over: liveness is watched from now on
     return id;
   }
 };
@@ -64,6 +65,23 @@ TEST_F(LivenessTest, AParticipantThatStopsIsNamedWithinTheTimeout) {
     EXPECT_NE(std::string(e.what()).find("at step 7"), std::string::npos) << e.what();
     EXPECT_GT(waited, 0.8 * timeout_s);
     EXPECT_LT(waited, timeout_s + 0.5) << "liveness must be detected within the timeout (+ polling slack)";
+  }
+}
+
+TEST_F(LivenessTest, AJoinedParticipantWaitingForTheOthersIsNotDeclaredDead) {
+  // During the handshake a participant that has said Hello waits for Welcome without
+  // heartbeats (they start with Welcome); the coupler waits for the others meanwhile.
+  proto::ParticipantChannel early(channel.endpoint(), proto::v1::ROLE_STRUCTURE, "early");
+  proto::Envelope hello = proto::make_envelope(proto::v1::ROLE_STRUCTURE, 0);
+  hello.mutable_hello()->set_participant_name("early");
+  early.send(hello);
+  auto &incoming = table.next(Clock::now() + 5s, "anyone", "Hello", 0);
+  table.add(incoming.peer());
+  try {
+    table.next(Clock::now() + 3 * std::chrono::milliseconds(static_cast<int>(timeout_s * 1000)), "fluid", "Hello", 0);
+    FAIL() << "nothing should have arrived";
+  } catch (const ParticipantFailed &e) {
+    EXPECT_EQ(e.participant, "fluid") << "the waiting participant was declared dead: " << e.what();
   }
 }
 
