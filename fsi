@@ -8,7 +8,7 @@
 #                             start only that process (several machines; see README)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
-#   ./fsi bench [structure|transport|coupling]  run a benchmark
+#   ./fsi bench [structure|transport|coupling|fluid]  run a benchmark (fluid: vs stock pimpleFoam)
 #   ./fsi schema              print the case-file reference (Markdown)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
@@ -118,7 +118,8 @@ cmd_bench() {
     structure) "$BUILD/bin/bench_structure" --benchmark_counters_tabular=true ;;
     transport) "$BUILD/bin/bench_transport" --benchmark_counters_tabular=true ;;
     coupling) shift || true; "$BUILD/bin/bench_coupling" "$@" ;;
-    *) die "unknown benchmark '$which' (available: structure, transport, coupling)" ;;
+    fluid) shift || true; /usr/bin/python3 "$ROOT/bench/fluid/bench_fluid.py" --bin-dir "$BUILD/bin" "$@" ;;
+    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid)" ;;
   esac
 }
 
