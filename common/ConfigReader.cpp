@@ -10,17 +10,52 @@ namespace fsi::common {
 ConfigReader::ConfigReader(YAML::Node node, std::filesystem::path file, std::string key_path)
     : node_(std::move(node)), file_(std::move(file)), path_(std::move(key_path)) {}
 
-ConfigReader ConfigReader::from_file(const std::filesystem::path &file) {
-  if (!std::filesystem::exists(file))
-    throw ConfigError(file.string() + ": case file not found. A case folder holds a 'case.yaml'.");
-  YAML::Node root;
+namespace {
+
+YAML::Node load_yaml(const std::filesystem::path &file) {
   try {
-    root = YAML::LoadFile(file.string());
+    return YAML::LoadFile(file.string());
   } catch (const YAML::Exception &e) {
     throw ConfigError(file.string() + ":" + std::to_string(e.mark.line + 1) + ":" +
                       std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg + ".");
   }
-  ConfigReader reader(root, file, "");
+}
+
+YAML::Node merged(const YAML::Node &base, const YAML::Node &overlay) {
+  if (base.IsMap() && overlay.IsMap()) {
+    YAML::Node out = YAML::Clone(base);
+    for (const auto &item : overlay) {
+      const std::string key = item.first.as<std::string>();
+      out[key] = base[key] ? merged(base[key], item.second) : YAML::Clone(item.second);
+    }
+    return out;
+  }
+  if (base.IsSequence() && overlay.IsSequence() && base.size() == overlay.size()) {
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < base.size(); ++i)
+      out.push_back(merged(base[i], overlay[i]));
+    return out;
+  }
+  return YAML::Clone(overlay);
+}
+
+} // namespace
+
+ConfigReader ConfigReader::from_file(const std::filesystem::path &file) {
+  if (!std::filesystem::exists(file))
+    throw ConfigError(file.string() + ": case file not found. A case folder holds a 'case.yaml'.");
+  ConfigReader reader(load_yaml(file), file, "");
+  reader.require_mapping();
+  return reader;
+}
+
+ConfigReader ConfigReader::from_file_with_overlay(const std::filesystem::path &file,
+                                                  const std::filesystem::path &overlay) {
+  ConfigReader base = from_file(file);
+  const YAML::Node top = load_yaml(overlay);
+  if (!top.IsMap())
+    throw ConfigError(overlay.string() + ": a preset must be a mapping of case keys to override.");
+  ConfigReader reader(merged(base.node_, top), file, "");
   reader.require_mapping();
   return reader;
 }

@@ -26,6 +26,9 @@ public:
   ConfigReader(YAML::Node node, std::filesystem::path file, std::string key_path = "");
 
   static ConfigReader from_file(const std::filesystem::path &file);
+  /// As from_file, with the overlay file (a preset) merged in first: mappings merge key by
+  /// key, lists of mappings of the same length item by item, anything else is replaced.
+  static ConfigReader from_file_with_overlay(const std::filesystem::path &file, const std::filesystem::path &overlay);
 
   void number(const std::string &key, double &value, const Range &range, const std::string &doc);
   void integer(const std::string &key, int &value, const Range &range, const std::string &doc);

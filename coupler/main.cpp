@@ -46,6 +46,9 @@ int main(int argc, char **argv) {
   app.add_option("--endpoint", endpoint, "Listen here instead of coupling.endpoint");
   app.add_flag("--plan", plan, "Print the output folder and the processes this case needs, then exit");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
+  std::string preset;
+  app.add_option("--resolution,--preset", preset,
+                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
@@ -53,7 +56,7 @@ int main(int argc, char **argv) {
   }
   fsi::common::setup_logging("coupler", verbose);
   try {
-    auto config = fsi::structure::CaseConfig::load(case_dir);
+    auto config = fsi::structure::CaseConfig::load(case_dir, preset);
     const std::filesystem::path out =
         output_dir.empty() ? std::filesystem::path(case_dir) / config.run.output_directory : std::filesystem::path(output_dir);
     if (plan)

@@ -129,6 +129,9 @@ int main(int argc, char **argv) {
   app.add_flag("-v,--verbose", verbose, "Debug logging");
   app.add_flag("--mpi-rank", mpi_rank, "Internal: this process is one rank under mpirun (the case is prepared)")
       ->group("");
+  std::string preset;
+  app.add_option("--resolution,--preset", preset,
+                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
@@ -143,7 +146,7 @@ int main(int argc, char **argv) {
     return fsi::common::exit_code_bad_input;
   }
   try {
-    const auto config = fsi::structure::CaseConfig::load(case_dir);
+    const auto config = fsi::structure::CaseConfig::load(case_dir, preset);
     if (!config.fluid || !config.fluid->openfoam) {
       spdlog::error("case {} has no `fluid.openfoam` section: there is no OpenFOAM fluid to run", case_dir);
       return fsi::common::exit_code_bad_input;

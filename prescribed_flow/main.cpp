@@ -33,6 +33,9 @@ int main(int argc, char **argv) {
   app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
   app.add_option("-o,--output-dir", output_dir, "Folder for fluid.log (default: run.output_directory)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
+  std::string preset;
+  app.add_option("--resolution,--preset", preset,
+                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
@@ -40,7 +43,7 @@ int main(int argc, char **argv) {
   }
   fsi::common::setup_logging("fluid", verbose);
   try {
-    const auto config = fsi::structure::CaseConfig::load(case_dir);
+    const auto config = fsi::structure::CaseConfig::load(case_dir, preset);
     if (!config.fluid || !config.fluid->prescribed) {
       spdlog::error("case {} has no `fluid.prescribed` section: there is no prescribed flow to run", case_dir);
       return fsi::common::exit_code_bad_input;

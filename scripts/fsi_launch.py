@@ -89,6 +89,8 @@ def parse_args(argv):
     parser.add_argument("--endpoint", metavar="E",
                         help="endpoint to bind (coupler) or connect to (participants); "
                              "default: the case file's coupling.endpoint")
+    parser.add_argument("--resolution", "--preset", metavar="NAME", dest="resolution",
+                        help="preset of the case (presets/NAME.yaml over case.yaml): coarse, medium, fine...")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="show every line of every process (structure only: debug logging)")
     parser.add_argument("--print-output-dir", action="store_true",
@@ -120,7 +122,9 @@ def executable_in(bin_dir, name):
 
 
 def output_args(args):
-    return ["-o", args.output_dir] if args.output_dir else []
+    """Options every process gets: the output folder and the case preset, if given."""
+    extra = ["-o", args.output_dir] if args.output_dir else []
+    return extra + (["--resolution", args.resolution] if args.resolution else [])
 
 
 def read_plan(args):

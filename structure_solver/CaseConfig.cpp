@@ -1,11 +1,13 @@
 #include "CaseConfig.hpp"
 
 #include "common/ConfigEmitter.hpp"
+#include "common/DidYouMean.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
 #include <cstdio>
+#include <algorithm>
 #include <set>
 
 namespace fsi::structure {
@@ -28,10 +30,29 @@ void CaseConfig::validate(common::ConfigReader &v) const {
     v.fail_value("run", "end_time_s must be at least one time step.");
 }
 
-CaseConfig CaseConfig::load(const std::filesystem::path &case_dir) {
+std::vector<std::string> CaseConfig::presets(const std::filesystem::path &case_dir) {
+  std::vector<std::string> names;
+  if (std::filesystem::is_directory(case_dir / "presets"))
+    for (const auto &entry : std::filesystem::directory_iterator(case_dir / "presets"))
+      if (entry.path().extension() == ".yaml")
+        names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::string &preset) {
   if (!std::filesystem::is_directory(case_dir))
     throw common::ConfigError(case_dir.string() + ": not a case folder (expected a folder holding case.yaml).");
-  auto reader = common::ConfigReader::from_file(case_dir / "case.yaml");
+  const auto overlay = case_dir / "presets" / (preset + ".yaml");
+  if (!preset.empty() && !std::filesystem::exists(overlay)) {
+    const auto available = presets(case_dir);
+    throw common::ConfigError(case_dir.string() + ": no preset '" + preset + "' (" + overlay.string() + ")." +
+                              common::did_you_mean(preset, available) +
+                              (available.empty() ? " This case has no presets."
+                                                 : " Presets of this case: " + common::join(available) + "."));
+  }
+  auto reader = preset.empty() ? common::ConfigReader::from_file(case_dir / "case.yaml")
+                               : common::ConfigReader::from_file_with_overlay(case_dir / "case.yaml", overlay);
   CaseConfig config;
   config.visit(reader);
   reader.finish();

@@ -49,8 +49,11 @@ struct CaseConfig {
       validate(v);
   }
 
-  /// Reads and validates `case_dir/case.yaml`; throws common::ConfigError.
-  static CaseConfig load(const std::filesystem::path &case_dir);
+  /// Reads and validates `case_dir/case.yaml`, with `case_dir/presets/<preset>.yaml` merged
+  /// over it when a preset is named (e.g. --resolution coarse); throws common::ConfigError.
+  static CaseConfig load(const std::filesystem::path &case_dir, const std::string &preset = "");
+  /// The presets a case offers (file names in case_dir/presets without .yaml), sorted.
+  static std::vector<std::string> presets(const std::filesystem::path &case_dir);
 
   /// True when the scene has a fluid: then a coupler and a fluid participant run too.
   bool is_coupled() const { return fluid.has_value(); }

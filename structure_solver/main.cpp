@@ -28,8 +28,8 @@
 
 namespace {
 
-int check_case(const std::filesystem::path &case_dir) {
-  const auto config = fsi::structure::CaseConfig::load(case_dir);
+int check_case(const std::filesystem::path &case_dir, const std::string &preset) {
+  const auto config = fsi::structure::CaseConfig::load(case_dir, preset);
   fsi::structure::Scene scene(config); // builds geometry: catches missing/open STL meshes too
   if (config.fluid && config.fluid->prescribed) // reads a velocity table, if any
     spdlog::info("fluid: prescribed, {}", fsi::prescribed_flow::make_flow(*config.fluid->prescribed)->describe());
@@ -56,6 +56,9 @@ int main(int argc, char **argv) {
   app.add_flag("--coupled", coupled, "Take part in a coupled run (the case must have a fluid section)");
   app.add_option("--endpoint", endpoint, "Coupler endpoint (with --coupled; default: coupling.endpoint)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
+  std::string preset;
+  app.add_option("--resolution,--preset", preset,
+                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
@@ -72,8 +75,8 @@ int main(int argc, char **argv) {
   fsi::common::setup_logging("structure", verbose);
   try {
     if (check)
-      return check_case(case_dir);
-    auto config = fsi::structure::CaseConfig::load(case_dir);
+      return check_case(case_dir, preset);
+    auto config = fsi::structure::CaseConfig::load(case_dir, preset);
     const std::filesystem::path out = output_dir.empty()
                                           ? std::filesystem::path(case_dir) / config.run.output_directory
                                           : std::filesystem::path(output_dir);

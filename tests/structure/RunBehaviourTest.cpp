@@ -116,6 +116,26 @@ TEST(RunBehaviour, CoupledParticipantWithPortZeroEndpointExplainsWhatToDo) {
   EXPECT_NE(out.output.find("give --endpoint or a fixed port"), std::string::npos) << out.output;
 }
 
+TEST(RunBehaviour, APresetIsMergedOverTheCaseFile) {
+  // presets/<name>.yaml overrides keys of case.yaml (maps key by key, list items by index).
+  const auto dir = testing::make_case_dir(valid_case);
+  std::filesystem::create_directories(dir / "presets");
+  std::ofstream(dir / "presets" / "coarse.yaml") << "run: {time_step_s: 5.0e-4}\nstructures:\n  - n_points: [6, 4]\n";
+  const Outcome plain = run_solver("--check " + dir.string());
+  EXPECT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("100 steps"), std::string::npos) << plain.output;
+  const Outcome coarse = run_solver("--check --resolution coarse " + dir.string());
+  EXPECT_EQ(coarse.exit_code, 0) << coarse.output;
+  EXPECT_NE(coarse.output.find("20 steps"), std::string::npos) << coarse.output;
+  EXPECT_NE(coarse.output.find("6 x 4 points"), std::string::npos) << coarse.output;
+  // size_m [0.1, 0.05] kept from case.yaml: spacing min(0.1 / 5, 0.05 / 3)
+  EXPECT_NE(coarse.output.find("spacing 0.01667 m"), std::string::npos) << coarse.output;
+  const Outcome unknown = run_solver("--check --resolution corse " + dir.string());
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("no preset 'corse'"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("Did you mean 'coarse'?"), std::string::npos) << unknown.output;
+}
+
 TEST(RunBehaviour, MissingCaseFolderIsBadInput) {
   const Outcome out = run_solver("/nonexistent/case");
   EXPECT_EQ(out.exit_code, 2);
