@@ -9,6 +9,7 @@
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi bench [structure|transport|coupling|fluid]  run a benchmark (fluid: vs stock pimpleFoam)
+#   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
@@ -139,6 +140,7 @@ case "${1:-help}" in
   bench) shift; cmd_bench "$@" ;;
   schema) prepare; "$BUILD/bin/fsi-structure" --schema ;;
   build) prepare ;;
-  help|-h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, check, test, bench, schema, build, help)" ;;
+  report) shift; prepare; /usr/bin/python3 "$ROOT/scripts/report.py" --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
+  help|-h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, build, help)" ;;
 esac

@@ -34,6 +34,7 @@ struct SheetSetup {
   LinearSolver linear_solver = LinearSolver::automatic;
   TimeScheme time_scheme = TimeScheme::paper;
   double max_stretch_ratio = 1.5;
+  double max_speed_m_per_s = 1000.0;
 };
 
 class LagrangianSheet final : public StructureModel {
@@ -60,6 +61,7 @@ public:
   StructureEnergy energy() const override;
   double max_stretch_ratio() const override { return terms_->max_stretch_ratio(x_); }
   double stretch_limit() const override { return setup_.max_stretch_ratio; }
+  double speed_limit_m_per_s() const override { return setup_.max_speed_m_per_s; }
   int worst_point() const override;
   std::string describe_point(int index) const override;
 

@@ -45,6 +45,7 @@ struct SolverConfig {
   LinearSolver linear_solver = LinearSolver::automatic;
   TimeScheme time_scheme = TimeScheme::paper;
   double max_stretch_ratio = 1.5;
+  double max_speed_m_per_s = 1000.0;
 
   template <class V> void visit(V &v) {
     v.choice("linear_solver", linear_solver,
@@ -56,6 +57,9 @@ struct SolverConfig {
              "of X^{n+1} and X^{n-1}.");
     v.number("max_stretch_ratio", max_stretch_ratio, common::Range{.min = 1.0, .min_exclusive = true, .unit = "1"},
              "Stop the run (diverged) when an edge stretches beyond this ratio of its rest length.");
+    v.number("max_speed_m_per_s", max_speed_m_per_s, common::Range::positive("m/s"),
+             "Stop the run (diverged) when a point moves faster than this: catches a runaway that hardly "
+             "stretches the structure.");
   }
 };
 

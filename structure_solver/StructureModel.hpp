@@ -57,6 +57,9 @@ public:
   virtual double max_stretch_ratio() const = 0;
   /// The configured guard: the run stops when max_stretch_ratio() exceeds it.
   virtual double stretch_limit() const = 0;
+  /// The second guard: the run stops when a point moves faster than this (a runaway that
+  /// barely stretches the structure, e.g. beyond the stability limit of the penalty law).
+  virtual double speed_limit_m_per_s() const = 0;
   /// Index of the point that best explains a divergence (non-finite or most stretched).
   virtual int worst_point() const = 0;
   /// "(i1, i2) = (3, 7)": a point's grid coordinates, for messages.

@@ -76,20 +76,30 @@ void StructureRun::write_state(long step) {
 
 std::optional<Divergence> StructureRun::find_divergence(long step) const {
   for (const auto &s : scene_->structures()) {
-    const bool finite = s->positions_m().allFinite();
+    const bool finite = s->positions_m().allFinite() && s->velocities_m_per_s().allFinite();
     const double stretch = finite ? s->max_stretch_ratio() : NAN;
-    if (finite && stretch <= s->stretch_limit())
+    Eigen::Index fastest = 0;
+    const double speed = finite ? std::sqrt(s->velocities_m_per_s().rowwise().squaredNorm().maxCoeff(&fastest)) : NAN;
+    if (finite && stretch <= s->stretch_limit() && speed <= s->speed_limit_m_per_s())
       continue;
-    const int point = s->worst_point();
+    const bool too_fast = finite && stretch <= s->stretch_limit();
+    const int point = too_fast ? static_cast<int>(fastest) : s->worst_point();
     std::string message = "step " + std::to_string(step) + " (t = " + std::to_string(scene_->time_s()) +
                           " s): structure '" + s->name() + "', " + s->describe_point(point) + ": ";
-    message += finite ? "stretch ratio " + std::to_string(stretch) + " exceeds solver.max_stretch_ratio = " +
-                            std::to_string(s->stretch_limit())
-                      : "position is not finite";
-    message += ". Likely cause: the time step is too large for the stiffness (tension coefficient) or the "
-               "Lagrangian spacing; reduce run.time_step_s (rule Delta s / Delta t >= 100 m/s) or the tension "
-               "coefficient, or use solver.time_scheme: paper.";
-    return Divergence{message};
+    if (!finite)
+      message += "position is not finite";
+    else if (too_fast)
+      message += "speed " + std::to_string(speed) + " m/s exceeds solver.max_speed_m_per_s = " +
+                 std::to_string(s->speed_limit_m_per_s());
+    else
+      message += "stretch ratio " + std::to_string(stretch) + " exceeds solver.max_stretch_ratio = " +
+                 std::to_string(s->stretch_limit());
+    message += too_fast ? ". Likely cause: a coupling too stiff for the time step (penalty law: K dt^2 / rho_1 must "
+                          "stay below 2; lower coupling.stiffness_n_per_m3 or run.time_step_s)"
+                        : ". Likely cause: the time step is too large for the stiffness (tension coefficient) or the "
+                          "Lagrangian spacing; reduce run.time_step_s (Delta s / Delta t above the stretching-wave "
+                          "speed sqrt(2 phi / rho_1), rule of thumb 100 m/s) or the tension coefficient";
+    return Divergence{message + "."};
   }
   return std::nullopt;
 }

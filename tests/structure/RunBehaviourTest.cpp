@@ -181,6 +181,18 @@ TEST(RunBehaviour, DivergenceStopsWithStepPointCauseAndLastGoodState) {
   EXPECT_TRUE(last.allFinite());
 }
 
+TEST(RunBehaviour, ARunawayThatDoesNotStretchIsStoppedByTheSpeedGuard) {
+  // A rigid translation never stretches the sheet: the speed guard catches it (here a sheet
+  // thrown at 50 m/s with a 20 m/s limit).
+  const std::string yaml = with("edges: {s1_min: clamped}", "edges: {s1_min: free}\n    initial: {velocity_m_per_s: [50, 0, 0]}"
+                                                            "\n    solver: {max_speed_m_per_s: 20}");
+  const auto dir = testing::make_case_dir(yaml);
+  const Outcome out = run_solver(dir.string());
+  EXPECT_EQ(out.exit_code, 1) << out.output;
+  EXPECT_NE(out.output.find("exceeds solver.max_speed_m_per_s = 20"), std::string::npos) << out.output;
+  EXPECT_NE(out.output.find("Likely cause: a coupling too stiff"), std::string::npos) << out.output;
+}
+
 TEST(RunBehaviour, InterruptKeepsTheResultsSoFarAndSaysSo) {
   // 400k steps would take minutes; SIGINT after 1 s must stop it with exit code 130, the
   // steps so far in the file and status "interrupted".
