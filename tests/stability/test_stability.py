@@ -190,10 +190,13 @@ class PenaltyLaw(StabilityCase):
         self.assertCleanStop(r)
         s = r.structures["sheet"]
         ke = float(s["kinetic_energy_j"][-1])
+        # The runaway is a rigid mode that hardly stretches the sheet: the speed guard
+        # (solver.max_speed_m_per_s) must catch it within a few growth periods (a = 3.1).
+        self.assertLessEqual(S.diverged_step(r), 20)
         self.rows.append({"case": "penalty law", "quantity": "K_fsi = 1e8 (a = 3.1)", "fixed": "dt = 5e-05 s",
                           "stable": None, "unstable": 1e8, "predicted": None, "ds_over_dt": None,
                           "note": "stops at step %d; last saved state finite but KE = %.3g J, max abs X = %.3g m "
-                                  "(the instability is a rigid mode: only the stretch check stops it)"
+                                  "(a rigid mode that hardly stretches the sheet: the speed guard stops it)"
                                   % (S.diverged_step(r), ke, float(np.abs(s["position_m"][-1]).max())),
                           "_order": 2})
 
