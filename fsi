@@ -89,6 +89,10 @@ cmd_run() {
     if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$out/summary.png" 2>/dev/null; then
       say "picture: $out/summary.png"
     fi
+    # OpenFOAM runs: |U| on a slice through the sheet at a few times (scripts/plot_flow.py).
+    if [ -d "$out/openfoam" ] && /usr/bin/python3 "$ROOT/scripts/plot_flow.py" "$out" >/dev/null 2>&1; then
+      say "flow pictures: $(ls "$out"/flow_t*.png | tr '\n' ' ')"
+    fi
   fi
   return "$status"
 }
