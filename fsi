@@ -52,11 +52,16 @@ build() {
     cmake -S "$ROOT" -B "$dir" -G Ninja "${args[@]}" >"$dir/configure.log" 2>&1 ||
       { cat "$dir/configure.log" >&2; die "CMake configuration failed (log: $dir/configure.log)"; }
   fi
-  if ninja -C "$dir" -n "${targets[@]}" 2>/dev/null | grep -q "no work to do"; then return 0; fi
-  say "building in $dir (log: $dir/build.log)"
+  # Quiet when there is nothing to do. (A dry run cannot tell: the globbed case list makes
+  # ninja re-check the configuration on every call.) Say something once the build has run
+  # for two seconds, i.e. when there is real work.
   local target_args=()
   [ ${#targets[@]} -gt 0 ] && target_args=(--target "${targets[@]}")
-  if ! cmake --build "$dir" -j "$JOBS" "${target_args[@]}" >"$dir/build.log" 2>&1; then
+  cmake --build "$dir" -j "$JOBS" "${target_args[@]}" >"$dir/build.log" 2>&1 &
+  local pid=$! ticks=0
+  while kill -0 "$pid" 2>/dev/null && [ "$ticks" -lt 20 ]; do sleep 0.1; ticks=$((ticks + 1)); done
+  if kill -0 "$pid" 2>/dev/null; then say "building in $dir (log: $dir/build.log)"; fi
+  if ! wait "$pid"; then
     grep -E "error|Error" -A3 "$dir/build.log" | head -60 >&2
     die "build failed (full log: $dir/build.log)"
   fi
