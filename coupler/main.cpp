@@ -57,8 +57,7 @@ int main(int argc, char **argv) {
   fsi::common::setup_logging("coupler", verbose);
   try {
     auto config = fsi::structure::CaseConfig::load(case_dir, preset);
-    const std::filesystem::path out =
-        output_dir.empty() ? std::filesystem::path(case_dir) / config.run.output_directory : std::filesystem::path(output_dir);
+    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
     if (plan)
       return print_plan(config, out);
     if (!config.is_coupled()) {

@@ -10,7 +10,7 @@
 
 #include "FoamFlow.hpp"
 #include "OpenFoamFluidModel.hpp"
-#include "structure_solver/CaseConfig.hpp"
+#include "structure_solver/ParticipantSettings.hpp"
 #include "common/ConfigError.hpp"
 #include "common/MotionFactory.hpp"
 #include "common/Logging.hpp"
@@ -151,19 +151,12 @@ int main(int argc, char **argv) {
       spdlog::error("case {} has no `fluid.openfoam` section: there is no OpenFOAM fluid to run", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    const std::filesystem::path out = output_dir.empty()
-                                          ? std::filesystem::path(case_dir) / config.run.output_directory
-                                          : std::filesystem::path(output_dir);
+    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
     std::filesystem::create_directories(out);
     const int n_ranks = config.fluid->openfoam->mpi_ranks;
     if (!mpi_rank)
       fsi::common::add_log_file(out / "fluid.log");
-    fsi::proto::SessionSettings settings;
-    settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
-    settings.coupler.check_connectable();
-    settings.case_fingerprint = config.fingerprint();
-    settings.handshake_timeout =
-        std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
+    auto settings = fsi::structure::participant_settings(config, endpoint);
     const auto foam_case = mpi_rank ? out / "openfoam"
                                     : prepare_openfoam_case(case_dir, config.fluid->openfoam->case_directory, out);
     if (n_ranks > 1 && !mpi_rank) {

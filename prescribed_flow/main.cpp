@@ -8,7 +8,7 @@
 #include "FlowFactory.hpp"
 #include "PrescribedFlowModel.hpp"
 #include "proto/FluidParticipant.hpp"
-#include "structure_solver/CaseConfig.hpp"
+#include "structure_solver/ParticipantSettings.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 #include "proto/TransportError.hpp"
@@ -48,17 +48,10 @@ int main(int argc, char **argv) {
       spdlog::error("case {} has no `fluid.prescribed` section: there is no prescribed flow to run", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    const std::filesystem::path out = output_dir.empty()
-                                          ? std::filesystem::path(case_dir) / config.run.output_directory
-                                          : std::filesystem::path(output_dir);
+    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
     std::filesystem::create_directories(out);
     fsi::common::add_log_file(out / "fluid.log");
-    fsi::proto::SessionSettings settings;
-    settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
-    settings.coupler.check_connectable();
-    settings.case_fingerprint = config.fingerprint();
-    settings.handshake_timeout =
-        std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
+    auto settings = fsi::structure::participant_settings(config, endpoint);
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed));
@@ -68,10 +61,7 @@ int main(int argc, char **argv) {
     spdlog::error("{}", e.what());
     return fsi::common::exit_code_bad_input;
   } catch (const fsi::proto::TransportError &e) {
-    spdlog::error("{}{}", e.what(),
-                  endpoint.empty() ? " (coupling.endpoint of the case; port 0 means 'any free port', which only "
-                                     "./fsi run can hand over: give --endpoint or a fixed port)"
-                                   : "");
+    spdlog::error("{}", e.what());
     return fsi::common::exit_code_bad_input;
   } catch (const std::exception &e) {
     spdlog::error("prescribed flow failed: {}", e.what());

@@ -55,6 +55,12 @@ struct CaseConfig {
   /// The presets a case offers (file names in case_dir/presets without .yaml), sorted.
   static std::vector<std::string> presets(const std::filesystem::path &case_dir);
 
+  /// Where the processes of a run write: `override_dir` when given (-o DIR), else
+  /// case_dir / run.output_directory.
+  std::filesystem::path output_directory(const std::filesystem::path &case_dir, const std::string &override_dir) const {
+    return override_dir.empty() ? case_dir / run.output_directory : std::filesystem::path(override_dir);
+  }
+
   /// True when the scene has a fluid: then a coupler and a fluid participant run too.
   bool is_coupled() const { return fluid.has_value(); }
   /// Hash (16 hex digits) of the effective configuration without what may differ between

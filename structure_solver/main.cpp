@@ -11,6 +11,7 @@
 
 #include "CaseConfig.hpp"
 #include "SchemaDoc.hpp"
+#include "ParticipantSettings.hpp"
 #include "StructureParticipant.hpp"
 #include "prescribed_flow/FlowFactory.hpp"
 #include "StructureRun.hpp"
@@ -77,9 +78,7 @@ int main(int argc, char **argv) {
     if (check)
       return check_case(case_dir, preset);
     auto config = fsi::structure::CaseConfig::load(case_dir, preset);
-    const std::filesystem::path out = output_dir.empty()
-                                          ? std::filesystem::path(case_dir) / config.run.output_directory
-                                          : std::filesystem::path(output_dir);
+    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
     if (!coupled) {
       if (config.is_coupled())
         spdlog::warn("case {} has a fluid section; running the structure alone (no fluid load). Use ./fsi run "
@@ -92,11 +91,7 @@ int main(int argc, char **argv) {
       spdlog::error("--coupled: case {} has no `fluid` section, so there is nothing to couple to", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    fsi::proto::SessionSettings settings;
-    settings.coupler = fsi::proto::Endpoint::parse(endpoint.empty() ? config.coupling->endpoint : endpoint);
-    settings.handshake_timeout =
-        std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
-    settings.coupler.check_connectable();
+    auto settings = fsi::structure::participant_settings(config, endpoint);
     fsi::structure::StructureRun run(std::move(config), case_dir, out);
     fsi::structure::StructureParticipant participant(run, std::move(settings));
     return participant.run();
@@ -104,10 +99,7 @@ int main(int argc, char **argv) {
     spdlog::error("{}", e.what());
     return fsi::common::exit_code_bad_input;
   } catch (const fsi::proto::TransportError &e) {
-    spdlog::error("{}{}", e.what(),
-                  endpoint.empty() ? " (coupling.endpoint of the case; port 0 means 'any free port', which only "
-                                     "./fsi run can hand over: give --endpoint or a fixed port)"
-                                   : "");
+    spdlog::error("{}", e.what());
     return fsi::common::exit_code_bad_input;
   } catch (const fsi::structure::collision::MeshError &e) {
     spdlog::error("{}", e.what());
