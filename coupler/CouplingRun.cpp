@@ -378,12 +378,7 @@ void CouplingRun::record_step(long n) {
   for (int k = 0; k < 3; ++k)
     force[k] = total[k];
   results_->write_step(n, static_cast<double>(n) * dt_, timings_, force);
-  timings_sum_.step_wall_s += timings_.step_wall_s;
-  timings_sum_.interpolation_s += timings_.interpolation_s;
-  timings_sum_.fluid_solve_s += timings_.fluid_solve_s;
-  timings_sum_.structure_solve_s += timings_.structure_solve_s;
-  timings_sum_.coupling_law_s += timings_.coupling_law_s;
-  timings_sum_.waiting_s += timings_.waiting_s;
+  timings_sum_ += timings_;
   ++timings_count_;
 }
 

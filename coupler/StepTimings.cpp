@@ -11,6 +11,16 @@ double StepTimings::overhead_s() const {
 
 double StepTimings::idle_s() const { return std::abs(fluid_solve_s - structure_solve_s); }
 
+StepTimings &StepTimings::operator+=(const StepTimings &o) {
+  step_wall_s += o.step_wall_s;
+  interpolation_s += o.interpolation_s;
+  fluid_solve_s += o.fluid_solve_s;
+  structure_solve_s += o.structure_solve_s;
+  coupling_law_s += o.coupling_law_s;
+  waiting_s += o.waiting_s;
+  return *this;
+}
+
 std::array<double, 8> StepTimings::values() const {
   return {step_wall_s,    interpolation_s, fluid_solve_s, structure_solve_s,
           coupling_law_s, waiting_s,       overhead_s(),  idle_s()};

@@ -23,6 +23,8 @@ struct StepTimings {
                                                          "structure_solve_s", "coupling_law_s", "waiting_s",
                                                          "overhead_s",      "idle_s"};
   std::array<double, 8> values() const;
+  /// Adds the measured parts (not the derived ones), to average over several steps.
+  StepTimings &operator+=(const StepTimings &other);
 };
 
 } // namespace fsi::coupler

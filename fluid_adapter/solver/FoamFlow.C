@@ -155,24 +155,23 @@ void OpenFoamFlow::broadcast_from_master(std::vector<double> &data) const {
   data.assign(list.begin(), list.end());
 }
 
-void OpenFoamFlow::sum_over_ranks(double *data, std::size_t n) const {
+/// Element-wise reduction over the ranks with OpenFOAM's combine operation `op`, on every rank.
+template <class CombineOp> void combine_over_ranks(double *data, std::size_t n, const CombineOp &op) {
   if (!Foam::Pstream::parRun())
     return;
   Foam::List<Foam::scalar> list(static_cast<Foam::label>(n));
   forAll(list, i) list[i] = data[i];
-  Foam::Pstream::listCombineGather(list, Foam::plusEqOp<Foam::scalar>());
+  Foam::Pstream::listCombineGather(list, op);
   Foam::Pstream::listCombineScatter(list);
   forAll(list, i) data[i] = list[i];
 }
 
+void OpenFoamFlow::sum_over_ranks(double *data, std::size_t n) const {
+  combine_over_ranks(data, n, Foam::plusEqOp<Foam::scalar>());
+}
+
 void OpenFoamFlow::min_over_ranks(double *data, std::size_t n) const {
-  if (!Foam::Pstream::parRun())
-    return;
-  Foam::List<Foam::scalar> list(static_cast<Foam::label>(n));
-  forAll(list, i) list[i] = data[i];
-  Foam::Pstream::listCombineGather(list, Foam::minEqOp<Foam::scalar>());
-  Foam::Pstream::listCombineScatter(list);
-  forAll(list, i) data[i] = list[i];
+  combine_over_ranks(data, n, Foam::minEqOp<Foam::scalar>());
 }
 
 void OpenFoamFlow::cell_velocities(PointArray &u) const {
