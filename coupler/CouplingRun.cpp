@@ -338,7 +338,6 @@ void CouplingRun::advance_fluid_and_structure(long n) {
                                                  std::to_string(n) + ": " + e.what());
     }
   }
-  ++steps_done_;
 }
 
 // ---- helpers ------------------------------------------------------------------------------

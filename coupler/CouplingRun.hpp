@@ -76,7 +76,6 @@ private:
   StepTimings timings_sum_;   ///< since the last progress line
   long timings_count_ = 0;
   std::chrono::steady_clock::time_point start_, last_progress_;
-  long steps_done_ = 0;
 };
 
 } // namespace fsi::coupler
