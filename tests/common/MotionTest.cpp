@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 namespace fsi::common {
 namespace {
 
@@ -46,7 +48,11 @@ TEST(AxisRotation, PoseAndVelocityMatchTheClosedForm) {
 }
 
 std::filesystem::path write_table(const std::string &text) {
-  const auto path = std::filesystem::temp_directory_path() / ("fsi-motion-" + std::to_string(std::rand()) + ".csv");
+  // Unique per process and call: ctest runs the tests of this file in parallel processes
+  // (an unseeded std::rand() gave them all the same name, and they overwrote each other).
+  static int calls = 0;
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("fsi-motion-" + std::to_string(::getpid()) + "-" + std::to_string(++calls) + ".csv");
   std::ofstream(path) << text;
   return path;
 }
