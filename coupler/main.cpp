@@ -11,6 +11,8 @@
 
 #include "proto/ZmqContext.hpp"
 
+#include "structure_solver/CaseOptions.hpp"
+
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -28,6 +30,8 @@ int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::
     std::cout << "process coupler fsi-coupler\n";
     std::cout << "process structure fsi-structure\n";
     std::cout << "process fluid " << config.fluid->executable() << "\n";
+    if (config.fluid->openfoam && config.fluid->openfoam->precursor_time_s > 0.0)
+      std::cout << "precursor fluid\n"; // fsi-openfoam-fluid --precursor, before the others start
   } else {
     std::cout << "process structure fsi-structure\n";
   }
@@ -39,25 +43,20 @@ int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-coupler: the coupling daemon of a fluid-structure run"};
-  std::string case_dir, output_dir, endpoint;
+  fsi::structure::CaseOptions options;
+  std::string endpoint;
   bool plan = false, verbose = false;
-  app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
-  app.add_option("-o,--output-dir", output_dir, "Results folder (overrides run.output_directory)");
+  options.add_to(app);
   app.add_option("--endpoint", endpoint, "Listen here instead of coupling.endpoint");
   app.add_flag("--plan", plan, "Print the output folder and the processes this case needs, then exit");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
-  std::string preset;
-  app.add_option("--resolution,--preset", preset,
-                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError &e) {
-    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
-  }
+  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+    return code;
   fsi::common::setup_logging("coupler", verbose);
   try {
-    auto config = fsi::structure::CaseConfig::load(case_dir, preset);
-    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
+    auto config = options.load();
+    const std::string &case_dir = options.case_dir;
+    const std::filesystem::path out = options.output_directory(config);
     if (plan)
       return print_plan(config, out);
     if (!config.is_coupled()) {

@@ -17,6 +17,8 @@ struct OpenFoamConfig {
   bool normalise_kernel = true;
   double penalization_time_s = 1.0e-6;
   int mpi_ranks = 1;
+  double precursor_time_s = 0.0;
+  double precursor_time_step_s = 0.0;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -39,6 +41,14 @@ struct OpenFoamConfig {
     v.integer("mpi_ranks", mpi_ranks, common::Range::at_least(1, "1"),
               "MPI ranks of the fluid: > 1 decomposes the OpenFOAM case (decomposePar, hierarchical along x) and "
               "runs the fluid with mpirun; only rank 0 talks to the coupler.");
+    v.number("precursor_time_s", precursor_time_s, common::Range::non_negative("s"),
+             "Precursor run (section 3.2): the flow with the rigid bodies alone (no structure, no coupler) for this "
+             "time before the coupled run starts; its last fields (U, p, phi, turbulence) are the coupled run's "
+             "initial fields. Kept in <output>/precursor and reused while the fluid, the collision surfaces and the "
+             "OpenFOAM case are unchanged. 0: none.");
+    v.number("precursor_time_step_s", precursor_time_step_s, common::Range::non_negative("s"),
+             "Time step of the precursor run (no structure, so only the flow's Courant number limits it). 0: "
+             "run.time_step_s.");
   }
 };
 

@@ -182,6 +182,10 @@ void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigi
   // then per unit density for OpenFOAM's kinematic momentum equation (Eq. 1: +f_fsi).
   acceleration_ = stencil_->spread(force_density_, point_measures_) / config_.density_kg_per_m3;
   flow_.set_fsi_acceleration(acceleration_);
+  step_flow(time_s, dt_s, loads);
+}
+
+void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
   const double t_next = time_s + dt_s;
   if (!bodies_.empty())
     penalize_rigid_bodies(t_next);
@@ -192,6 +196,14 @@ void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigi
   penalization_force_ = penalization_acceleration_ * config_.density_kg_per_m3; // N/m^3 on the fluid
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     loads.push_back(rigid_body_load(b, t_next));
+}
+
+std::vector<rigid::BodyLoad> OpenFoamFluidModel::advance_without_structure(double time_s, double dt_s) {
+  if (acceleration_.rows() != cells_.n_cells()) // no structure: no FSI source
+    flow_.set_fsi_acceleration(acceleration_ = PointArray::Zero(cells_.n_cells(), 3));
+  std::vector<rigid::BodyLoad> loads;
+  step_flow(time_s, dt_s, loads);
+  return loads;
 }
 
 void OpenFoamFluidModel::penalize_rigid_bodies(double time_s) {

@@ -44,12 +44,17 @@ public:
   /// Ranks other than the master: serve the master's broadcasts until it finishes.
   void follow();
 
+  /// The precursor run (no structure, no coupler): one step of the flow with its rigid bodies
+  /// from time_s to time_s + dt_s, collective over the ranks. Returns the rigid-body loads.
+  std::vector<rigid::BodyLoad> advance_without_structure(double time_s, double dt_s);
+
 private:
   enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
   void broadcast(Command command, std::vector<double> &payload) const;
   void do_start(const std::vector<double> &point_measures);
   void do_interpolate(PointArray &u_m_per_s);
   void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
+  void step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void kernel_widths(Eigen::VectorXd &widths_m) const;
   void penalize_rigid_bodies(double time_s);
   rigid::BodyLoad rigid_body_load(std::size_t body, double time_s);

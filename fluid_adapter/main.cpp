@@ -1,7 +1,11 @@
 // fsi-openfoam-fluid: the OpenFOAM fluid participant (PIMPLE, incompressible) with the diffuse
 // immersed-boundary forcing of Eqs. (6-8). The case's `fluid.openfoam.case_directory` is
 // copied to <output>/openfoam, meshed with blockMesh when it has no mesh, and run there.
-//   fsi-openfoam-fluid CASE_DIR [--endpoint E] [-o DIR] [-v]
+//   fsi-openfoam-fluid CASE_DIR [--endpoint E] [-o DIR] [-v] [--precursor]
+// With fluid.openfoam.precursor_time_s > 0 the flow first runs alone with its rigid bodies in
+// <output>/precursor (section 3.2), once: the result is reused while what it depends on is
+// unchanged (Precursor.hpp). --precursor runs only that (the launcher does so before it starts
+// the coupled processes, so the coupler's handshake does not wait for it).
 // With fluid.openfoam.mpi_ranks = N > 1 it prepares and decomposes the case, then replaces
 // itself by `mpirun -np N fsi-openfoam-fluid ... --mpi-rank` (same process id, so signals and
 // the exit code reach the launcher); rank 0 talks to the coupler, the others follow it.
@@ -10,6 +14,7 @@
 
 #include "FoamFlow.hpp"
 #include "OpenFoamFluidModel.hpp"
+#include "Precursor.hpp"
 #include "structure_solver/ParticipantSettings.hpp"
 #include "common/ConfigError.hpp"
 #include "common/MotionFactory.hpp"
@@ -17,6 +22,8 @@
 #include "proto/FluidParticipant.hpp"
 #include "proto/TransportError.hpp"
 #include "proto/ZmqContext.hpp"
+
+#include "structure_solver/CaseOptions.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -26,7 +33,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sys/wait.h>
 #include <unistd.h>
+#include <chrono>
 #include <iostream>
 
 namespace {
@@ -95,6 +104,84 @@ void decompose(const std::filesystem::path &foam_case, int n) {
     throw std::runtime_error("decomposePar failed: see " + (foam_case / "log.decomposePar").string());
 }
 
+/// Runs this program again with extra arguments and waits for it; a stop signal received
+/// meanwhile is passed on. Returns its exit code.
+int run_self(int argc, char **argv, const std::vector<std::string> &extra) {
+  std::vector<std::string> args = {std::filesystem::read_symlink("/proc/self/exe").string()};
+  for (int i = 1; i < argc; ++i)
+    args.emplace_back(argv[i]);
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::vector<char *> pointers;
+  for (auto &a : args)
+    pointers.push_back(a.data());
+  pointers.push_back(nullptr);
+  spdlog::default_logger()->flush();
+  const pid_t child = fork();
+  if (child < 0)
+    throw std::runtime_error(std::string("cannot start the precursor run: ") + std::strerror(errno));
+  if (child == 0) {
+    execv(pointers[0], pointers.data());
+    _exit(127);
+  }
+  int status = 0;
+  bool forwarded = false;
+  while (waitpid(child, &status, 0) < 0) {
+    if (errno != EINTR)
+      throw std::runtime_error(std::string("waiting for the precursor run: ") + std::strerror(errno));
+    const int signal = fsi::proto::FluidParticipant::stop_signal();
+    if (signal != 0 && !forwarded) {
+      kill(child, signal);
+      forwarded = true;
+    }
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/// The precursor's time loop on every rank: the flow with its rigid bodies, no structure.
+/// Progress (and the rigid-body loads, in precursor/forces.csv) from the master.
+int run_precursor_steps(fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamFlow &flow,
+                        const fsi::fluid::Precursor &precursor) {
+  using Clock = std::chrono::steady_clock;
+  const double dt = precursor.time_step_s(), end = precursor.end_time_s();
+  const long n_steps = std::lround(std::ceil(end / dt - 1e-9));
+  std::ofstream forces;
+  const auto start = Clock::now();
+  auto last_report = start;
+  for (long step = 0; step < n_steps; ++step) {
+    if (fsi::proto::FluidParticipant::stop_signal() != 0) {
+      spdlog::warn("precursor interrupted at t = {:.6g} s; its result is not kept", step * dt);
+      return 130;
+    }
+    const double t = step * dt;
+    const auto loads = model.advance_without_structure(t, std::min(dt, end - t));
+    if (flow.rank() != 0)
+      continue;
+    if (step == 0 && !loads.empty()) {
+      forces.open(precursor.folder() / "forces.csv");
+      forces << "time_s";
+      for (std::size_t b = 0; b < loads.size(); ++b)
+        forces << ",body" << b << ".fx_n,body" << b << ".fy_n,body" << b << ".fz_n";
+      forces << "\n";
+    }
+    if (forces.is_open()) {
+      forces << flow.time_s();
+      for (const auto &load : loads)
+        forces << "," << load.force_n.x() << "," << load.force_n.y() << "," << load.force_n.z();
+      forces << "\n";
+    }
+    const auto now = Clock::now();
+    if (now - last_report > std::chrono::seconds(5) || step + 1 == n_steps) {
+      last_report = now;
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double eta = wall / static_cast<double>(step + 1) * static_cast<double>(n_steps - step - 1);
+      spdlog::info("precursor: t = {:.4g} of {:.4g} s, step {}/{}, {:.1f} ms/step, ETA {:.0f} s", flow.time_s(), end,
+                   step + 1, n_steps, 1e3 * wall / static_cast<double>(step + 1), eta);
+    }
+  }
+  flow.write_now();
+  return 0;
+}
+
 /// Replaces this process by mpirun running n ranks of this program on the prepared case.
 [[noreturn]] void exec_mpirun(int n, int argc, char **argv) {
   std::vector<std::string> args = {"mpirun", "-np", std::to_string(n), "--oversubscribe", "-x", "WM_PROJECT_DIR",
@@ -121,22 +208,19 @@ void decompose(const std::filesystem::path &foam_case, int n) {
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-openfoam-fluid: OpenFOAM fluid participant with the diffuse immersed boundary"};
-  std::string case_dir, output_dir, endpoint;
-  bool verbose = false, mpi_rank = false;
-  app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
+  fsi::structure::CaseOptions options;
+  std::string endpoint;
+  bool verbose = false, mpi_rank = false, precursor_only = false;
+  options.add_to(app);
   app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
-  app.add_option("-o,--output-dir", output_dir, "Results folder (default: run.output_directory)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
   app.add_flag("--mpi-rank", mpi_rank, "Internal: this process is one rank under mpirun (the case is prepared)")
       ->group("");
-  std::string preset;
-  app.add_option("--resolution,--preset", preset,
-                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError &e) {
-    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
-  }
+  app.add_flag("--precursor", precursor_only,
+               "Run only the precursor (fluid.openfoam.precursor_time_s: the flow with its rigid bodies, no "
+               "structure, no coupler) in <output>/precursor, unless it is up to date");
+  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+    return code;
   fsi::common::setup_logging("fluid", verbose);
   // Debian's OpenFOAM finds its etc/ through WM_PROJECT_DIR, read while its libraries load
   // (before main): the launcher sets it; blockMesh, started from here, needs it as well.
@@ -146,28 +230,70 @@ int main(int argc, char **argv) {
     return fsi::common::exit_code_bad_input;
   }
   try {
-    const auto config = fsi::structure::CaseConfig::load(case_dir, preset);
+    const auto config = options.load();
+    const std::string &case_dir = options.case_dir;
     if (!config.fluid || !config.fluid->openfoam) {
       spdlog::error("case {} has no `fluid.openfoam` section: there is no OpenFOAM fluid to run", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
+    const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     const int n_ranks = config.fluid->openfoam->mpi_ranks;
-    if (!mpi_rank)
-      fsi::common::add_log_file(out / "fluid.log");
-    auto settings = fsi::structure::participant_settings(config, endpoint);
-    const auto foam_case = mpi_rank ? out / "openfoam"
-                                    : prepare_openfoam_case(case_dir, config.fluid->openfoam->case_directory, out);
-    if (n_ranks > 1 && !mpi_rank) {
-      decompose(foam_case, n_ranks);
-      exec_mpirun(n_ranks, argc, argv);
+    const fsi::fluid::Precursor precursor(config, case_dir, out);
+    if (precursor_only && !precursor.wanted()) {
+      spdlog::error("case {}: --precursor needs fluid.openfoam.precursor_time_s > 0", case_dir);
+      return fsi::common::exit_code_bad_input;
+    }
+    const std::filesystem::path base = precursor_only ? precursor.folder() : out;
+    if (!mpi_rank) {
+      std::filesystem::create_directories(base);
+      fsi::common::add_log_file(base / "fluid.log");
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    auto flow = fsi::fluid::FoamFlow::create(
-        {std::filesystem::absolute(foam_case), config.run.time_step_s, config.run.end_time_s, mpi_rank});
+    if (precursor_only && !mpi_rank && precursor.is_current()) {
+      spdlog::info("precursor: {} is up to date (fingerprint {}): reused", precursor.folder().string(),
+                   precursor.fingerprint());
+      return 0;
+    }
+    std::filesystem::path foam_case = base / "openfoam";
+    if (!mpi_rank) {
+      if (precursor_only)
+        precursor.invalidate();
+      foam_case = prepare_openfoam_case(case_dir, config.fluid->openfoam->case_directory, base);
+      if (!precursor_only && precursor.wanted() && !precursor.is_current()) {
+        spdlog::info("precursor: running the flow alone for {} s first (fsi-openfoam-fluid --precursor)",
+                     precursor.end_time_s());
+        const int code = run_self(argc, argv, {"--precursor"});
+        if (code != 0 || !precursor.is_current())
+          throw std::runtime_error("the precursor run failed (exit code " + std::to_string(code) + "; see " +
+                                   (precursor.folder() / "fluid.log").string() + ")");
+      }
+      if (n_ranks > 1)
+        decompose(foam_case, n_ranks);
+      if (!precursor_only && precursor.wanted())
+        spdlog::info("precursor: {} fields of t = {} s installed as the initial fields",
+                     precursor.install_fields(foam_case, n_ranks), precursor.end_time_s());
+      if (n_ranks > 1)
+        exec_mpirun(n_ranks, argc, argv);
+    }
+    const double dt = precursor_only ? precursor.time_step_s() : config.run.time_step_s;
+    const double end_time = precursor_only ? precursor.end_time_s() : config.run.end_time_s;
+    auto flow = fsi::fluid::FoamFlow::create({std::filesystem::absolute(foam_case), dt, end_time, mpi_rank});
     fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, rigid_bodies(config));
+    if (precursor_only) {
+      if (flow->rank() != 0)
+        spdlog::set_level(spdlog::level::warn);
+      else if (mpi_rank)
+        fsi::common::add_log_file(base / "fluid.log");
+      spdlog::info("precursor: {} to t = {} s, dt = {} s", flow->describe(), end_time, dt);
+      const int code = run_precursor_steps(model, *flow, precursor);
+      if (code == 0 && flow->rank() == 0) {
+        precursor.mark_complete();
+        spdlog::info("precursor: fields of t = {} s written in {}", flow->time_s(), foam_case.string());
+      }
+      return code;
+    }
     if (flow->rank() != 0) { // MPI: only rank 0 talks to the coupler
       spdlog::set_level(spdlog::level::warn);
       model.follow();
@@ -175,6 +301,7 @@ int main(int argc, char **argv) {
     }
     if (mpi_rank)
       fsi::common::add_log_file(out / "fluid.log");
+    auto settings = fsi::structure::participant_settings(config, endpoint);
     fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
   } catch (const fsi::common::ConfigError &e) {

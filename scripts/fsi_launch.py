@@ -91,6 +91,8 @@ def parse_args(argv):
                              "default: the case file's coupling.endpoint")
     parser.add_argument("--resolution", "--preset", metavar="NAME", dest="resolution",
                         help="preset of the case (presets/NAME.yaml over case.yaml): coarse, medium, fine...")
+    parser.add_argument("--end-time", metavar="SECONDS", type=float, dest="end_time",
+                        help="stop at this simulated time instead of run.end_time_s (a quick look)")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="show every line of every process (structure only: debug logging)")
     parser.add_argument("--print-output-dir", action="store_true",
@@ -103,9 +105,10 @@ def parse_args(argv):
 # The plan
 
 class Plan:
-    def __init__(self, output_dir, processes):
+    def __init__(self, output_dir, processes, precursors=()):
         self.output_dir = output_dir
         self.processes = processes  # [(name, executable path)] in the coupler's order
+        self.precursors = list(precursors)  # participants with a run of their own to do first
 
     def names(self):
         return [name for name, _ in self.processes]
@@ -122,9 +125,10 @@ def executable_in(bin_dir, name):
 
 
 def output_args(args):
-    """Options every process gets: the output folder and the case preset, if given."""
+    """Options every process gets: the output folder, the case preset and the end time, if given."""
     extra = ["-o", args.output_dir] if args.output_dir else []
-    return extra + (["--resolution", args.resolution] if args.resolution else [])
+    extra += ["--resolution", args.resolution] if args.resolution else []
+    return extra + (["--end-time", repr(args.end_time)] if args.end_time else [])
 
 
 def read_plan(args):
@@ -140,7 +144,7 @@ def read_plan(args):
         sys.stderr.flush()
         code = result.returncode if result.returncode > 0 else 128 - result.returncode
         raise UserError("", code)  # the coupler has said why
-    output_dir, processes = None, []
+    output_dir, processes, precursors = None, [], []
     for line in result.stdout.decode("utf-8", "replace").splitlines():
         words = line.split(None, 2) if line.strip() else []
         if not words:
@@ -152,10 +156,30 @@ def read_plan(args):
                 raise UserError("unexpected line from '%s --plan': %s" % (coupler, line),
                                 EXIT_RUN_FAILED)
             processes.append((words[1], executable_in(args.bin_dir, words[2].strip())))
+        elif words[0] == "precursor" and len(words) >= 2:
+            precursors.append(words[1])
         # other lines are for other readers: ignored
     if output_dir is None or not processes:
         raise UserError("'%s --plan' named no output folder or no process" % coupler, EXIT_RUN_FAILED)
-    return Plan(output_dir, processes)
+    return Plan(output_dir, processes, precursors)
+
+
+def run_precursors(args, plan):
+    """A participant's precursor (the OpenFOAM flow alone with its rigid bodies, section 3.2)
+    runs to completion before the coupled processes start, so that the coupler's handshake does
+    not wait for it. The participant skips it when its earlier result is still valid."""
+    for name in plan.precursors:
+        command = command_for(name, plan.executable(name), args, None, coupled=True) + ["--precursor"]
+        if args.verbose:
+            command.append("-v")
+        say("%s: precursor run (%s)" % (name, " ".join(command[1:])))
+        code = subprocess.call(command, stdin=subprocess.DEVNULL)
+        if code != 0:
+            if code < 0:
+                code = 128 - code
+            raise UserError("%s: the precursor run failed with exit code %d (log: %s)"
+                            % (name, code, os.path.join(plan.output_dir, "precursor", "%s.log" % name)),
+                            code if code in (EXIT_BAD_INPUT, EXIT_INTERRUPTED) else EXIT_RUN_FAILED)
 
 
 def command_for(name, executable, args, endpoint, coupled):
@@ -417,12 +441,14 @@ def main(argv):
             raise UserError("unknown participant '%s' (this case has: %s)"
                             % (args.participant, ", ".join(plan.names())))
         name = args.participant
+        run_precursors(args, Plan(plan.output_dir, plan.processes, [n for n in plan.precursors if n == name]))
         exec_process(command_for(name, plan.executable(name), args, args.endpoint, coupled))
 
     if not coupled:
         name = plan.names()[0]
         exec_process(command_for(name, plan.executable(name), args, None, coupled=False))
 
+    run_precursors(args, plan)
     return CoupledRun(args, plan).run()
 
 

@@ -13,17 +13,23 @@ StaticCube: a uniform stream through a channel past a static penalized cube, tau
   of the fluid on the cube (the drag, along the stream) agrees with the momentum balance of the
   channel (inlet minus outlet momentum flux and pressure).
 
+Precursor: the same cube channel with fluid.openfoam.precursor_time_s: the flow runs alone with
+  the cube first (section 3.2); the coupled run starts from its last fields (bit-identical copies,
+  and the drag on the cube continues from the precursor's instead of starting cold); a second run
+  with a different structure reuses the precursor; a different precursor time runs it again.
+
 Each test prints its measured errors, loads and wall time (ctest -V shows them).
 """
 
 import math
 import os
+import subprocess
 import sys
 import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from penalization_support import (Block, PenalizationTest, box_triangles, bystander_sheet,  # noqa: E402
+from penalization_support import (BIN_DIR, LAUNCHER, PYTHON, Block, PenalizationTest, box_triangles, bystander_sheet,  # noqa: E402
                                   cylinder_triangles, latest_time_dir, read_internal_field,
                                   rigid_body_loads, tube_triangles, write_case, write_openfoam_case,
                                   write_stl, h5py, np)
@@ -224,6 +230,86 @@ class StaticCube(PenalizationTest):
         self.assertGreater(cd, 1.0)                # a bluff body at Re 30
         self.assertLess(cd, 6.0)
         self.assertAlmostEqual(drag / balance, 1.0, delta=0.03)
+
+
+class Precursor(PenalizationTest):
+    """fluid.openfoam.precursor_time_s: run once, installed, reused, invalidated."""
+    N = (20, 10, 10)                         # h = 10 mm: the cube is 3 cells across
+    PRE_DT, PRE_END = 0.01, 0.4              # the precursor: 0.2 s of flow-through (2 channel lengths)
+    DT, END = 0.01, 0.04                     # the coupled run: 4 steps, the precursor's time step
+
+    def write(self, case, precursor_end, sheet_corner):
+        block = Block([0, 0, 0], [StaticCube.LENGTH, StaticCube.WIDTH, StaticCube.WIDTH], self.N)
+        if not os.path.isdir(os.path.join(case, "openfoam")):
+            os.makedirs(case)
+            patches = {"inlet": ("patch", ["xmin"]), "outlet": ("patch", ["xmax"]),
+                       "walls": ("wall", ["ymin", "ymax", "zmin", "zmax"])}
+            u_in = StaticCube.U_IN
+            write_openfoam_case(os.path.join(case, "openfoam"), block, patches, StaticCube.NU, (u_in, 0, 0),
+                                {"inlet": "type fixedValue; value uniform (%r 0 0);" % u_in,
+                                 "outlet": "type zeroGradient;", "walls": "type slip;"},
+                                {"inlet": "type zeroGradient;", "outlet": "type fixedValue; value uniform 0;",
+                                 "walls": "type zeroGradient;"})
+            write_stl(os.path.join(case, "cube.stl"), box_triangles(StaticCube.CUBE_LO, StaticCube.CUBE_HI), "cube")
+        write_case(case, self.DT, self.END, bystander_sheet(sheet_corner, [0, 1, 0], [0, 0, 1]),
+                   [{"mesh": {"file": "cube.stl"}}], StaticCube.TAU)
+        path = os.path.join(case, "case.yaml")
+        with open(path) as f:
+            text = f.read()
+        text = text.replace("penalization_time_s:", "precursor_time_s: %r, precursor_time_step_s: %r, "
+                            "penalization_time_s:" % (precursor_end, self.PRE_DT))
+        with open(path, "w") as f:
+            f.write(text)
+        return block
+
+    def launch(self, case, out):
+        result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, case],
+                                stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=150)
+        text = result.stdout.decode("utf-8", "replace") + result.stderr.decode("utf-8", "replace")
+        self.assertEqual(result.returncode, 0, text[-3000:])
+        return text
+
+    def test_precursor_is_run_installed_and_reused(self):
+        case, out = os.path.join(self.tmp, "case"), os.path.join(self.tmp, "out")
+        block = self.write(case, self.PRE_END, [0.185, 0.004, 0.004])
+        start = time.monotonic()
+        first = self.launch(case, out)
+        first_wall = time.monotonic() - start
+        pre = os.path.join(out, "precursor")
+        self.assertTrue(os.path.isfile(os.path.join(pre, "completed.fingerprint")), first[-2000:])
+        last = latest_time_dir(os.path.join(pre, "openfoam"))
+        self.assertAlmostEqual(float(os.path.basename(last)), self.PRE_END, places=9)
+        # Installed: the coupled run's initial fields are the precursor's last ones, byte for byte.
+        for field in ("U", "p", "phi"):
+            with open(os.path.join(last, field), "rb") as a, open(os.path.join(out, "openfoam", "0", field), "rb") as b:
+                self.assertEqual(a.read(), b.read(), field)
+        # The drag continues from the precursor's flow: the first coupled step's drag differs from
+        # the precursor's last by about the precursor's own step-to-step change (0.2 %).
+        forces = np.loadtxt(os.path.join(pre, "forces.csv"), delimiter=",", skiprows=1)
+        self.assertEqual(forces.shape, (int(round(self.PRE_END / self.PRE_DT)), 4))
+        coupled = rigid_body_loads(os.path.join(out, "coupling.h5"))["surface0"][0]
+        jump = abs(coupled[0, 0] - forces[-1, 1]) / abs(forces[-1, 1])
+        u = read_internal_field(os.path.join(out, "openfoam", "0", "U"), block.n_cells)
+        self.assertLess(jump, 3 * abs(forces[-1, 1] - forces[-2, 1]) / abs(forces[-1, 1]))
+        self.assertGreater(np.std(u[:, 0]), 0.01 * StaticCube.U_IN)   # not the uniform stream any more
+
+        # A different structure: the precursor is reused (same fingerprint, no second run).
+        stamp = os.path.getmtime(os.path.join(pre, "completed.fingerprint"))
+        self.write(case, self.PRE_END, [0.185, 0.094, 0.004])
+        start = time.monotonic()
+        second = self.launch(case, out)
+        second_wall = time.monotonic() - start
+        self.assertIn("is up to date", second)
+        self.assertEqual(stamp, os.path.getmtime(os.path.join(pre, "completed.fingerprint")))
+        # A different precursor time: run again.
+        self.write(case, 0.5 * self.PRE_END, [0.185, 0.094, 0.004])
+        third = self.launch(case, out)
+        self.assertNotIn("is up to date", third)
+        last = latest_time_dir(os.path.join(pre, "openfoam"))
+        self.assertAlmostEqual(float(os.path.basename(last)), 0.5 * self.PRE_END, places=9)
+        print("precursor: %d steps, then %d coupled steps; first coupled drag %.5g N against the precursor's last "
+              "%.5g N (jump %.2e); wall %.1f s with the precursor, %.1f s reusing it"
+              % (len(forces), len(coupled), coupled[0, 0], forces[-1, 1], jump, first_wall, second_wall))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,148 @@
+#include "Precursor.hpp"
+
+#include "common/ConfigEmitter.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace fsi::fluid {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// FNV-1a, 64 bit: stable across builds and machines (unlike std::hash).
+class Fnv1a {
+public:
+  void add(const std::string &text) {
+    for (const unsigned char c : text)
+      hash_ = (hash_ ^ c) * 1099511628211ull;
+    hash_ = (hash_ ^ 0xffu) * 1099511628211ull; // separator: "ab"+"c" differs from "a"+"bc"
+  }
+  void add_file(const fs::path &file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream contents;
+    contents << in.rdbuf();
+    add(contents.str());
+  }
+  std::string hex() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash_));
+    return text;
+  }
+
+private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+bool is_number(const std::string &name, double &value) {
+  try {
+    std::size_t used = 0;
+    value = std::stod(name, &used);
+    return used == name.size();
+  } catch (const std::exception &) {
+    return false;
+  }
+}
+
+std::string read_text(const fs::path &file) {
+  std::ifstream in(file);
+  std::string text;
+  std::getline(in, text);
+  return text;
+}
+
+} // namespace
+
+Precursor::Precursor(const structure::CaseConfig &config, fs::path case_dir, fs::path output_dir)
+    : folder_(std::move(output_dir) / "precursor") {
+  if (!config.fluid || !config.fluid->openfoam)
+    return;
+  const auto &foam = *config.fluid->openfoam;
+  end_time_s_ = foam.precursor_time_s;
+  time_step_s_ = foam.precursor_time_step_s > 0.0 ? foam.precursor_time_step_s : config.run.time_step_s;
+  if (wanted())
+    fingerprint_ = compute_fingerprint(config, case_dir);
+}
+
+std::string Precursor::compute_fingerprint(const structure::CaseConfig &config, const fs::path &case_dir) const {
+  Fnv1a hash;
+  // The emitter only reads; visit() is non-const because the reader shares it.
+  const YAML::Node node = YAML::Load(common::to_yaml(const_cast<structure::CaseConfig &>(config)));
+  hash.add(YAML::Dump(node["fluid"]));
+  if (node["collisions"])
+    hash.add(YAML::Dump(node["collisions"]));
+  hash.add(std::to_string(time_step_s_) + " " + std::to_string(end_time_s_));
+  // Every file of the OpenFOAM case folder, in a fixed order, with its relative path.
+  const fs::path template_dir = case_dir / config.fluid->openfoam->case_directory;
+  std::vector<fs::path> files;
+  if (fs::is_directory(template_dir))
+    for (const auto &entry : fs::recursive_directory_iterator(template_dir))
+      if (entry.is_regular_file())
+        files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const auto &file : files) {
+    hash.add(fs::relative(file, template_dir).generic_string());
+    hash.add_file(file);
+  }
+  if (config.collisions)
+    for (const auto &surface : config.collisions->surfaces)
+      if (surface.mesh)
+        hash.add_file(surface.mesh->file);
+  return hash.hex();
+}
+
+bool Precursor::is_current() const {
+  return wanted() && fs::exists(stamp_file()) && read_text(stamp_file()) == fingerprint_;
+}
+
+void Precursor::mark_complete() const { std::ofstream(stamp_file()) << fingerprint_ << "\n"; }
+
+void Precursor::invalidate() const { fs::remove(stamp_file()); }
+
+fs::path Precursor::latest_time_directory(const fs::path &folder) {
+  fs::path latest;
+  double latest_time = -1.0;
+  if (fs::is_directory(folder))
+    for (const auto &entry : fs::directory_iterator(folder)) {
+      double time = 0.0;
+      if (entry.is_directory() && is_number(entry.path().filename().string(), time) && time > latest_time) {
+        latest_time = time;
+        latest = entry.path();
+      }
+    }
+  if (latest.empty())
+    throw std::runtime_error(folder.string() + ": no time folder (the precursor wrote no fields)");
+  return latest;
+}
+
+std::size_t Precursor::install_fields(const fs::path &coupled_case, int n_ranks) const {
+  std::vector<std::pair<fs::path, fs::path>> folders; // precursor folder -> coupled case folder
+  if (n_ranks <= 1)
+    folders.emplace_back(foam_case(), coupled_case);
+  for (int rank = 0; n_ranks > 1 && rank < n_ranks; ++rank) {
+    const std::string processor = "processor" + std::to_string(rank);
+    folders.emplace_back(foam_case() / processor, coupled_case / processor);
+  }
+  std::size_t copied = 0;
+  for (const auto &[from, to] : folders) {
+    const fs::path source = latest_time_directory(from), target = to / "0";
+    fs::create_directories(target);
+    for (const auto &entry : fs::directory_iterator(source))
+      if (entry.is_regular_file()) {
+        fs::copy_file(entry.path(), target / entry.path().filename(), fs::copy_options::overwrite_existing);
+        ++copied;
+      }
+  }
+  if (copied == 0)
+    throw std::runtime_error(foam_case().string() + ": the precursor's last time folder holds no field");
+  return copied;
+}
+
+} // namespace fsi::fluid
