@@ -15,6 +15,8 @@
 
 #include "proto/ZmqContext.hpp"
 
+#include "structure_solver/CaseOptions.hpp"
+
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -27,28 +29,23 @@ extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-prescribed-flow: fluid participant with a prescribed velocity field (one-way coupling)"};
-  std::string case_dir, output_dir, endpoint;
+  fsi::structure::CaseOptions options;
+  std::string endpoint;
   bool verbose = false;
-  app.add_option("case_dir", case_dir, "Case folder holding case.yaml")->required();
+  options.add_to(app);
   app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
-  app.add_option("-o,--output-dir", output_dir, "Folder for fluid.log (default: run.output_directory)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
-  std::string preset;
-  app.add_option("--resolution,--preset", preset,
-                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError &e) {
-    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
-  }
+  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+    return code;
   fsi::common::setup_logging("fluid", verbose);
   try {
-    const auto config = fsi::structure::CaseConfig::load(case_dir, preset);
+    const auto config = options.load();
+    const std::string &case_dir = options.case_dir;
     if (!config.fluid || !config.fluid->prescribed) {
       spdlog::error("case {} has no `fluid.prescribed` section: there is no prescribed flow to run", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
+    const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     fsi::common::add_log_file(out / "fluid.log");
     auto settings = fsi::structure::participant_settings(config, endpoint);

@@ -10,6 +10,7 @@
 // 130 interrupted.
 
 #include "CaseConfig.hpp"
+#include "CaseOptions.hpp"
 #include "SchemaDoc.hpp"
 #include "ParticipantSettings.hpp"
 #include "StructureParticipant.hpp"
@@ -29,14 +30,15 @@
 
 namespace {
 
-int check_case(const std::filesystem::path &case_dir, const std::string &preset) {
-  const auto config = fsi::structure::CaseConfig::load(case_dir, preset);
+int check_case(const fsi::structure::CaseOptions &options) {
+  const auto config = options.load();
+  const std::string &case_dir = options.case_dir;
   fsi::structure::Scene scene(config); // builds geometry: catches missing/open STL meshes too
   if (config.fluid && config.fluid->prescribed) // reads a velocity table, if any
     spdlog::info("fluid: prescribed, {}", fsi::prescribed_flow::make_flow(*config.fluid->prescribed)->describe());
   for (const auto &warning : fsi::structure::StructureRun::time_step_warnings(scene, config.run.time_step_s))
     spdlog::warn("{}", warning);
-  spdlog::info("case {} is valid: {} structure(s), {} steps", case_dir.string(), config.structures.size(),
+  spdlog::info("case {} is valid: {} structure(s), {} steps", case_dir, config.structures.size(),
                std::lround(config.run.end_time_s / config.run.time_step_s));
   return 0;
 }
@@ -46,29 +48,22 @@ int check_case(const std::filesystem::path &case_dir, const std::string &preset)
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-structure: membrane and filament solver with collisions (standalone, no fluid)"};
-  std::string case_dir;
-  std::string output_dir;
+  fsi::structure::CaseOptions options;
   std::string endpoint;
   bool check = false, schema = false, verbose = false, coupled = false;
-  app.add_option("case_dir", case_dir, "Case folder holding case.yaml");
+  options.add_to(app, false);
   app.add_flag("--check", check, "Validate the case without running it");
-  app.add_option("-o,--output-dir", output_dir, "Results folder (overrides run.output_directory)");
   app.add_flag("--schema", schema, "Print the case-file reference as Markdown");
   app.add_flag("--coupled", coupled, "Take part in a coupled run (the case must have a fluid section)");
   app.add_option("--endpoint", endpoint, "Coupler endpoint (with --coupled; default: coupling.endpoint)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
-  std::string preset;
-  app.add_option("--resolution,--preset", preset,
-                 "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError &e) {
-    return e.get_exit_code() == 0 ? app.exit(e) : (app.exit(e), fsi::common::exit_code_bad_input);
-  }
+  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+    return code;
   if (schema) {
     std::cout << fsi::structure::case_schema_markdown();
     return 0;
   }
+  const std::string &case_dir = options.case_dir;
   if (case_dir.empty()) {
     std::cerr << "fsi-structure: missing CASE_DIR (a folder holding case.yaml); see --help\n";
     return fsi::common::exit_code_bad_input;
@@ -76,9 +71,9 @@ int main(int argc, char **argv) {
   fsi::common::setup_logging("structure", verbose);
   try {
     if (check)
-      return check_case(case_dir, preset);
-    auto config = fsi::structure::CaseConfig::load(case_dir, preset);
-    const std::filesystem::path out = config.output_directory(case_dir, output_dir);
+      return check_case(options);
+    auto config = options.load();
+    const std::filesystem::path out = options.output_directory(config);
     if (!coupled) {
       if (config.is_coupled())
         spdlog::warn("case {} has a fluid section; running the structure alone (no fluid load). Use ./fsi run "
