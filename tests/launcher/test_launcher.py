@@ -47,11 +47,18 @@ if args and args[0] == "--plan":
     print("output " + os.path.abspath(out))
     for name, exe in plan["processes"]:
         print("process %s %s" % (name, exe))
+    for name in plan.get("precursors", []):
+        print("precursor %s" % name)
     sys.exit(0)
 
 me = config.get(ROLE, {})
+if "--precursor" in args:
+    with open(os.path.join(record, ROLE + ".precursor.json"), "w") as f:
+        json.dump({"argv": args, "pid": os.getpid(), "at": time.time()}, f)
+    time.sleep(me.get("precursor_sleep", 0))
+    sys.exit(me.get("precursor_exit", 0))
 with open(os.path.join(record, ROLE + ".json"), "w") as f:
-    json.dump({"argv": args, "pid": os.getpid()}, f)
+    json.dump({"argv": args, "pid": os.getpid(), "at": time.time()}, f)
 
 def on_signal(signum, _frame):
     note(signal.Signals(signum).name)
@@ -119,10 +126,10 @@ class LauncherTest(unittest.TestCase):
         self.tmp.cleanup()
 
     # helpers -----------------------------------------------------------------------------
-    def configure(self, processes=COUPLED, plan_exit=0, plan_stderr="", **roles):
+    def configure(self, processes=COUPLED, plan_exit=0, plan_stderr="", precursors=(), **roles):
         config = {"record_dir": self.record,
                   "plan": {"output": self.out, "processes": processes, "exit": plan_exit,
-                           "stderr": plan_stderr}}
+                           "stderr": plan_stderr, "precursors": list(precursors)}}
         config.update(roles)
         with open(os.path.join(self.bin, "fake.json"), "w") as f:
             json.dump(config, f)
@@ -195,7 +202,39 @@ class LauncherTest(unittest.TestCase):
         self.assertEqual(code, 0)
         self.assertEqual(self.recorded("structure")["argv"], [self.case, "-o", other, "-v"])
 
+    def test_end_time_is_passed_to_every_process(self):
+        self.configure(processes=[["structure", "fsi-structure"]], structure={})
+        code, _, _, _ = self.launch("--end-time", "0.25", self.case)
+        self.assertEqual(code, 0)
+        self.assertEqual(self.recorded("structure")["argv"], [self.case, "--end-time", "0.25"])
+
     # coupled -----------------------------------------------------------------------------
+    def coupled_with_precursor(self, **fluid):
+        with open(os.path.join(self.out, "coupler.endpoint"), "w") as f:
+            f.write("tcp://127.0.0.1:5555\n")
+        self.configure(precursors=["fluid"], coupler={"endpoint": "tcp://127.0.0.1:5555"},
+                       structure={}, fluid=dict(precursor_sleep=0.3, **fluid))
+
+    def test_a_precursor_runs_to_its_end_before_the_coupled_processes_start(self):
+        self.coupled_with_precursor()
+        code, _, err, _ = self.launch("--end-time", "0.5", self.case)
+        self.assertEqual(code, 0, err)
+        precursor = self.recorded("fluid.precursor")
+        self.assertEqual(precursor["argv"], [self.case, "--end-time", "0.5", "--precursor"])
+        for name in ("coupler", "structure", "fluid"):
+            self.assertGreater(self.recorded(name)["at"], precursor["at"] + 0.3, name)
+        self.assertNotIn("--precursor", self.recorded("fluid")["argv"])
+        self.assertIn("fluid: precursor run", err)
+
+    def test_a_failed_precursor_stops_the_run_before_anything_else_starts(self):
+        self.coupled_with_precursor(precursor_exit=1)
+        code, _, err, _ = self.launch(self.case)
+        self.assertEqual(code, 1)
+        self.assertIn("the precursor run failed with exit code 1", err)
+        self.assertNoTraceback(err)
+        for name in ("coupler", "structure", "fluid"):
+            self.assertIsNone(self.recorded(name), name)
+
     def test_coupled_starts_three_with_the_published_endpoint(self):
         with open(os.path.join(self.out, "coupler.endpoint"), "w") as f:
             f.write("tcp://127.0.0.1:1\n")  # stale, from an earlier run
