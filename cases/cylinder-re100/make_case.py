@@ -16,8 +16,11 @@ Geometry (D = 0.02 m, cylinder on the z axis at the origin):
 
 import math
 import os
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from foam_case import cylinder_stl  # noqa: E402
 
 D = 0.02                     # m
 CELLS_PER_D = 16
@@ -111,28 +114,6 @@ mergePatchPairs ();
 """ % {"D": D, "nx": n_x, "ny": n_y, "nc": n_x * n_y, "H": H, "cpd": CELLS_PER_D, "rx0": rx_lo, "rx1": rx_hi,
        "ry": ry_lo, "vertices": vertices, "blocks": "\n".join(blocks), "inlet": " ".join(inlet),
        "outlet": " ".join(outlet), "sides": " ".join(bottom + top), "empty": " ".join(empty)}
-
-
-def cylinder_stl(radius, z0, z1, n):
-    """Closed solid cylinder about the z axis (outward normals): side, and caps fanned from the axis."""
-    ring = [(radius * math.cos(2 * math.pi * i / n), radius * math.sin(2 * math.pi * i / n)) for i in range(n)]
-    tris = []
-    for i in range(n):
-        (xa, ya), (xb, yb) = ring[i], ring[(i + 1) % n]
-        a0, b0, a1, b1 = (xa, ya, z0), (xb, yb, z0), (xa, ya, z1), (xb, yb, z1)
-        tris += [(a0, b0, b1), (a0, b1, a1), ((0, 0, z0), b0, a0), ((0, 0, z1), a1, b1)]
-    lines = ["solid cylinder"]
-    for a, b, c in tris:
-        e1 = [b[k] - a[k] for k in range(3)]
-        e2 = [c[k] - a[k] for k in range(3)]
-        nrm = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
-        length = math.sqrt(sum(q * q for q in nrm))
-        lines.append("  facet normal %.7g %.7g %.7g" % tuple(q / length for q in nrm))
-        lines.append("    outer loop")
-        lines += ["      vertex %.9g %.9g %.7g" % p for p in (a, b, c)]
-        lines += ["    endloop", "  endfacet"]
-    lines.append("endsolid cylinder")
-    return "\n".join(lines) + "\n"
 
 
 def main():
