@@ -74,6 +74,11 @@ std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> rigid_bodies(const fs
   for (std::size_t i = 0; i < config.collisions->surfaces.size(); ++i) {
     const auto &surface = config.collisions->surfaces[i];
     const std::string name = "surface" + std::to_string(i);
+    if (surface.box || surface.plane) { // walls seen from the fluid: the OpenFOAM mesh's own walls
+      spdlog::info("collisions.surfaces[{}] ({}) bounds the fluid: left to the walls of the OpenFOAM mesh", i,
+                   surface.box ? "box" : "plane");
+      continue;
+    }
     if (!surface.mesh) {
       spdlog::warn("collisions.surfaces[{}] is an analytic surface: the fluid does not see it (give it as a closed STL "
                    "mesh to penalize it, or make it a wall of the OpenFOAM mesh)",

@@ -115,10 +115,10 @@ class TempDirTest(unittest.TestCase):
         else:
             print("kept", self.tmp)
 
-    def launch(self, case, out, timeout=60, extra_env=None):
-        """./fsi run CASE -o OUT; returns (exit code, stderr text)."""
+    def launch(self, case, out, timeout=60, extra_env=None, extra_args=()):
+        """./fsi run [EXTRA_ARGS] CASE -o OUT; returns (exit code, stderr text)."""
         env = dict(os.environ, **(extra_env or {}))
-        result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, case],
+        result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out] + list(extra_args) + [case],
                                 stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, timeout=timeout, env=env)
         return result.returncode, result.stderr.decode("utf-8", "replace")
