@@ -10,6 +10,7 @@ import datetime
 import math
 import os
 import platform
+import re
 import shutil
 import subprocess
 import sys
@@ -77,6 +78,46 @@ def relaxation_error(out, config):
     return float(np.linalg.norm(v[i] - exact) / np.linalg.norm(u)), "V(t = %.3g s) against U (1 - e^-1)" % t[i]
 
 
+def edge_centroid(out, structure, edge_index=0):
+    """Time and the trapezoid-weighted centroid of the sheet's edge s1 = edge_index (position and
+    velocity, [t, 3]) from structure.h5."""
+    with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
+        g = f["structures"][structure]
+        n1, n2 = (int(v) for v in g.attrs["grid_shape"])
+        x = g["position_m"][:].reshape(-1, n1, n2, 3)[:, edge_index]
+        v = g["velocity_m_per_s"][:].reshape(-1, n1, n2, 3)[:, edge_index]
+        t = f["time_s"][:]
+    w = np.ones(n2)
+    w[[0, -1]] = 0.5
+    w /= w.sum()
+    return t, np.einsum("j,tjk->tk", w, x), np.einsum("j,tjk->tk", w, v)
+
+
+def path_difference(t_a, x_a, t_b, x_b, length):
+    """Largest distance between two point paths over their common saved times, per length."""
+    n = min(len(t_a), len(t_b))
+    assert np.allclose(t_a[:n], t_b[:n]), "the runs saved at different times"
+    return float(np.max(np.linalg.norm(x_a[:n] - x_b[:n], axis=1)) / length)
+
+
+class FinerReference:
+    """Error of a run against the finest run of its ladder (no external reference): the largest
+    distance between their free-edge centre paths over the run, per flag length. The ladder runs
+    the finest first and keeps its path."""
+
+    def __init__(self, structure, edge_index, length):
+        self.structure, self.edge_index, self.length = structure, edge_index, length
+        self.reference = None
+
+    def __call__(self, out, config):
+        t, x, _ = edge_centroid(out, self.structure, self.edge_index)
+        if self.reference is None:
+            self.reference = (t, x)
+            return 0.0, "reference (finest)"
+        error = path_difference(t, x, self.reference[0], self.reference[1], self.length)
+        return error, "max distance of the free-edge centre from the finest run's, per length"
+
+
 def studies(quick):
     chain_ladder = [(n, 1.0 / (n - 1) / 100.0) for n in ([11, 21, 41] if quick else [11, 21, 41, 81])]
     relax_ladder = [2e-4, 1e-4, 5e-5] if quick else [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]
@@ -93,6 +134,85 @@ def studies(quick):
                  "coupling": {"stiffness_n_per_m3": 3.2e4 * 5e-5 / dt}}, "dt = %g s" % dt, dt)
                for dt in relax_ladder],
               relaxation_error, cores=3),
+        # No analytic reference for the flag on the swinging bar: the finest run is the reference
+        # (listed first). Delta s / Delta t = 100 m/s throughout (section 2.2).
+        Study("paper flag on a swinging pendulum bar, in vacuum (structure only)", "pendulum-in-vacuum",
+              "the finest run of the ladder (Delta s = 0.004 m, the paper's): no analytic solution exists",
+              [({"structures": [{"n_points": [n1, n2]}], "run": {"time_step_s": ds / 100.0,
+                                                                  "end_time_s": 0.5 if quick else 1.0}},
+                "Delta s = %.4g m" % ds, ds / 100.0)
+               for n1, n2, ds in ((n1, n2, max(0.05 / (n1 - 1), 0.1 / (n2 - 1)))
+                                  for n1, n2 in ([(13, 26), (7, 13), (5, 9)] if quick else
+                                                 [(26, 51), (13, 26), (9, 18), (7, 13), (5, 9)]))],
+              FinerReference("flag", -1, 0.05)),
+    ]
+
+
+# ---- model only what a scene needs ---------------------------------------------------------
+
+class Comparison:
+    """One case run with the full model and with the cheaper one the scene allows: the cost of
+    each and the difference in the answer. variant(config) -> the cheaper case file;
+    difference(out_full, out_cheap, config) -> (number, text)."""
+
+    def __init__(self, name, case, full, cheap, variant, difference, cores_full, cores_cheap, overlay=None,
+                 preset=None):
+        self.name, self.case, self.full, self.cheap = name, case, full, cheap
+        self.variant, self.difference = variant, difference
+        self.cores_full, self.cores_cheap = cores_full, cores_cheap
+        self.overlay, self.preset = overlay or {}, preset
+
+
+def openfoam_inflow(case_dir, config):
+    """The uniform inflow velocity of the case's OpenFOAM folder (0/U, the inlet patch)."""
+    text = open(os.path.join(case_dir, config["fluid"]["openfoam"]["case_directory"], "0", "U")).read()
+    match = re.search(r"inlet\s*\{[^}]*value\s+uniform\s+\(([^)]*)\)", text)
+    return [float(v) for v in match.group(1).split()]
+
+
+def to_prescribed_uniform(case_dir, config):
+    config = dict(config)
+    config["fluid"] = {"prescribed": {"uniform": {"velocity_m_per_s": openfoam_inflow(case_dir, config)}}}
+    return config
+
+
+def to_laminar(case_dir, config):
+    config = deep_merge(config, {"fluid": {"openfoam": {"case_directory": "openfoam-coarse-laminar"}}})
+    return config
+
+
+def mean_velocity_difference(out_full, out_cheap, config):
+    """|mean sheet velocity, full - cheap| at the end, per the stream speed."""
+    name = config["structures"][0]["name"]
+    v = []
+    for out in (out_full, out_cheap):
+        with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
+            v.append(f["structures"][name]["velocity_m_per_s"][-1].mean(axis=0))
+    speed = np.linalg.norm(v[1]) if np.linalg.norm(v[1]) > 0 else 1.0
+    return (float(np.linalg.norm(v[0] - v[1]) / speed),
+            "mean sheet velocity at the end: NS %s m/s, prescribed %s m/s"
+            % (np.array2string(v[0], precision=4), np.array2string(v[1], precision=4)))
+
+
+def rag_path_difference(out_full, out_cheap, config):
+    """Largest distance between the upstream-edge centroids of the two runs, per rag length."""
+    s = config["structures"][0]
+    length = s["size_m"][0]
+    paths = [edge_centroid(out, s["name"], 0) for out in (out_full, out_cheap)]
+    d = path_difference(paths[0][0], paths[0][1], paths[1][0], paths[1][1], length)
+    end = [p[1][-1] for p in paths]
+    return d, "upstream edge centroid at the end: DDES %s m, laminar %s m" % (
+        np.array2string(end[0], precision=3), np.array2string(end[1], precision=3))
+
+
+def comparisons(quick):
+    return [
+        Comparison("sheet carried by a uniform stream", "sheet-in-openfoam-channel",
+                   "Navier-Stokes (OpenFOAM, two-way)", "prescribed uniform flow (one-way)",
+                   to_prescribed_uniform, mean_velocity_difference, 3, 3),
+        Comparison("rag behind a pole, Re = 0.69e5", "rag-behind-pole", "Spalart-Allmaras DDES", "laminar",
+                   to_laminar, rag_path_difference, 3, 3,
+                   overlay={"run": {"end_time_s": 0.1 if quick else 0.6}}),
     ]
 
 
@@ -109,22 +229,57 @@ def deep_merge(base, overlay):
     return overlay
 
 
-def run_one(bin_dir, study, overlay, workdir, label):
+def prepare_case(case_name, workdir, overlay, variant=None):
+    """A copy of cases/<case_name> in workdir with the overlay merged into its case.yaml (and
+    variant(case_dir, config) applied). Returns (case folder, config)."""
     case = os.path.join(workdir, "case")
     shutil.rmtree(case, ignore_errors=True)
-    shutil.copytree(os.path.join(ROOT, "cases", study.case), case, ignore=shutil.ignore_patterns("output"))
+    shutil.copytree(os.path.join(ROOT, "cases", case_name), case, ignore=shutil.ignore_patterns("output"))
     config = deep_merge(yaml.safe_load(open(os.path.join(case, "case.yaml"))), overlay)
+    if variant is not None:
+        config = variant(case, config)
     yaml.safe_dump(config, open(os.path.join(case, "case.yaml"), "w"))
-    out = os.path.join(workdir, "out")
+    return case, config
+
+
+def launch(bin_dir, case, out, what):
+    """Runs the case through the launcher. Returns the wall time (s) of the coupled time loop
+    (the sum of coupling.h5's step times: start-up, meshing and a precursor are not counted), or
+    of the whole run for a structure-only case."""
     start = time.monotonic()
     result = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir,
                              "-o", out, case], stdin=subprocess.DEVNULL, capture_output=True)
     wall = time.monotonic() - start
     if result.returncode != 0:
-        raise RuntimeError("%s, %s failed (exit %d): %s" % (study.name, label, result.returncode,
-                                                           result.stderr.decode()[-1500:]))
+        raise RuntimeError("%s failed (exit %d): %s" % (what, result.returncode, result.stderr.decode()[-1500:]))
+    coupling = os.path.join(out, "coupling.h5")
+    if os.path.exists(coupling):
+        with h5py.File(coupling, "r") as f:
+            wall = float(f["timings/step_wall_s"][:].sum())
+    return wall
+
+
+def run_one(bin_dir, study, overlay, workdir, label):
+    case, config = prepare_case(study.case, workdir, overlay)
+    out = os.path.join(workdir, "out")
+    shutil.rmtree(out, ignore_errors=True)
+    wall = launch(bin_dir, case, out, "%s, %s" % (study.name, label))
     error, detail = study.measure(out, config)
     return wall, config["run"]["end_time_s"], error, detail
+
+
+def run_comparison(bin_dir, comparison, workdir):
+    """Both models of one case; returns the table row's numbers."""
+    walls, outs = [], []
+    for label, variant in (("full", None), ("cheap", comparison.variant)):
+        case, config = prepare_case(comparison.case, os.path.join(workdir, label), comparison.overlay, variant)
+        out = os.path.join(workdir, label, "out")
+        walls.append(launch(bin_dir, case, out, "%s (%s model)" % (comparison.name, label)))
+        outs.append(out)
+    simulated = config["run"]["end_time_s"]
+    difference, detail = comparison.difference(outs[0], outs[1], config)
+    costs = (walls[0] * comparison.cores_full / simulated, walls[1] * comparison.cores_cheap / simulated)
+    return costs, difference, detail
 
 
 def machine():
@@ -141,11 +296,53 @@ def machine():
     return "%s, %d cores, %s; commit %s" % (model, os.cpu_count(), platform.platform(), commit)
 
 
+def model_cost_section(args):
+    lines = ["## Model only what a scene needs", "",
+             "Each case run with the full model and with the cheaper one the scene allows, the same",
+             "resolution and time step: the cost of each (core-seconds per simulated second of the time",
+             "loop) and how much the answer moves.", "",
+             "| case | full model | cheaper model | cost full | cost cheaper | cost ratio | difference | measured |",
+             "|---|---|---|---|---|---|---|---|"]
+    for comparison in comparisons(args.quick):
+        print("report: %s, %s against %s" % (comparison.name, comparison.full, comparison.cheap), flush=True)
+        with tempfile.TemporaryDirectory(prefix="fsi-report-") as workdir:
+            (full, cheap), difference, detail = run_comparison(args.bin_dir, comparison, workdir)
+        lines.append("| `%s` | %s | %s | %.3g | %.3g | %.2f | %.3g | %s |" % (
+            comparison.case, comparison.full, comparison.cheap, full, cheap, full / cheap, difference, detail))
+        print("  cost %.3g against %.3g core-s/s, difference %.3g" % (full, cheap, difference), flush=True)
+    return lines + ["", "Difference: sheet, |V_NS - V_prescribed| / |V_prescribed| at the end; rag, the largest "
+                        "distance between the two upstream-edge paths per rag length.", ""]
+
+
+def stability_section(args):
+    """The stability suite (ctest label `stability`, the same as ./fsi test --stability): its table
+    of measured thresholds."""
+    build_dir = os.path.dirname(os.path.abspath(args.bin_dir))
+    table = os.path.join(build_dir, "stability", "stability.md")
+    if args.skip_stability:
+        if not os.path.exists(table):
+            return ["## Stability", "", "Not run (--skip-stability) and no earlier table in %s." % table, ""]
+    else:
+        print("report: the stability suite (ctest -L stability)", flush=True)
+        shutil.rmtree(os.path.join(build_dir, "stability", "rows"), ignore_errors=True)
+        if os.path.exists(table):
+            os.remove(table)
+        subprocess.run(["ctest", "--test-dir", build_dir, "-L", "stability", "-j", str(os.cpu_count() or 1),
+                        "--timeout", "900"], stdin=subprocess.DEVNULL, capture_output=True)
+    if not os.path.exists(table):
+        return ["## Stability", "", "The stability suite wrote no table (see ctest -L stability).", ""]
+    text = open(table).read().splitlines()
+    body = [line for line in text if not line.startswith("# ")]
+    return ["## Stability (`./fsi test --stability`)", ""] + body + [""]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bin-dir", required=True)
     parser.add_argument("--out", default=os.path.join(ROOT, "report"))
     parser.add_argument("--quick", action="store_true", help="shorter ladders (a few minutes)")
+    parser.add_argument("--skip-stability", action="store_true",
+                        help="do not run the stability suite; use its last table, if any")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     lines = ["# Speed against error", "",
@@ -171,8 +368,11 @@ def main():
                 errors.append(error)
                 lines.append("| %s | %.3g | %.2f | %.3g | %.3e | %s | %s |" % (label, dt, wall, cost, error, order, detail))
                 print("  %s: error %.3e, %.1f s" % (label, error, wall), flush=True)
-        ax.loglog(costs, errors, "o-", label=study.name)
+        shown = [(c, e) for c, e in zip(costs, errors) if e > 0]  # a finest-run reference has none
+        ax.loglog(*zip(*shown), "o-", label=study.name)
         lines.append("")
+    lines += model_cost_section(args)
+    lines += stability_section(args)
     ax.set_xlabel("core-seconds per simulated second")
     ax.set_ylabel("relative error against the reference")
     ax.grid(True, which="both", alpha=0.3)
