@@ -75,7 +75,7 @@ def write_forces_csv(path, forces):
         writer = csv.writer(out)
         writer.writerow(header)
         for row in np.hstack(columns):
-            writer.writerow([f"{v:.15g}" for v in row])
+            writer.writerow([f"{v + 0.0:.15g}" for v in row])  # + 0.0: no "-0"
 
 
 def draw_components(ax, time_s, values, labels, ylabel, title):
