@@ -1,8 +1,8 @@
 #pragma once
 // A standalone structure run (no fluid): builds the scene of a case, checks the time-step
 // rule, steps to the end time with progress and ETA in the log, writes HDF5/XDMF results (and
-// the probes of the case: /probes in the HDF5 file, probes.csv) at the output interval, and stops cleanly (last good state on disk, status in the file) on
-// divergence or on SIGINT/SIGTERM.
+// the probes of the case: /probes in the HDF5 file, probes.csv) at the output interval, and
+// stops cleanly (last good state on disk, status in the file) on divergence or on SIGINT/SIGTERM.
 
 #include "CaseConfig.hpp"
 #include "ProbeSet.hpp"

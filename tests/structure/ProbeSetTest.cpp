@@ -114,7 +114,8 @@ TEST(ProbeSet, FilamentEndsAndGridPointsAreThosePoints) {
                                             probe("top", "chain", ProbeLocation::edge_centre, "start"),
                                             probe("third", "chain", ProbeLocation::point, "", {2}),
                                             probe("corner", "sheet", ProbeLocation::point, "", {1, 2})};
-  const ProbeSet probes(configs, {sheet_grid("sheet", 3, 4, 1, 1), {"chain", 5, 1, Eigen::VectorXd::Constant(5, 0.25)}});
+  const ProbedStructure chain{"chain", 5, 1, Eigen::VectorXd::Constant(5, 0.25)};
+  const ProbeSet probes(configs, {sheet_grid("sheet", 3, 4, 1, 1), chain});
   PointArray chain_x(5, 3), chain_v(5, 3);
   for (int i = 0; i < 5; ++i) {
     chain_x.row(i) << 0.1 * i * i, 0.0, -0.25 * i;

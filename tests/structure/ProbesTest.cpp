@@ -90,7 +90,8 @@ TEST(Probes, EdgesAreThoseOfTheModel) {
                "probes[0].edge = 's1_max' is not an edge of filament 'chain'. Allowed: start, end.");
   expect_error("probes:\n  - {name: e, structure: sheet, at: edge_centre, edge: s1_mx}\n",
                "Did you mean 's1_max'? Allowed: s1_min, s1_max, s2_min, s2_max.");
-  expect_error("probes:\n  - {name: e, structure: sheet, at: edge_centre}\n", "probes[0] has `at: edge_centre` but no `edge`");
+  expect_error("probes:\n  - {name: e, structure: sheet, at: edge_centre}\n",
+               "probes[0] has `at: edge_centre` but no `edge`");
   expect_error("probes:\n  - {name: e, structure: sheet, at: centroid, edge: s1_max}\n",
                "probes[0].edge is only read with `at: edge_centre`; this probe has `at: centroid`.");
 }
@@ -112,7 +113,8 @@ TEST(Probes, NamesAreUniqueAndUsableAsColumnsAndUnknownKeysAreRejected) {
   expect_error("probes:\n  - {structure: sheet}\n", "probes[0].name is missing");
   expect_error("probes:\n  - {name: a, structure: sheet, at: centriod}\n",
                "probes[0].at 'centriod' is not one of: centroid, edge_centre, point. Did you mean 'centroid'?");
-  expect_error("probes:\n  - {name: a, structur: sheet}\n", "unknown key 'probes[0].structur'. Did you mean 'structure'?");
+  expect_error("probes:\n  - {name: a, structur: sheet}\n",
+               "unknown key 'probes[0].structur'. Did you mean 'structure'?");
 }
 
 TEST(Probes, TheRunWritesMatchingHdf5DatasetsAndCsv) {
