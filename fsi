@@ -94,6 +94,13 @@ cmd_run() {
     if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$out/summary.png" 2>/dev/null; then
       say "picture: $out/summary.png"
     fi
+    # Probes (structure.h5 /probes) and forces (coupling.h5) against time: scripts/plot_quantities.py.
+    if /usr/bin/python3 "$ROOT/scripts/plot_quantities.py" "$out" 2>/dev/null && [ -f "$out/quantities.png" ]; then
+      local tables=""
+      [ -f "$out/probes.csv" ] && tables="$out/probes.csv"
+      [ -f "$out/forces.csv" ] && tables="${tables:+$tables, }$out/forces.csv"
+      say "quantities: $out/quantities.png${tables:+ ($tables)}"
+    fi
     # OpenFOAM runs: |U| on a slice through the sheet at a few times (scripts/plot_flow.py).
     if [ -d "$out/openfoam" ] && /usr/bin/python3 "$ROOT/scripts/plot_flow.py" "$out" >/dev/null 2>&1; then
       say "flow pictures: $(ls "$out"/flow_t*.png | tr '\n' ' ')"

@@ -44,6 +44,12 @@ public:
   void int2(const std::string &key, const Eigen::Vector2i &v, const Range &range, const std::string &doc) {
     row(key, "[n1, n2]", "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + "]", range.describe(), doc);
   }
+  void integer_list(const std::string &key, const std::vector<int> &v, const Range &range, const std::string &doc) {
+    std::string values;
+    for (const int entry : v)
+      values += (values.empty() ? "" : ", ") + std::to_string(entry);
+    row(key, "list of integers", "[" + values + "]", range.describe(), doc);
+  }
   void existing_file(const std::string &key, const std::filesystem::path &, const std::string &doc) {
     row(key, "file", "(none)", "path relative to the case folder", doc);
   }

@@ -41,6 +41,12 @@ public:
   void int2(const std::string &key, const Eigen::Vector2i &v, const Range &, const std::string &) {
     out_ << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v[0] << v[1] << YAML::EndSeq;
   }
+  void integer_list(const std::string &key, const std::vector<int> &v, const Range &, const std::string &) {
+    out_ << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const int entry : v)
+      out_ << entry;
+    out_ << YAML::EndSeq;
+  }
   void existing_file(const std::string &key, const std::filesystem::path &value, const std::string &) {
     out_ << YAML::Key << key << YAML::Value << value.string();
   }

@@ -186,6 +186,27 @@ void ConfigReader::int2(const std::string &key, Eigen::Vector2i &value, const Ra
     fail_value(key, "is out of range: each entry must be " + range.describe() + ".");
 }
 
+void ConfigReader::integer_list(const std::string &key, std::vector<int> &value, const Range &range,
+                                const std::string &) {
+  mark_known(key);
+  const YAML::Node seq = node_[key];
+  if (!seq || seq.IsNull())
+    return;
+  std::vector<int> read;
+  try {
+    if (!seq.IsSequence())
+      throw std::invalid_argument("not a list");
+    for (const auto &item : seq)
+      read.push_back(item.as<int>());
+  } catch (const std::exception &) {
+    fail_value(key, "must be a list of integers, e.g. [3, 7].");
+  }
+  for (const int entry : read)
+    if (!range.contains(entry))
+      fail_value(key, "is out of range: each entry must be " + range.describe() + ".");
+  value = read;
+}
+
 void ConfigReader::existing_file(const std::string &key, std::filesystem::path &value, const std::string &) {
   std::string text_value;
   if (!read_scalar(key, text_value))
@@ -196,6 +217,10 @@ void ConfigReader::existing_file(const std::string &key, std::filesystem::path &
   if (!std::filesystem::is_regular_file(path))
     fail_value(key, "= '" + text_value + "': file not found (looked for " + path.string() + ").");
   value = path;
+}
+
+ConfigReader ConfigReader::list_item(const std::string &key, std::size_t index) const {
+  return ConfigReader(node_[key][index], file_, path_of(key) + "[" + std::to_string(index) + "]");
 }
 
 ConfigReader ConfigReader::child_reader(const std::string &key) {

@@ -37,6 +37,8 @@ public:
   void vec3(const std::string &key, Vec3 &value, const std::string &unit, const std::string &doc);
   void vec2(const std::string &key, Eigen::Vector2d &value, const Range &range, const std::string &doc);
   void int2(const std::string &key, Eigen::Vector2i &value, const Range &range, const std::string &doc);
+  /// A list of integers of any length (e.g. grid indices [i1, i2]); each entry within `range`.
+  void integer_list(const std::string &key, std::vector<int> &value, const Range &range, const std::string &doc);
   /// A file path, resolved against the case file's folder; it must exist when given.
   void existing_file(const std::string &key, std::filesystem::path &value, const std::string &doc);
 
@@ -90,7 +92,7 @@ public:
       fail_at(seq, key, "must be a list (YAML '- ' items).");
     items.clear();
     for (std::size_t i = 0; i < seq.size(); ++i) {
-      ConfigReader child(seq[i], file_, path_of(key) + "[" + std::to_string(i) + "]");
+      ConfigReader child = list_item(key, i);
       child.require_mapping();
       items.emplace_back();
       items.back().visit(child);
@@ -107,6 +109,8 @@ public:
   [[noreturn]] void fail_value(const std::string &key, const std::string &message) const;
 
   bool has(const std::string &key) const { return static_cast<bool>(node_[key]); }
+  /// A reader of item `index` of the list `key` (its messages name `key[index]` and its line).
+  ConfigReader list_item(const std::string &key, std::size_t index) const;
   const YAML::Node &node() const { return node_; }
   const std::filesystem::path &file() const { return file_; }
   std::string path_of(const std::string &key) const { return path_.empty() ? key : path_ + "." + key; }

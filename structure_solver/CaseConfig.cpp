@@ -28,6 +28,17 @@ void CaseConfig::validate(common::ConfigReader &v) const {
                              "`fluid`.");
   if (run.end_time_s < run.time_step_s)
     v.fail_value("run", "end_time_s must be at least one time step.");
+  validate_probes(v);
+}
+
+void CaseConfig::validate_probes(const common::ConfigReader &v) const {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    const common::ConfigReader item = v.list_item("probes", i);
+    if (!names.insert(probes[i].name).second)
+      item.fail_value("name", "= '" + probes[i].name + "' is used by two probes; probe names must be unique.");
+    probes[i].check_against(structures, item);
+  }
 }
 
 std::vector<std::string> CaseConfig::presets(const std::filesystem::path &case_dir) {

@@ -4,6 +4,7 @@
 #include "StructureConfig.hpp"
 #include "CollisionConfig.hpp"
 #include "FluidConfig.hpp"
+#include "ProbeConfig.hpp"
 #include "coupler/CouplingConfig.hpp"
 
 #include <filesystem>
@@ -34,6 +35,7 @@ struct CaseConfig {
   Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
   std::optional<CollisionConfig> collisions;
   std::vector<StructureConfig> structures;
+  std::vector<ProbeConfig> probes;
   std::optional<FluidConfig> fluid;
   std::optional<coupler::CouplingConfig> coupling;
 
@@ -42,6 +44,9 @@ struct CaseConfig {
     v.vec3("gravity_m_per_s2", gravity_m_per_s2, "m/s^2", "Gravitational acceleration g.");
     v.optional_section("collisions", collisions, "Rigid surfaces and the collision model of Eq. (11).");
     v.list("structures", structures, "Flexible structures of the scene (at least one).");
+    v.list("probes", probes,
+           "Places on the structures (centroid, edge centre, grid point) whose position and velocity are saved "
+           "at every saved step: structure.h5 /probes/<name> and probes.csv. Optional.");
     v.optional_section("fluid", fluid,
                        "The fluid the structures move in. Absent: structure only (no coupler, no fluid process).");
     v.optional_section("coupling", coupling, "Fluid-structure coupling (section 2.3); required with `fluid`.");
@@ -69,6 +74,7 @@ struct CaseConfig {
 
 private:
   void validate(common::ConfigReader &v) const;
+  void validate_probes(const common::ConfigReader &v) const;
 };
 
 } // namespace fsi::structure

@@ -28,6 +28,8 @@ public:
   virtual void visit(common::ConfigEmitter &v) = 0;
   virtual void visit(common::ConfigDocWriter &v) = 0;
   virtual std::unique_ptr<StructureModel> build(const BuildContext &context) const = 0;
+  /// Grid shape (n1, n2) the model will have; n2 == 1 for filaments (probes check indices).
+  virtual std::pair<int, int> grid_shape() const = 0;
 };
 
 template <class Derived> class ModelConfigBase : public ModelConfig {

@@ -61,16 +61,40 @@ void StructureRun::open_results() {
                                                      output::RunMetadata{config_yaml_, FSI_VERSION});
   for (const auto &s : scene_->structures())
     results_->add_structure({s->name(), s->model(), s->grid_shape().first, s->grid_shape().second});
+  open_probes();
+}
+
+/// The probes of the case in the HDF5 file and in probes.csv; without probes, no /probes
+/// group and no probes.csv (one left by an earlier run in this folder is removed).
+void StructureRun::open_probes() {
+  const auto csv_path = output_dir_ / "probes.csv";
+  probes_ = std::make_unique<ProbeSet>(ProbeSet::for_structures(config_.probes, scene_->structures()));
+  if (probes_->empty()) {
+    std::filesystem::remove(csv_path);
+    return;
+  }
+  for (const std::string &name : probes_->names())
+    results_->add_probe(name);
+  probe_csv_ = std::make_unique<output::ProbeCsv>(csv_path, probes_->names());
+}
+
+std::vector<output::ProbeState> StructureRun::probe_states() const {
+  std::vector<output::ProbeState> states;
+  for (const ProbeSample &sample : probes_->sample(scene_->structures()))
+    states.push_back({sample.position_m, sample.velocity_m_per_s});
+  return states;
 }
 
 void StructureRun::write_state(long step) {
-  output::StepRecord record{step, scene_->time_s(), {}};
+  output::StepRecord record{step, scene_->time_s(), {}, probe_states()};
   for (const auto &s : scene_->structures()) {
     const StructureEnergy e = s->energy();
     record.structures.push_back(
         {&s->positions_m(), &s->velocities_m_per_s(), s->max_stretch_ratio(), e.kinetic_j, e.elastic_j, e.potential_j});
   }
   results_->write_step(record);
+  if (probe_csv_)
+    probe_csv_->append(record.time_s, record.probes);
   last_written_step_ = step;
 }
 

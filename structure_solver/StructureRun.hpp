@@ -1,11 +1,13 @@
 #pragma once
 // A standalone structure run (no fluid): builds the scene of a case, checks the time-step
-// rule, steps to the end time with progress and ETA in the log, writes HDF5/XDMF results at
-// the output interval, and stops cleanly (last good state on disk, status in the file) on
-// divergence or on SIGINT/SIGTERM.
+// rule, steps to the end time with progress and ETA in the log, writes HDF5/XDMF results (and
+// the probes of the case: /probes in the HDF5 file, probes.csv) at the output interval, and
+// stops cleanly (last good state on disk, status in the file) on divergence or on SIGINT/SIGTERM.
 
 #include "CaseConfig.hpp"
+#include "ProbeSet.hpp"
 #include "Scene.hpp"
+#include "structure_solver/output/ProbeCsv.hpp"
 #include "structure_solver/output/ResultsWriter.hpp"
 
 #include <atomic>
@@ -55,7 +57,9 @@ public:
 
 private:
   void open_results();
+  void open_probes();
   void write_state(long step);
+  std::vector<output::ProbeState> probe_states() const;
   std::optional<Divergence> find_divergence(long step) const;
   void report_progress(long step, long n_steps, bool force);
   void stop_with(const std::string &status, long last_good_step);
@@ -65,6 +69,8 @@ private:
   std::string config_yaml_;
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<output::ResultsWriter> results_;
+  std::unique_ptr<ProbeSet> probes_;
+  std::unique_ptr<output::ProbeCsv> probe_csv_; ///< null without probes
   std::vector<PointArray> last_good_x_, last_good_v_;
   std::chrono::steady_clock::time_point start_, last_progress_;
   long last_written_step_ = -1;

@@ -17,6 +17,8 @@ inline constexpr const char *kinetic_energy_j = "kinetic_energy_j";
 inline constexpr const char *elastic_energy_j = "elastic_energy_j";
 inline constexpr const char *potential_energy_j = "potential_energy_j";
 
+inline constexpr const char *probes_group = "probes";
+
 inline constexpr const char *point_order = "row-major over (s1, s2): index = i1 * n2 + i2";
 
 /// "/structures/<name>"
@@ -28,6 +30,11 @@ inline std::string structure_group(const std::string &structure_name) {
 inline std::string structure_dataset(const std::string &structure_name,
                                      const std::string &dataset) {
   return structure_group(structure_name) + "/" + dataset;
+}
+
+/// "/probes/<name>/<dataset>"
+inline std::string probe_dataset(const std::string &probe_name, const std::string &dataset) {
+  return std::string("/") + probes_group + "/" + probe_name + "/" + dataset;
 }
 
 } // namespace fsi::structure::output::paths

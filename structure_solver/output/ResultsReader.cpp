@@ -69,11 +69,45 @@ std::vector<std::int64_t> ResultsReader::steps() const {
 }
 
 std::vector<std::string> ResultsReader::structure_names() const {
-  H5Handle group = open_object(std::string("/") + paths::structures_group);
+  return group_members(std::string("/") + paths::structures_group);
+}
+
+std::vector<std::string> ResultsReader::probe_names() const {
+  const std::string group = std::string("/") + paths::probes_group;
+  if (H5Lexists(file_.get(), group.c_str(), H5P_DEFAULT) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    return {};
+  }
+  return group_members(group);
+}
+
+PointArray ResultsReader::probe_series(const std::string &probe, const std::string &dataset) const {
+  const std::string path = paths::probe_dataset(probe, dataset);
+  const std::string what = context("cannot read " + path);
+  const auto n_rows = static_cast<hsize_t>(n_saved());
+  PointArray rows(static_cast<Eigen::Index>(n_rows), 3);
+  if (n_rows == 0) {
+    return rows;
+  }
+  H5Handle data = open_dataset(path);
+  std::vector<hsize_t> count;
+  H5Handle file_space = select_rows(data.get(), 0, n_rows, count, what);
+  if (count.size() != 2 || count[1] != 3) {
+    throw std::runtime_error(what + ": expected a [n_saved, 3] dataset");
+  }
+  H5Handle memory_space = H5Handle::dataspace(H5Screate_simple(2, count.data(), nullptr), what);
+  check_hdf5(H5Dread(data.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+                     H5P_DEFAULT, rows.data()),
+             what);
+  return rows;
+}
+
+std::vector<std::string> ResultsReader::group_members(const std::string &group_path) const {
+  H5Handle group = open_object(group_path);
   std::vector<std::string> names;
   check_hdf5(
       H5Literate(group.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_link_name, &names),
-      context("cannot list /structures"));
+      context("cannot list " + group_path));
   return names;
 }
 

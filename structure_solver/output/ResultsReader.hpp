@@ -38,6 +38,11 @@ public:
   std::vector<double> structure_series(const std::string &structure,
                                        const std::string &dataset) const;
 
+  /// Names of the groups under /probes, in alphabetical order (none: the case has no probes).
+  std::vector<std::string> probe_names() const;
+  /// A probe's `position_m` or `velocity_m_per_s`: n_saved() rows of [x, y, z].
+  PointArray probe_series(const std::string &probe, const std::string &dataset) const;
+
   /// Shape of any dataset, e.g. {n_saved, n_points, 3} for "/structures/sheet/position_m".
   std::vector<hsize_t> dataset_shape(const std::string &dataset_path) const;
 
@@ -54,6 +59,7 @@ private:
   H5Handle open_dataset(const std::string &dataset_path) const;
   H5Handle open_object(const std::string &object_path) const;
   PointArray point_row(const std::string &dataset_path, long saved_index) const;
+  std::vector<std::string> group_members(const std::string &group_path) const;
   std::vector<double> leading_doubles(const std::string &dataset_path, hsize_t count) const;
   std::string context(const std::string &what) const;
 

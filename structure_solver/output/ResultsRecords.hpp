@@ -36,11 +36,19 @@ struct StructureState {
   double potential_energy_j = 0.0;
 };
 
-/// One saved step; `structures` is in the order of ResultsWriter::add_structure().
+/// A probe (a tracked place of a structure) at a saved step.
+struct ProbeState {
+  Vec3 position_m = Vec3::Zero();
+  Vec3 velocity_m_per_s = Vec3::Zero();
+};
+
+/// One saved step; `structures` is in the order of ResultsWriter::add_structure(), `probes` in
+/// the order of ResultsWriter::add_probe().
 struct StepRecord {
   long step = 0;
   double time_s = 0.0;
   std::vector<StructureState> structures;
+  std::vector<ProbeState> probes;
 };
 
 } // namespace fsi::structure::output

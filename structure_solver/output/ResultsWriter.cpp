@@ -59,11 +59,7 @@ ResultsWriter::ResultsWriter(std::filesystem::path h5_path, std::filesystem::pat
 ResultsWriter::~ResultsWriter() = default;
 
 void ResultsWriter::add_structure(const StructureLayout &layout) {
-  throw_if_failed();
-  if (n_saved_ > 0) {
-    throw std::logic_error(
-        prefixed(h5_path_, "structure '" + layout.name + "' added after the first step"));
-  }
+  check_before_first_step("structure '" + layout.name + "'");
   for (const StructureSeries &existing : structures_) {
     if (existing.layout().name == layout.name) {
       throw std::invalid_argument(
@@ -74,6 +70,26 @@ void ResultsWriter::add_structure(const StructureLayout &layout) {
   try {
     structures_.emplace_back(structures_group_.get(), layout, connectivity);
     xdmf_->add_structure(layout, connectivity);
+    flush();
+  } catch (const std::runtime_error &error) {
+    fail(error);
+  }
+}
+
+void ResultsWriter::add_probe(const std::string &name) {
+  check_before_first_step("probe '" + name + "'");
+  for (const ProbeSeries &existing : probes_) {
+    if (existing.name() == name) {
+      throw std::invalid_argument(prefixed(h5_path_, "probe '" + name + "' added twice"));
+    }
+  }
+  try {
+    if (!probes_group_.valid()) {
+      probes_group_ = H5Handle::group(
+          H5Gcreate2(file_.get(), paths::probes_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          "cannot create group /probes");
+    }
+    probes_.emplace_back(probes_group_.get(), name);
     flush();
   } catch (const std::runtime_error &error) {
     fail(error);
@@ -110,7 +126,20 @@ void ResultsWriter::write_root_attributes(const RunMetadata &meta) {
   write_string_attribute(file_.get(), "created_utc", utc_now_iso8601());
 }
 
+void ResultsWriter::check_before_first_step(const std::string &what) const {
+  throw_if_failed();
+  if (n_saved_ > 0) {
+    throw std::logic_error(prefixed(h5_path_, what + " added after the first step"));
+  }
+}
+
 void ResultsWriter::check_record(const StepRecord &record) const {
+  if (record.probes.size() != probes_.size()) {
+    throw std::invalid_argument(prefixed(h5_path_, "step " + std::to_string(record.step) + " has " +
+                                                       std::to_string(record.probes.size()) +
+                                                       " probe states, the file has " +
+                                                       std::to_string(probes_.size()) + " probes"));
+  }
   if (record.structures.size() != structures_.size()) {
     throw std::invalid_argument(prefixed(h5_path_, "step " + std::to_string(record.step) + " has " +
                                                        std::to_string(record.structures.size()) +
@@ -127,11 +156,14 @@ void ResultsWriter::check_record(const StepRecord &record) const {
   }
 }
 
-/// Per-structure rows first and /time_s last: a reader that trusts the length of /time_s
+/// Per-structure and per-probe rows first and /time_s last: a reader that trusts the length of /time_s
 /// never sees a partly written step.
 void ResultsWriter::append_rows(const StepRecord &record) {
   for (std::size_t i = 0; i < structures_.size(); ++i) {
     structures_[i].append(record.structures[i]);
+  }
+  for (std::size_t i = 0; i < probes_.size(); ++i) {
+    probes_[i].append(record.probes[i]);
   }
   const std::int64_t step = record.step;
   step_->append_row(&step);

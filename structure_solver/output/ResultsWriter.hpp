@@ -10,11 +10,14 @@
 //       connectivity       [n_cells, 4] quads (membrane) or [n1-1, 2] segments (filament)
 //       position_m, velocity_m_per_s            [n_saved, n_points, 3] float64
 //       max_stretch_ratio, kinetic_energy_j, elastic_energy_j, potential_energy_j  [n_saved]
+//   /probes/<name>/        only when the case has probes
+//       position_m, velocity_m_per_s            [n_saved, 3] float64
 //
 // The file is flushed after every step and status change, so it stays readable when the
 // process dies; the length of /time_s is the number of complete steps.
 
 #include "structure_solver/output/H5Handle.hpp"
+#include "structure_solver/output/ProbeSeries.hpp"
 #include "structure_solver/output/ResultsRecords.hpp"
 #include "structure_solver/output/StructureSeries.hpp"
 #include "structure_solver/output/XdmfWriter.hpp"
@@ -38,8 +41,11 @@ public:
 
   /// Adds `/structures/<name>`; all structures come before the first write_step().
   void add_structure(const StructureLayout &layout);
+  /// Adds `/probes/<name>` (and `/probes` with the first one); before the first write_step().
+  void add_probe(const std::string &name);
 
-  /// Appends one saved step (structures in add_structure() order), flushes the HDF5 file and
+  /// Appends one saved step (structures in add_structure() order, probes in add_probe()
+  /// order), flushes the HDF5 file and
   /// rewrites the XDMF index. Throws std::invalid_argument (nothing written) when the record
   /// does not match the structures; std::runtime_error naming file and dataset when HDF5
   /// fails, after which the writer refuses further steps.
@@ -54,6 +60,7 @@ public:
 
 private:
   void write_root_attributes(const RunMetadata &meta);
+  void check_before_first_step(const std::string &what) const;
   void check_record(const StepRecord &record) const;
   void append_rows(const StepRecord &record);
   void flush();
@@ -66,6 +73,8 @@ private:
   std::unique_ptr<ExtendableDataset> time_s_;
   std::unique_ptr<ExtendableDataset> step_;
   std::vector<StructureSeries> structures_;
+  H5Handle probes_group_;
+  std::vector<ProbeSeries> probes_;
   std::unique_ptr<XdmfWriter> xdmf_;
   long n_saved_ = 0;
   std::string failure_;

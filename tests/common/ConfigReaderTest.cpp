@@ -59,6 +59,40 @@ TEST(ConfigReader, ReportsRangeAndTypeErrorsWithTheListIndex) {
   EXPECT_EQ(error_of("count: 2\ninner: {length_m: 0.5}\nitems: [{length_m: 3}]\n"), "");
 }
 
+struct Indices {
+  std::vector<int> index;
+  template <class V> void visit(V &v) {
+    v.integer_list("index", index, Range::non_negative("1"), "Grid indices.");
+  }
+};
+
+std::string integer_list_error(const std::string &yaml, std::vector<int> *read = nullptr) {
+  try {
+    ConfigReader reader(YAML::Load(yaml), "case.yaml");
+    Indices config;
+    config.visit(reader);
+    reader.finish();
+    if (read)
+      *read = config.index;
+  } catch (const ConfigError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ConfigReader, ReadsIntegerListsOfAnyLengthAndChecksEachEntry) {
+  std::vector<int> read;
+  EXPECT_EQ(integer_list_error("index: [3, 7]\n", &read), "");
+  EXPECT_EQ(read, (std::vector<int>{3, 7}));
+  EXPECT_EQ(integer_list_error("index: [4]\n", &read), "");
+  EXPECT_EQ(read, (std::vector<int>{4}));
+  EXPECT_NE(integer_list_error("index: [1.5, 2]\n").find("index must be a list of integers"), std::string::npos);
+  EXPECT_NE(integer_list_error("index: 3\n").find("index must be a list of integers"), std::string::npos);
+  EXPECT_NE(integer_list_error("index: [2, -1]\n").find("each entry must be >= 0"), std::string::npos);
+  Indices config{{1, 2}};
+  EXPECT_EQ(YAML::Load(to_yaml(config))["index"].as<std::vector<int>>(), (std::vector<int>{1, 2}));
+}
+
 TEST(ConfigEmitter, EchoesEveryKeyIncludingDefaults) {
   Outer config;
   config.items.resize(1);

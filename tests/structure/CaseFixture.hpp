@@ -1,15 +1,19 @@
 #pragma once
 // Test support: writes a case.yaml into a fresh temporary folder and builds the scene
-// through the real parser, so tests exercise the same path as `fsi-structure CASE_DIR`.
+// through the real parser, so tests exercise the same path as `fsi-structure CASE_DIR`; runs
+// the real executable.
 
 #include "structure_solver/CaseConfig.hpp"
 #include "structure_solver/LagrangianSheet.hpp"
 #include "structure_solver/Scene.hpp"
 
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <sys/wait.h>
 
 namespace fsi::structure::testing {
 
@@ -22,6 +26,24 @@ inline std::filesystem::path make_case_dir(const std::string &yaml) {
 }
 
 inline CaseConfig load_case(const std::string &yaml) { return CaseConfig::load(make_case_dir(yaml)); }
+
+/// Exit code and everything printed (stdout and stderr) of one run of the executable.
+struct SolverOutcome {
+  int exit_code;
+  std::string output;
+};
+
+/// Runs `prefix fsi-structure arguments` (prefix: e.g. a `timeout` command) and waits for it.
+inline SolverOutcome run_structure_solver(const std::string &arguments, const std::string &prefix = "") {
+  const std::string command = prefix + std::string(FSI_STRUCTURE_EXE) + " " + arguments + " 2>&1";
+  FILE *pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe))
+    output += buffer.data();
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
+}
 
 inline LagrangianSheet &sheet(const Scene &scene, std::size_t index = 0) {
   return dynamic_cast<LagrangianSheet &>(*scene.structures().at(index));

@@ -9,31 +9,15 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
 namespace fsi::structure {
 namespace {
 
-struct Outcome {
-  int exit_code;
-  std::string output;
-};
+using Outcome = testing::SolverOutcome;
 
-Outcome run_solver_with_prefix(const std::string &prefix, const std::string &arguments) {
-  const std::string command = prefix + std::string(FSI_STRUCTURE_EXE) + " " + arguments + " 2>&1";
-  FILE *pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe))
-    output += buffer.data();
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
-
-Outcome run_solver(const std::string &arguments) { return run_solver_with_prefix("", arguments); }
+Outcome run_solver(const std::string &arguments) { return testing::run_structure_solver(arguments); }
 
 const char *valid_case = R"(run: {end_time_s: 0.01, time_step_s: 1.0e-4, output_interval_s: 0.005}
 gravity_m_per_s2: [0, 0, -9.81]
@@ -197,7 +181,7 @@ TEST(RunBehaviour, InterruptKeepsTheResultsSoFarAndSaysSo) {
   // 400k steps would take minutes; SIGINT after 1 s must stop it with exit code 130, the
   // steps so far in the file and status "interrupted".
   const auto dir = testing::make_case_dir(with("end_time_s: 0.01", "end_time_s: 40.0"));
-  const Outcome out = run_solver_with_prefix("timeout --preserve-status -s INT 1 ", dir.string());
+  const Outcome out = testing::run_structure_solver(dir.string(), "timeout --preserve-status -s INT 1 ");
   EXPECT_EQ(out.exit_code, 130) << out.output;
   output::ResultsReader results(dir / "output" / "structure.h5");
   EXPECT_EQ(results.string_attribute("/", "status"), "interrupted");
