@@ -92,10 +92,11 @@ def run_case(case, name, timeout_s=600):
 # Case builders (SI units; Delta s = 4 mm, the paper's resolution, unless said otherwise)
 # ----------------------------------------------------------------------------------------------
 def membrane(name="sheet", size=(0.1, 0.1), n=(26, 26), origin=(0, 0, 0), s1=(1, 0, 0), s2=(0, 1, 0),
-             rho=0.08, damping=0.0, phi=10.0, zeta=1e-4, edges="free", velocity=(0, 0, 0), curvature=0.0):
+             rho=0.08, damping=0.0, phi=10.0, zeta=1e-4, edges="free", velocity=(0, 0, 0), curvature=0.0,
+             tension="frozen"):
     if isinstance(edges, str):
         edges = {e: edges for e in ("s1_min", "s1_max", "s2_min", "s2_max")}
-    return {"name": name, "model": "membrane", "size_m": list(size), "n_points": list(n),
+    return {"solver": {"tension": tension}, "name": name, "model": "membrane", "size_m": list(size), "n_points": list(n),
             "origin_m": list(origin), "s1_direction": list(s1), "s2_direction": list(s2),
             "material": {"mass_per_area_kg_per_m2": rho, "damping_kg_per_m2_s": damping,
                          "coefficients": {"tension_coefficient_n_per_m": phi, "bending_rigidity_n_m": zeta}},

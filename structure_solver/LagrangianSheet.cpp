@@ -12,7 +12,7 @@ LagrangianSheet::LagrangianSheet(SheetSetup setup)
                                           setup_.bending_rigidity, setup_.curved_rest_state);
   system_ = std::make_unique<SemiImplicitSystem>(*terms_, measure_, setup_.mass_per_measure,
                                                  setup_.damping_per_measure, prescribed_, setup_.linear_solver,
-                                                 setup_.time_scheme);
+                                                 setup_.time_scheme, setup_.tension_scheme);
   x_ = prescribed_positions(0.0);
   const double dt = setup_.time_step_s;
   x_prev_ = x_ - dt * Eigen::VectorXd::Ones(x_.rows()) * setup_.initial_velocity_m_per_s.transpose();

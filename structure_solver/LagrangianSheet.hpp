@@ -33,6 +33,7 @@ struct SheetSetup {
   double time_step_s = 1e-4;
   LinearSolver linear_solver = LinearSolver::automatic;
   TimeScheme time_scheme = TimeScheme::paper;
+  TensionScheme tension_scheme = TensionScheme::frozen;
   double max_stretch_ratio = 1.5;
   double max_speed_m_per_s = 1000.0;
 };
@@ -53,6 +54,7 @@ public:
   double tension_wave_speed_m_per_s() const override {
     return std::sqrt(2.0 * setup_.tension_coefficient / setup_.mass_per_measure);
   }
+  bool explicit_stretching() const override { return setup_.tension_scheme == TensionScheme::frozen; }
 
   int advance(const PointArray &load_density) override;
   void correct_positions(const std::function<void(PointArray &)> &correction) override;

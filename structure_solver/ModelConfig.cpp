@@ -15,6 +15,7 @@ void fill_shared_setup(SheetSetup &setup, const SharedSheetKeys &keys, const Bui
   setup.time_step_s = context.time_step_s;
   setup.linear_solver = solver.linear_solver;
   setup.time_scheme = solver.time_scheme;
+  setup.tension_scheme = solver.tension;
   setup.max_stretch_ratio = solver.max_stretch_ratio;
   setup.max_speed_m_per_s = solver.max_speed_m_per_s;
 }

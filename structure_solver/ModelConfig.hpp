@@ -46,6 +46,7 @@ private:
 struct SolverConfig {
   LinearSolver linear_solver = LinearSolver::automatic;
   TimeScheme time_scheme = TimeScheme::paper;
+  TensionScheme tension = TensionScheme::frozen;
   double max_stretch_ratio = 1.5;
   double max_speed_m_per_s = 1000.0;
 
@@ -57,6 +58,14 @@ struct SolverConfig {
     v.choice("time_scheme", time_scheme, {{"paper", TimeScheme::paper}, {"energy_conserving", TimeScheme::energy_conserving}},
              "'paper': Eq. (4) as printed (slightly dissipative); 'energy_conserving': elastic force on the mean "
              "of X^{n+1} and X^{n-1}.");
+    v.choice("tension", tension, {{"frozen", TensionScheme::frozen}, {"stabilized", TensionScheme::stabilized}},
+             "'frozen': tension coefficients at X^n (Eq. 4 as printed; stable for about Delta s / Delta t >= "
+             "sqrt(2 phi / rho_1)); 'stabilized': an upper bound of the stretching stiffness taken implicitly and "
+             "subtracted at the predictor 2 X^n - X^{n-1} (same order of accuracy, no stretching-wave limit on "
+             "the time step; with time_scheme paper).");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      if (tension == TensionScheme::stabilized && time_scheme != TimeScheme::paper)
+        v.fail("tension: stabilized works with time_scheme: paper only.");
     v.number("max_stretch_ratio", max_stretch_ratio, common::Range{.min = 1.0, .min_exclusive = true, .unit = "1"},
              "Stop the run (diverged) when an edge stretches beyond this ratio of its rest length.");
     v.number("max_speed_m_per_s", max_speed_m_per_s, common::Range::positive("m/s"),

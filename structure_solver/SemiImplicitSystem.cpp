@@ -25,10 +25,12 @@ struct SemiImplicitSystem::Slots {
 
 SemiImplicitSystem::SemiImplicitSystem(const ElasticTerms &terms, const Eigen::VectorXd &point_measure,
                                        double mass_per_measure, double damping_per_measure,
-                                       std::vector<bool> prescribed, LinearSolver solver, TimeScheme scheme)
+                                       std::vector<bool> prescribed, LinearSolver solver, TimeScheme scheme,
+                                       TensionScheme tension)
     : terms_(terms), measure_(point_measure), rho_(mass_per_measure), lambda_(damping_per_measure),
       prescribed_(std::move(prescribed)), solver_kind_(solver),
-      theta_(scheme == TimeScheme::paper ? 1.0 : 0.5), direct_active_(solver == LinearSolver::direct),
+      theta_(scheme == TimeScheme::paper ? 1.0 : 0.5), stabilized_(tension == TensionScheme::stabilized),
+      direct_active_(solver == LinearSolver::direct),
       slots_(std::make_unique<Slots>()) {
   build_pattern();
 }
@@ -58,6 +60,8 @@ void SemiImplicitSystem::build_pattern() {
   matrix_.makeCompressed();
   if (theta_ < 1.0)
     hessian_ = matrix_; // same pattern; only the energy-conserving scheme needs H itself
+  if (stabilized_)
+    bound_ = matrix_;
 
   const auto slot = [&](int row, int col) {
     const int *begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
@@ -110,6 +114,12 @@ void SemiImplicitSystem::fill_values(const PointArray &x, double dt) {
   }
   Eigen::Map<Eigen::VectorXd>(matrix_.valuePtr(), matrix_.nonZeros()) = base_values_;
   add_tension_hessian(x, theta_ * dt * dt, matrix_.valuePtr());
+  if (stabilized_) {
+    Eigen::Map<Eigen::VectorXd>(bound_.valuePtr(), bound_.nonZeros()).setZero();
+    add_stretching_bound(x, 1.0, bound_.valuePtr());
+    Eigen::Map<Eigen::VectorXd>(matrix_.valuePtr(), matrix_.nonZeros()) +=
+        dt * dt * Eigen::Map<const Eigen::VectorXd>(bound_.valuePtr(), bound_.nonZeros());
+  }
   if (theta_ < 1.0) {
     Eigen::Map<Eigen::VectorXd>(hessian_.valuePtr(), hessian_.nonZeros()) = s.bending_values;
     add_tension_hessian(x, 1.0, hessian_.valuePtr());
@@ -133,12 +143,43 @@ void SemiImplicitSystem::add_tension_hessian(const PointArray &x, double scale, 
   }
 }
 
+void SemiImplicitSystem::add_stretching_bound(const PointArray &x, double scale, double *values) const {
+  // Material part of the tension Hessian and its isotropic bound (u: any displacement):
+  //   edge, d = X_b - X_a:  (2 phi m / ds^4) (u_d . d)^2 <= (2 phi m T / ds^2) |u_d|^2, T = |d|^2 / ds^2;
+  //   shear, T_12 = a . b:  phi m (u_a . b + u_b . a)^2 <= 2 phi m (|b|^2 |u_a|^2 + |a|^2 |u_b|^2),
+  // u_d, u_a, u_b the stencils' differences of u: each bound is a scalar stencil times the 3x3
+  // identity, so S shares the pattern (and the three coordinates) of the frozen-tension matrix.
+  const Slots &s = *slots_;
+  const double phi = terms_.tension_coefficient();
+  for (std::size_t k = 0; k < s.tension.size(); ++k) {
+    const auto &t = terms_.tension()[k];
+    const double stretch = (x.row(t.b) - x.row(t.a)).squaredNorm() * t.inv_ds_squared;
+    const double v = scale * 2.0 * phi * t.measure * t.inv_ds_squared * stretch;
+    values[s.tension[k][0]] += v, values[s.tension[k][1]] -= v, values[s.tension[k][2]] -= v;
+    values[s.tension[k][3]] += v;
+  }
+  for (std::size_t k = 0; k < s.shear.size(); ++k) {
+    const auto &t = terms_.shear()[k];
+    Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+    for (int p = 0; p < 4; ++p) {
+      a += t.coef_a[p] * x.row(t.points[p]).transpose();
+      b += t.coef_b[p] * x.row(t.points[p]).transpose();
+    }
+    const double wa = scale * 2.0 * phi * t.measure * b.squaredNorm(), wb = scale * 2.0 * phi * t.measure * a.squaredNorm();
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        values[s.shear[k][4 * r + c]] += wa * t.coef_a[r] * t.coef_a[c] + wb * t.coef_b[r] * t.coef_b[c];
+  }
+}
+
 void SemiImplicitSystem::assemble_rhs(const StepInputs &in, PointArray &rhs) const {
   const double dt = in.dt_s;
   rhs = measure_.asDiagonal() * (2.0 * rho_ * *in.x_now - (rho_ - 0.5 * dt * lambda_) * *in.x_prev);
   rhs += dt * dt * *in.nodal_load_n;
   if (theta_ < 1.0)
     rhs -= (1.0 - theta_) * dt * dt * (hessian_ * *in.x_prev);
+  if (stabilized_) // + dt^2 S X*, X* = 2 X^n - X^{n-1}: the bound acts on X^{n+1} - X* only
+    rhs += dt * dt * (bound_ * (2.0 * *in.x_now - *in.x_prev));
   const double zeta = terms_.bending_rigidity();
   for (const int k : slots_->constant_bending_terms) { // ghost/rest constants: -zeta w coef (R c - rest)
     const auto &t = terms_.bending()[static_cast<std::size_t>(k)];

@@ -41,6 +41,8 @@ public:
   /// frozen at X^n in Eq. (4), so stretching is explicit: the step is stable for about
   /// Delta s / Delta t >= this speed (measured: see the closing note of issue 2).
   virtual double tension_wave_speed_m_per_s() const = 0;
+  /// False when stretching is implicit (solver.tension: stabilized): no stretching-wave limit.
+  virtual bool explicit_stretching() const { return true; }
 
   /// Advances to t + dt under gravity and the given load density (force per unit measure,
   /// N/m^2 or N/m; e.g. -F_fsi of Eq. 3). Returns linear-solver iterations (diagnostics).

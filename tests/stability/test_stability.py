@@ -130,10 +130,10 @@ class RagInMixing(StabilityCase):
 
     K = 1e5
 
-    def shear(self, dt=DT, end=0.5):
+    def shear(self, dt=DT, end=0.5, tension="frozen"):
         flow = {"shear": {"reference_point_m": [0, 0, 0], "reference_velocity_m_per_s": [0, 0, 0],
                           "flow_direction": [1, 0, 0], "gradient_direction": [0, 0, 1], "shear_rate_1_per_s": 200.0}}
-        sheet = S.membrane(origin=(-0.035, -0.05, -0.035), s1=(1, 0, 1), **SOFT_RAG)   # tilted 45 degrees
+        sheet = S.membrane(origin=(-0.035, -0.05, -0.035), s1=(1, 0, 1), tension=tension, **SOFT_RAG)  # tilted 45 deg
         return S.case([sheet], end, dt, gravity=(0, 0, 0), flow=flow, stiffness=self.K)
 
     def rotation(self, dt=DT, end=0.5):
@@ -160,6 +160,36 @@ class RagInMixing(StabilityCase):
                                           max_stretch=1.3, energy_max_j=0.5 * 0.03 * 0.01 * u_max ** 2)
         self.assertIsNotNone(stable)
         self.assertIsNotNone(unstable)
+
+
+# ------------------------------------------------------------------------------------------------
+class StabilizedTension(StabilityCase):
+    """solver.tension: stabilized (an upper bound of the stretching stiffness taken implicitly) on
+    the two cases that the stretching wave limits with the paper's frozen tension: the stiff sheet
+    (phi = 1000 N/m: frozen limit 2.4e-5 s) and the soft rag in shear (frozen limit 1.4e-4 s; then
+    the penalty law's K dt^2 / rho_1 < 2, dt < 7.7e-4 s, is the next limit)."""
+
+    def test_1_stiff_sheet_largest_time_step(self):
+        def sheet():
+            return S.case([S.membrane(phi=1000.0, rho=0.08, damping=2.0, zeta=1e-4, edges=PINNED_S1,
+                                      tension="stabilized")], 1.0, DT)
+        stable, unstable = self.bisect_dt("stiff sheet phi=1000, tension stabilized", sheet, 2e-5, 2e-2, None,
+                                          "phi = 1000 N/m", note="frozen tension: 2.39e-5 s (StiffSheet)",
+                                          order=4, min_steps=3000, max_stretch=1.3)
+        self.assertIsNotNone(stable)
+        self.assertGreater(stable, 20 * wave_dt(1000.0, 0.08))
+
+    def test_2_rag_in_shear_largest_time_step(self):
+        u_max = 200.0 * 0.075
+        predicted = penalty_dt(RagInMixing.K, 0.03)
+        stable, unstable = self.bisect_dt("rag in shear (zeta=1e-8), tension stabilized",
+                                          lambda: RagInMixing().shear(end=0.1, tension="stabilized"), DT, 5e-3,
+                                          predicted, "K = 1e5, shear 200 1/s", order=11, min_time_s=0.1,
+                                          note="frozen tension: 1.41e-4 s; now the penalty law limits",
+                                          max_stretch=1.3, energy_max_j=0.5 * 0.03 * 0.01 * u_max ** 2)
+        self.assertIsNotNone(stable)
+        self.assertGreater(stable, 3 * wave_dt(10.0, 0.03))
+        self.assertLess(stable, 1.2 * predicted)
 
 
 # ------------------------------------------------------------------------------------------------
