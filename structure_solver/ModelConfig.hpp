@@ -60,9 +60,9 @@ struct SolverConfig {
              "of X^{n+1} and X^{n-1}.");
     v.choice("tension", tension, {{"frozen", TensionScheme::frozen}, {"stabilized", TensionScheme::stabilized}},
              "'frozen': tension coefficients at X^n (Eq. 4 as printed; stable for about Delta s / Delta t >= "
-             "sqrt(2 phi / rho_1)); 'stabilized': an upper bound of the stretching stiffness taken implicitly and "
-             "subtracted at the predictor 2 X^n - X^{n-1} (same order of accuracy, no stretching-wave limit on "
-             "the time step; with time_scheme paper).");
+             "sqrt(2 phi / rho_1)); 'stabilized': above Delta s / (1.5 c) the part of the stretching stiffness the "
+             "explicit step cannot carry is taken implicitly (no stretching-wave limit; robust, but less accurate at "
+             "large steps: see docs/verification.md; with time_scheme paper).");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       if (tension == TensionScheme::stabilized && time_scheme != TimeScheme::paper)
         v.fail("tension: stabilized works with time_scheme: paper only.");

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace fsi::structure {
@@ -33,6 +34,13 @@ SemiImplicitSystem::SemiImplicitSystem(const ElasticTerms &terms, const Eigen::V
       direct_active_(solver == LinearSolver::direct),
       slots_(std::make_unique<Slots>()) {
   build_pattern();
+  double max_inv_ds_squared = 0.0;
+  for (const auto &t : terms_.tension())
+    max_inv_ds_squared = std::max(max_inv_ds_squared, t.inv_ds_squared);
+  if (max_inv_ds_squared > 0.0)
+    min_spacing_m_ = 1.0 / std::sqrt(max_inv_ds_squared);
+  constexpr double beta = 1.5; // explicit remainder at Delta s / dt = 1.5 x its wave speed
+  stabilization_speed_m_per_s_ = beta * std::sqrt(2.0 * terms_.tension_coefficient() / rho_);
 }
 
 SemiImplicitSystem::~SemiImplicitSystem() = default;
@@ -115,8 +123,11 @@ void SemiImplicitSystem::fill_values(const PointArray &x, double dt) {
   Eigen::Map<Eigen::VectorXd>(matrix_.valuePtr(), matrix_.nonZeros()) = base_values_;
   add_tension_hessian(x, theta_ * dt * dt, matrix_.valuePtr());
   if (stabilized_) {
+    const double r = min_spacing_m_ / (stabilization_speed_m_per_s_ * dt);
+    const double f = std::max(0.0, 1.0 - r * r);
     Eigen::Map<Eigen::VectorXd>(bound_.valuePtr(), bound_.nonZeros()).setZero();
-    add_stretching_bound(x, 1.0, bound_.valuePtr());
+    if (f > 0.0)
+      add_stretching_bound(x, f, bound_.valuePtr());
     Eigen::Map<Eigen::VectorXd>(matrix_.valuePtr(), matrix_.nonZeros()) +=
         dt * dt * Eigen::Map<const Eigen::VectorXd>(bound_.valuePtr(), bound_.nonZeros());
   }

@@ -5,8 +5,8 @@
 // Delta s / 158 m/s = 6.3e-5 s.
 // - At dt = 4e-4 s (6 x that limit) the frozen tension blows up within a few steps; the
 //   stabilized tension stays finite, stretches less than 1 % and does not gain energy.
-// - At small steps the two agree: the stabilization adds dt^2 S (X^{n+1} - X*), of order
-//   dt^4 (c / Delta s)^2 per step, so the two swings converge to each other at second order.
+// - Below Delta s / (1.5 c) it is the paper's scheme exactly; beyond, it is stable but its error
+//   against a small-step reference grows fast with dt (the price of an isotropic bound).
 
 #include "CaseFixture.hpp"
 
@@ -64,26 +64,37 @@ TEST(StabilizedTension, StaysStableSixTimesBeyondTheStretchingWaveLimit) {
   EXPECT_LT(stabilized.max_energy_gain_j, 1e-6); // dissipative: never above the initial energy
 }
 
-TEST(StabilizedTension, ConvergesToTheFrozenTensionAtSecondOrder) {
-  // The flap after 0.1 s of swinging (its free edge falls about 5 cm), both schemes at two steps.
+TEST(StabilizedTension, IsThePaperSchemeBelowTheStabilizationThreshold) {
+  // Delta s / (1.5 c) = 4.2e-5 s: below it nothing is moved to the implicit side.
+  const Swing frozen = swing("frozen", 2e-5, 0.05);
+  const Swing stabilized = swing("stabilized", 2e-5, 0.05);
+  ASSERT_TRUE(frozen.finite && stabilized.finite);
+  EXPECT_EQ((stabilized.x - frozen.x).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(StabilizedTension, PaysForStabilityWithAccuracy) {
+  // The flap after 0.1 s of swinging (its free edge falls about 5 cm) against the frozen tension
+  // at dt = 1e-5 s: the stabilized tension at 5e-5 s (just below the frozen limit, where about
+  // half the stiffness is moved) and at 4e-4 s (6 times beyond it).
   const double end = 0.1;
-  double difference[2] = {0.0, 0.0}, drop = 0.0;
-  const double steps[2] = {2e-5, 1e-5};
-  for (int i = 0; i < 2; ++i) {
-    const Swing frozen = swing("frozen", steps[i], end);
-    const Swing stabilized = swing("stabilized", steps[i], end);
-    ASSERT_TRUE(frozen.finite && stabilized.finite);
-    difference[i] = (stabilized.x - frozen.x).rowwise().norm().maxCoeff();
-    drop = -frozen.x.col(2).minCoeff();
-  }
-  const double order = std::log2(difference[0] / difference[1]);
-  std::printf("after %.2g s (drop %.4f m): stabilized vs frozen differ by %.3e m (dt = 2e-5 s) and %.3e m (dt = 1e-5 "
-              "s): order %.2f, %.2f %% of the drop\n",
-              end, drop, difference[0], difference[1], order, 100 * difference[1] / drop);
+  const Swing reference = swing("frozen", 1e-5, end);
+  const Swing frozen = swing("frozen", 5e-5, end);
+  const Swing near = swing("stabilized", 5e-5, end);
+  const Swing far = swing("stabilized", 4e-4, end);
+  ASSERT_TRUE(reference.finite && frozen.finite && near.finite && far.finite);
+  const double drop = -reference.x.col(2).minCoeff();
+  const auto error = [&](const Swing &s) { return (s.x - reference.x).rowwise().norm().maxCoeff() / drop; };
+  std::printf("after %.2g s (drop %.4f m), max point error per drop against frozen dt = 1e-5 s: frozen 5e-5 s %.2e, "
+              "stabilized 5e-5 s %.2e, stabilized 4e-4 s %.2e\n",
+              end, drop, error(frozen), error(near), error(far));
   ASSERT_GT(drop, 0.02);
-  // The added term is dt^2 S (X^{n+1} - X*) = O(dt^4 (c / Delta s)^2) per step: second order.
-  EXPECT_GT(order, 1.7);
-  EXPECT_LT(difference[1] / drop, 2e-3);
+  // Measured: 7.5e-4 (frozen), 7.8e-3 (stabilized, 5e-5 s), 0.39 (stabilized, 4e-4 s). The bound
+  // S is isotropic, so it also resists the transverse part of X^{n+1} - X* (the swing itself),
+  // which the true stretching stiffness does not: stable, but far from accurate at 6 x the limit.
+  EXPECT_LT(error(frozen), 2e-3);
+  EXPECT_LT(error(near), 0.02);
+  EXPECT_GT(error(far), error(near));
+  EXPECT_LT(error(far), 0.6);
 }
 
 } // namespace
