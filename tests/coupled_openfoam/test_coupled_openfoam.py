@@ -40,7 +40,7 @@ from openfoam_support import (EPS, StructureResults, TempDirTest, block_mesh_cel
                               write_case)
 
 SHEET_CASE = "sheet-in-openfoam-channel"
-FLAG_CASE = "flag-in-openfoam-channel"
+FLAG_CASE = "flag-in-crossflow"
 
 
 class SheetRun:
@@ -226,7 +226,7 @@ class OneWayVsTwoWay(TempDirTest):
 
 
 class FlappingFlag(TempDirTest):
-    """cases/flag-in-openfoam-channel: a flag clamped at its leading edge in a uniform stream
+    """cases/flag-in-crossflow: a flag clamped at its leading edge in a uniform stream
     flaps. The trailing edge's cross-stream displacement y(t) (mean over the span) swings from
     side to side: counted as crossings between y = +A_min and y = -A_min (hysteresis, so that
     noise around y = 0 does not count), with A_min = 0.1 L (the initial arc puts the tip 0.1 L
