@@ -2,12 +2,15 @@
 # fsi: the one entry point. Installs missing Debian packages, configures and builds with
 # CMake (Release), then runs a case, validates it, runs the tests or the benchmarks.
 #
-#   ./fsi run [-o DIR] [-v] CASE_DIR  build, then run the case (results in CASE_DIR/output/):
-#                             the structure solver alone, or the coupler and its participants
+#   ./fsi run [-o DIR] [-v] [--resolution coarse|medium|fine] [--end-time S] CASE_DIR
+#                             build, then run the case (results in CASE_DIR/output/): the
+#                             structure solver alone, or the coupler and its participants
+#                             (after the fluid's precursor run, if the case has one)
 #   ./fsi run --participant coupler|structure|fluid CASE_DIR
 #                             start only that process (several machines; see README)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
+#   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
 #   ./fsi bench [structure|transport|coupling|fluid]  run a benchmark (fluid: vs stock pimpleFoam)
 #   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
@@ -76,7 +79,7 @@ prepare() { ensure_packages; ensure_openfoam; build "$BUILD" -DCMAKE_BUILD_TYPE=
 # The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
 # and starts them; the picture is drawn where the structure ran.
 cmd_run() {
-  [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--participant NAME] CASE_DIR"
+  [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--resolution NAME] [--end-time S] [--participant NAME] CASE_DIR"
   prepare
   local launch=(/usr/bin/python3 "$ROOT/scripts/fsi_launch.py" --bin-dir "$BUILD/bin")
   local status=0 out="" participant="" prev=""
