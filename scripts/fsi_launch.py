@@ -173,7 +173,12 @@ def run_precursors(args, plan):
         if args.verbose:
             command.append("-v")
         say("%s: precursor run (%s)" % (name, " ".join(command[1:])))
-        code = subprocess.call(command, stdin=subprocess.DEVNULL)
+        # Its own progress lines (stderr) show; the solver's residuals (stdout) go to a log.
+        folder = os.path.join(plan.output_dir, "precursor")
+        os.makedirs(folder, exist_ok=True)
+        with open(os.path.join(folder, "%s.console" % name), "wb") as console:
+            code = subprocess.call(command, stdin=subprocess.DEVNULL,
+                                   stdout=None if args.verbose else console)
         if code != 0:
             if code < 0:
                 code = 128 - code

@@ -17,6 +17,7 @@ matplotlib (Agg) draws, since Debian's ParaView 5.11 renders only with an X serv
 Exits 1 with a message when OUT_DIR holds no OpenFOAM results (no time after 0 with U).
 """
 import argparse
+import glob
 import math
 import os
 import re
@@ -198,6 +199,8 @@ def main(argv):
     height_m = domain[2 * v_axis + 1] - domain[2 * v_axis]
     fig_w = 10.0
     fig_h = min(12.0, max(3.5, fig_w * 0.85 * height_m / max(width_m, 1e-30) + 1.6))
+    for stale in glob.glob(os.path.join(out_dir, "flow_t*.png")):  # an earlier run's pictures
+        os.remove(stale)
     for name, origin, cells, speed, sheet_cells in frames:
         fig, ax = plt.subplots(figsize=(fig_w, fig_h), dpi=120)
         flow = PolyCollection(cells, array=speed, cmap="viridis", edgecolors="face",
