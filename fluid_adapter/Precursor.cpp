@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -67,6 +68,7 @@ Precursor::Precursor(const structure::CaseConfig &config, fs::path case_dir, fs:
   const auto &foam = *config.fluid->openfoam;
   end_time_s_ = foam.precursor_time_s;
   time_step_s_ = foam.precursor_time_step_s > 0.0 ? foam.precursor_time_step_s : config.run.time_step_s;
+  coupled_time_step_s_ = config.run.time_step_s;
   if (wanted())
     fingerprint_ = compute_fingerprint(config, case_dir);
 }
@@ -78,7 +80,9 @@ std::string Precursor::compute_fingerprint(const structure::CaseConfig &config, 
   hash.add(YAML::Dump(node["fluid"]));
   if (node["collisions"])
     hash.add(YAML::Dump(node["collisions"]));
-  hash.add(std::to_string(time_step_s_) + " " + std::to_string(end_time_s_));
+  hash.add(std::to_string(end_time_s_));
+  for (const double dt : step_sizes()) // the schedule itself, hand-over ramp included
+    hash.add(std::to_string(dt));
   // Every file of the OpenFOAM case folder, in a fixed order, with its relative path.
   const fs::path template_dir = case_dir / config.fluid->openfoam->case_directory;
   std::vector<fs::path> files;
@@ -96,6 +100,29 @@ std::string Precursor::compute_fingerprint(const structure::CaseConfig &config, 
       if (surface.mesh)
         hash.add_file(surface.mesh->file);
   return hash.hex();
+}
+
+std::vector<double> Precursor::step_sizes() const {
+  // Backwards from the end: handover_steps at the coupled dt, then a geometric ramp up to the
+  // precursor's own dt (each step at most 1.25 times the next), then its own dt from t = 0.
+  std::vector<double> tail;
+  double covered = 0.0;
+  if (coupled_time_step_s_ < time_step_s_) {
+    for (int i = 0; i < handover_steps && covered + coupled_time_step_s_ <= end_time_s_ + 1e-12; ++i) {
+      tail.push_back(coupled_time_step_s_);
+      covered += coupled_time_step_s_;
+    }
+    for (double dt = 1.25 * coupled_time_step_s_; dt < time_step_s_ && covered + dt <= end_time_s_; dt *= 1.25) {
+      tail.push_back(dt);
+      covered += dt;
+    }
+  }
+  // The rest in equal steps of at most its own dt (no short last step before the ramp).
+  const double bulk_end = end_time_s_ - covered;
+  const auto n_bulk = static_cast<std::size_t>(std::ceil(bulk_end / time_step_s_ - 1e-9));
+  std::vector<double> steps(n_bulk, n_bulk > 0 ? bulk_end / static_cast<double>(n_bulk) : 0.0);
+  steps.insert(steps.end(), tail.rbegin(), tail.rend());
+  return steps;
 }
 
 bool Precursor::is_current() const {

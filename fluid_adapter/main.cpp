@@ -147,18 +147,20 @@ int run_self(int argc, char **argv, const std::vector<std::string> &extra) {
 int run_precursor_steps(fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamFlow &flow,
                         const fsi::fluid::Precursor &precursor) {
   using Clock = std::chrono::steady_clock;
-  const double dt = precursor.time_step_s(), end = precursor.end_time_s();
-  const long n_steps = std::lround(std::ceil(end / dt - 1e-9));
+  const double end = precursor.end_time_s();
+  const std::vector<double> steps = precursor.step_sizes();
+  const auto n_steps = static_cast<long>(steps.size());
   std::ofstream forces;
   const auto start = Clock::now();
   auto last_report = start;
+  double t = 0.0;
   for (long step = 0; step < n_steps; ++step) {
     if (fsi::proto::FluidParticipant::stop_signal() != 0) {
-      spdlog::warn("precursor interrupted at t = {:.6g} s; its result is not kept", step * dt);
+      spdlog::warn("precursor interrupted at t = {:.6g} s; its result is not kept", t);
       return 130;
     }
-    const double t = step * dt;
-    const auto loads = model.advance_without_structure(t, std::min(dt, end - t));
+    const auto loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
+    t += steps[static_cast<std::size_t>(step)];
     if (flow.rank() != 0)
       continue;
     if (step == 0 && !loads.empty()) {
@@ -291,7 +293,8 @@ int main(int argc, char **argv) {
         spdlog::set_level(spdlog::level::warn);
       else if (mpi_rank)
         fsi::common::add_log_file(base / "fluid.log");
-      spdlog::info("precursor: {} to t = {} s, dt = {} s", flow->describe(), end_time, dt);
+      spdlog::info("precursor: {} to t = {} s, dt = {} s (the last {} steps at the coupled run's {} s)",
+                   flow->describe(), end_time, dt, fsi::fluid::Precursor::handover_steps, config.run.time_step_s);
       const int code = run_precursor_steps(model, *flow, precursor);
       if (code == 0 && flow->rank() == 0) {
         precursor.mark_complete();
