@@ -101,7 +101,7 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
     argList::noParallel();
   args_ = std::make_unique<argList>(argc_, argv_);
   runTime_ = std::make_unique<Time>(Time::controlDictName, *args_);
-  runTime_->setDeltaT(settings.time_step_s);
+  runTime_->setDeltaT(settings.time_step_s, false);
   runTime_->setEndTime(settings.end_time_s);
   mesh_ = std::make_unique<fvMesh>(
       IOobject(fvMesh::defaultRegion, runTime_->timeName(), *runTime_, IOobject::MUST_READ));
@@ -322,7 +322,7 @@ std::string OpenFoamFlow::find_divergence(double dt_s) const {
 }
 
 void OpenFoamFlow::step(double dt_s) {
-  runTime_->setDeltaT(dt_s);
+  runTime_->setDeltaT(dt_s, false); // exactly the coupled dt: never stretched to hit a write time
   ++(*runTime_);
   while (pimple_->loop()) {
     solve_momentum_and_pressure();
