@@ -58,14 +58,19 @@ struct SolverConfig {
     v.choice("time_scheme", time_scheme, {{"paper", TimeScheme::paper}, {"energy_conserving", TimeScheme::energy_conserving}},
              "'paper': Eq. (4) as printed (slightly dissipative); 'energy_conserving': elastic force on the mean "
              "of X^{n+1} and X^{n-1}.");
-    v.choice("tension", tension, {{"frozen", TensionScheme::frozen}, {"stabilized", TensionScheme::stabilized}},
+    v.choice("tension", tension,
+             {{"frozen", TensionScheme::frozen},
+              {"stabilized", TensionScheme::stabilized},
+              {"linearized", TensionScheme::linearized}},
              "'frozen': tension coefficients at X^n (Eq. 4 as printed; stable for about Delta s / Delta t >= "
              "sqrt(2 phi / rho_1)); 'stabilized': above Delta s / (1.5 c) the part of the stretching stiffness the "
              "explicit step cannot carry is taken implicitly (no stretching-wave limit; robust, but less accurate at "
-             "large steps: see docs/verification.md; with time_scheme paper).");
+             "large steps); 'linearized': the change of the tension linearised about X^n and taken implicitly with "
+             "its direction (a 3n x 3n system: no stretching-wave limit, accurate at large steps; see "
+             "docs/verification.md). Both with time_scheme paper.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
-      if (tension == TensionScheme::stabilized && time_scheme != TimeScheme::paper)
-        v.fail("tension: stabilized works with time_scheme: paper only.");
+      if (tension != TensionScheme::frozen && time_scheme != TimeScheme::paper)
+        v.fail("tension: stabilized and linearized work with time_scheme: paper only.");
     v.number("max_stretch_ratio", max_stretch_ratio, common::Range{.min = 1.0, .min_exclusive = true, .unit = "1"},
              "Stop the run (diverged) when an edge stretches beyond this ratio of its rest length.");
     v.number("max_speed_m_per_s", max_speed_m_per_s, common::Range::positive("m/s"),

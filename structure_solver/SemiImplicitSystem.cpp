@@ -31,9 +31,12 @@ SemiImplicitSystem::SemiImplicitSystem(const ElasticTerms &terms, const Eigen::V
     : terms_(terms), measure_(point_measure), rho_(mass_per_measure), lambda_(damping_per_measure),
       prescribed_(std::move(prescribed)), solver_kind_(solver),
       theta_(scheme == TimeScheme::paper ? 1.0 : 0.5), stabilized_(tension == TensionScheme::stabilized),
+      linearized_(tension == TensionScheme::linearized),
       direct_active_(solver == LinearSolver::direct),
       slots_(std::make_unique<Slots>()) {
   build_pattern();
+  if (linearized_)
+    build_block_pattern();
   double max_inv_ds_squared = 0.0;
   for (const auto &t : terms_.tension())
     max_inv_ds_squared = std::max(max_inv_ds_squared, t.inv_ds_squared);
@@ -214,7 +217,126 @@ void SemiImplicitSystem::apply_prescribed(const PointArray &prescribed_next, Poi
     }
 }
 
+void SemiImplicitSystem::build_block_pattern() {
+  // Every scalar nonzero (r, c) becomes a full 3 x 3 block (3r + i, 3c + j).
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int col = 0; col < matrix_.outerSize(); ++col)
+    for (int k = matrix_.outerIndexPtr()[col]; k < matrix_.outerIndexPtr()[col + 1]; ++k)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          entries.emplace_back(3 * matrix_.innerIndexPtr()[k] + i, 3 * col + j, 0.0);
+  block_.resize(3 * matrix_.rows(), 3 * matrix_.cols());
+  block_.setFromTriplets(entries.begin(), entries.end());
+  block_.makeCompressed();
+  material_ = block_;
+  block_slots_.resize(static_cast<std::size_t>(matrix_.nonZeros()));
+  for (int col = 0; col < matrix_.outerSize(); ++col)
+    for (int k = matrix_.outerIndexPtr()[col]; k < matrix_.outerIndexPtr()[col + 1]; ++k) {
+      const int row = matrix_.innerIndexPtr()[k];
+      for (int j = 0; j < 3; ++j) {
+        const int bcol = 3 * col + j;
+        const int *begin = block_.innerIndexPtr() + block_.outerIndexPtr()[bcol];
+        const int *end = block_.innerIndexPtr() + block_.outerIndexPtr()[bcol + 1];
+        for (int i = 0; i < 3; ++i)
+          block_slots_[static_cast<std::size_t>(k)][3 * i + j] =
+              static_cast<int>(std::lower_bound(begin, end, 3 * row + i) - block_.innerIndexPtr());
+      }
+    }
+}
+
+void SemiImplicitSystem::fill_material_blocks(const PointArray &x, double *values) const {
+  // Material part of the tension Hessian (the change of sigma with X), scale 1:
+  //   edge:  2 phi m / ds^4 d d^T on (a,a), (b,b) and minus it on (a,b), (b,a);
+  //   shear: phi m v_r v_c^T with v_r = dT_12 / dX_r = coef_a[r] b + coef_b[r] a.
+  const Slots &s = *slots_;
+  const double phi = terms_.tension_coefficient();
+  const auto add = [&](int scalar_slot, const Eigen::Matrix3d &block) {
+    const auto &slots = block_slots_[static_cast<std::size_t>(scalar_slot)];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        values[slots[3 * i + j]] += block(i, j);
+  };
+  for (std::size_t k = 0; k < s.tension.size(); ++k) {
+    const auto &t = terms_.tension()[k];
+    const Vec3 d = (x.row(t.b) - x.row(t.a)).transpose();
+    const Eigen::Matrix3d block = 2.0 * phi * t.measure * t.inv_ds_squared * t.inv_ds_squared * d * d.transpose();
+    add(s.tension[k][0], block), add(s.tension[k][1], -block), add(s.tension[k][2], -block);
+    add(s.tension[k][3], block);
+  }
+  for (std::size_t k = 0; k < s.shear.size(); ++k) {
+    const auto &t = terms_.shear()[k];
+    Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+    for (int p = 0; p < 4; ++p) {
+      a += t.coef_a[p] * x.row(t.points[p]).transpose();
+      b += t.coef_b[p] * x.row(t.points[p]).transpose();
+    }
+    std::array<Vec3, 4> v;
+    for (int r = 0; r < 4; ++r)
+      v[static_cast<std::size_t>(r)] = t.coef_a[r] * b + t.coef_b[r] * a;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        add(s.shear[k][4 * r + c], phi * t.measure * v[static_cast<std::size_t>(r)] *
+                                       v[static_cast<std::size_t>(c)].transpose());
+  }
+}
+
+void SemiImplicitSystem::solve_linearized(const StepInputs &in, PointArray &x_next) {
+  // [M + dt^2 (H_sigma(X^n) + K(X^n))] X^{n+1} = [paper's right-hand side] + dt^2 K(X^n) X^n:
+  // the frozen-tension step plus the change of sigma, linearised about X^n.
+  const double dt = in.dt_s;
+  fill_values(*in.x_now, dt);
+  PointArray rhs;
+  assemble_rhs(in, rhs);
+  Eigen::Map<Eigen::VectorXd> material(material_.valuePtr(), material_.nonZeros());
+  material.setZero();
+  fill_material_blocks(*in.x_now, material_.valuePtr());
+  material *= dt * dt;
+  Eigen::Map<Eigen::VectorXd> b(rhs.data(), rhs.size());
+  const Eigen::Map<const Eigen::VectorXd> xn(in.x_now->data(), in.x_now->size());
+  b += material_ * xn;
+  Eigen::Map<Eigen::VectorXd>(block_.valuePtr(), block_.nonZeros()) = material;
+  double *values = block_.valuePtr();
+  const double *scalar = matrix_.valuePtr();
+  for (std::size_t k = 0; k < block_slots_.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      values[block_slots_[k][4 * i]] += scalar[k]; // the diagonal of each block: 3i + i
+  // Prescribed points: move their known values to the right-hand side, keep their rows.
+  const PointArray &xp = *in.prescribed_next;
+  const Slots &s = *slots_;
+  for (const auto &[k, row, col] : s.free_row_prescribed_col) {
+    const auto &slots = block_slots_[static_cast<std::size_t>(k)];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        b[3 * row + i] -= values[slots[3 * i + j]] * xp(col, j);
+  }
+  for (const int k : s.prescribed_off_diagonal)
+    for (const int slot : block_slots_[static_cast<std::size_t>(k)])
+      values[slot] = 0.0;
+  for (std::size_t p = 0; p < prescribed_.size(); ++p)
+    if (prescribed_[p]) {
+      const auto &slots = block_slots_[static_cast<std::size_t>(s.diagonal[p])];
+      for (int i = 0; i < 3; ++i) {
+        b[3 * static_cast<Eigen::Index>(p) + i] = 0.0;
+        for (int j = 0; j < 3; ++j)
+          b[3 * static_cast<Eigen::Index>(p) + i] += values[slots[3 * i + j]] * xp(static_cast<Eigen::Index>(p), j);
+      }
+    }
+  if (!block_analysed_) {
+    block_ldlt_.analyzePattern(block_);
+    block_analysed_ = true;
+  }
+  block_ldlt_.factorize(block_);
+  if (block_ldlt_.info() != Eigen::Success)
+    throw std::runtime_error("the LDLT factorisation of the linearized-tension step failed (singular system)");
+  x_next.resize(in.x_now->rows(), 3);
+  Eigen::Map<Eigen::VectorXd>(x_next.data(), x_next.size()) = block_ldlt_.solve(b);
+}
+
 int SemiImplicitSystem::solve(const StepInputs &in, PointArray &x_next) {
+  if (linearized_) {
+    solve_linearized(in, x_next);
+    return 0;
+  }
   fill_values(*in.x_now, in.dt_s);
   PointArray rhs;
   assemble_rhs(in, rhs);

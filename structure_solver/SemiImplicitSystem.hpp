@@ -38,7 +38,12 @@ enum class TimeScheme { paper, energy_conserving };
 /// So for dt <= Delta s / (beta c) the step is the paper's exactly, and beyond it stretching waves
 /// no longer limit the time step (linear stability argument; the stability suite measures it).
 /// The added term dt^2 f S (X^{n+1} - X*) is of order dt^4 (c / Delta s)^2 per step.
-enum class TensionScheme { frozen, stabilized };
+/// linearized: the tension linearised about X^n, directionally: the full stretching and shearing
+/// stiffness (material part 2 phi m d d^T / ds^4 per edge, phi m v_r v_c^T per shear cell, the
+/// 3 x 3 blocks coupling the coordinates) is taken implicitly on X^{n+1} - X^n, one Newton step
+/// of the implicit tension: a 3n x 3n system, solved by LDLT. No stretching-wave limit, and no
+/// resistance to transverse motion that the stretching does not have.
+enum class TensionScheme { frozen, stabilized, linearized };
 
 struct StepInputs {
   const PointArray *x_now;
@@ -71,6 +76,9 @@ private:
   void assemble_rhs(const StepInputs &in, PointArray &rhs) const;
   void apply_prescribed(const PointArray &prescribed_next, PointArray &rhs);
   int solve_cg(const PointArray &rhs, PointArray &x) const;
+  void build_block_pattern();
+  void fill_material_blocks(const PointArray &x, double *values) const;
+  void solve_linearized(const StepInputs &in, PointArray &x_next);
   void solve_direct(const PointArray &rhs, PointArray &x);
 
   const ElasticTerms &terms_;
@@ -80,6 +88,12 @@ private:
   LinearSolver solver_kind_;
   double theta_;
   bool stabilized_;
+  bool linearized_;
+  Eigen::SparseMatrix<double> block_;         ///< 3n x 3n system of the linearized tension
+  Eigen::SparseMatrix<double> material_;      ///< its material part dt^2 K(X^n), same pattern
+  std::vector<std::array<int, 9>> block_slots_; ///< per scalar slot: its 3 x 3 block's slots
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> block_ldlt_;
+  bool block_analysed_ = false;
   double stabilization_speed_m_per_s_ = 0.0; ///< beta c: f = max(0, 1 - (ds_min / (beta c dt))^2)
   double min_spacing_m_ = 0.0;
   bool direct_active_ = false;

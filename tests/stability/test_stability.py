@@ -164,32 +164,45 @@ class RagInMixing(StabilityCase):
 
 # ------------------------------------------------------------------------------------------------
 class StabilizedTension(StabilityCase):
-    """solver.tension: stabilized (an upper bound of the stretching stiffness taken implicitly) on
+    """solver.tension: stabilized (an upper bound of the stretching stiffness taken implicitly) and
+    linearized (the change of the tension linearised about X^n, implicit with its direction) on
     the two cases that the stretching wave limits with the paper's frozen tension: the stiff sheet
     (phi = 1000 N/m: frozen limit 2.4e-5 s) and the soft rag in shear (frozen limit 1.4e-4 s; then
     the penalty law's K dt^2 / rho_1 < 2, dt < 7.7e-4 s, is the next limit)."""
 
-    def test_1_stiff_sheet_largest_time_step(self):
+    def stiff_sheet(self, tension, order):
         def sheet():
             return S.case([S.membrane(phi=1000.0, rho=0.08, damping=2.0, zeta=1e-4, edges=PINNED_S1,
-                                      tension="stabilized")], 1.0, DT)
-        stable, unstable = self.bisect_dt("stiff sheet phi=1000, tension stabilized", sheet, 2e-5, 2e-2, None,
+                                      tension=tension)], 1.0, DT)
+        stable, unstable = self.bisect_dt("stiff sheet phi=1000, tension %s" % tension, sheet, 2e-5, 2e-2, None,
                                           "phi = 1000 N/m", note="frozen tension: 2.39e-5 s (StiffSheet)",
-                                          order=4, min_steps=3000, max_stretch=1.3)
+                                          order=order, min_steps=3000, max_stretch=1.3)
         self.assertIsNotNone(stable)
         self.assertGreater(stable, 20 * wave_dt(1000.0, 0.08))
 
-    def test_2_rag_in_shear_largest_time_step(self):
+    def rag_in_shear(self, tension, order):
         u_max = 200.0 * 0.075
         predicted = penalty_dt(RagInMixing.K, 0.03)
-        stable, unstable = self.bisect_dt("rag in shear (zeta=1e-8), tension stabilized",
-                                          lambda: RagInMixing().shear(end=0.1, tension="stabilized"), DT, 5e-3,
-                                          predicted, "K = 1e5, shear 200 1/s", order=11, min_time_s=0.1,
+        stable, unstable = self.bisect_dt("rag in shear (zeta=1e-8), tension %s" % tension,
+                                          lambda: RagInMixing().shear(end=0.1, tension=tension), DT, 5e-3,
+                                          predicted, "K = 1e5, shear 200 1/s", order=order, min_time_s=0.1,
                                           note="frozen tension: 1.41e-4 s; now the penalty law limits",
                                           max_stretch=1.3, energy_max_j=0.5 * 0.03 * 0.01 * u_max ** 2)
         self.assertIsNotNone(stable)
         self.assertGreater(stable, 3 * wave_dt(10.0, 0.03))
         self.assertLess(stable, 1.2 * predicted)
+
+    def test_1_stiff_sheet_largest_time_step(self):
+        self.stiff_sheet("stabilized", 4)
+
+    def test_2_rag_in_shear_largest_time_step(self):
+        self.rag_in_shear("stabilized", 11)
+
+    def test_3_linearized_stiff_sheet_largest_time_step(self):
+        self.stiff_sheet("linearized", 5)
+
+    def test_4_linearized_rag_in_shear_largest_time_step(self):
+        self.rag_in_shear("linearized", 12)
 
 
 # ------------------------------------------------------------------------------------------------
