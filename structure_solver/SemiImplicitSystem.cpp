@@ -5,12 +5,25 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace fsi::structure {
 
 namespace {
 /// In `auto` mode, more CG iterations than this in one step switch to the direct solver.
 constexpr int cg_iteration_budget = 60;
+
+/// LDLT of a matrix whose pattern never changes: analysed once, refactorised each step.
+void factorize(Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> &ldlt, const Eigen::SparseMatrix<double> &matrix,
+               bool &analysed, const char *what) {
+  if (!analysed) {
+    ldlt.analyzePattern(matrix);
+    analysed = true;
+  }
+  ldlt.factorize(matrix);
+  if (ldlt.info() != Eigen::Success)
+    throw std::runtime_error(std::string("the LDLT factorisation of ") + what + " failed (singular system)");
+}
 } // namespace
 
 /// Positions in the value array of the sparse matrix, precomputed once per pattern.
@@ -321,13 +334,7 @@ void SemiImplicitSystem::solve_linearized(const StepInputs &in, PointArray &x_ne
           b[3 * static_cast<Eigen::Index>(p) + i] += values[slots[3 * i + j]] * xp(static_cast<Eigen::Index>(p), j);
       }
     }
-  if (!block_analysed_) {
-    block_ldlt_.analyzePattern(block_);
-    block_analysed_ = true;
-  }
-  block_ldlt_.factorize(block_);
-  if (block_ldlt_.info() != Eigen::Success)
-    throw std::runtime_error("the LDLT factorisation of the linearized-tension step failed (singular system)");
+  factorize(block_ldlt_, block_, block_analysed_, "the linearized-tension step");
   x_next.resize(in.x_now->rows(), 3);
   Eigen::Map<Eigen::VectorXd>(x_next.data(), x_next.size()) = block_ldlt_.solve(b);
 }
@@ -403,13 +410,7 @@ int SemiImplicitSystem::solve_cg(const PointArray &b, PointArray &x) const {
 }
 
 void SemiImplicitSystem::solve_direct(const PointArray &rhs, PointArray &x) {
-  if (!ldlt_analysed_) {
-    ldlt_.analyzePattern(matrix_);
-    ldlt_analysed_ = true;
-  }
-  ldlt_.factorize(matrix_);
-  if (ldlt_.info() != Eigen::Success)
-    throw std::runtime_error("the LDLT factorisation of Eq. (4) failed (singular system)");
+  factorize(ldlt_, matrix_, ldlt_analysed_, "Eq. (4)");
   x = ldlt_.solve(rhs);
 }
 
