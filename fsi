@@ -144,7 +144,7 @@ cmd_test() {
     say "sanitizer pass (AddressSanitizer + UndefinedBehaviorSanitizer) of the structure tests"
     # Release flags (no debug info) keep the CGAL-heavy sources quick to compile with sanitizers.
     build "$ROOT/build-sanitize" -DCMAKE_BUILD_TYPE=Release -DFSI_SANITIZE=ON -DFSI_BUILD_BENCH=OFF \
-      -- fsi-structure test_common test_structure test_collision test_output
+      -- fsi-structure test_common test_motion test_structure test_geometry test_collision test_output
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 FSI_SANITIZED=1 \
       ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS" -L structure --timeout 1800
   fi

@@ -34,7 +34,8 @@
 #include "proto/PackedPoints.hpp"
 #include "proto/ParticipantSession.hpp"
 #include "proto/ZmqContext.hpp"
-#include "structure_solver/CaseConfig.hpp"
+#include "case/CaseConfig.hpp"
+#include "case/ModuleSetups.hpp"
 
 #include <hdf5.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -243,7 +244,7 @@ struct CoupledResult {
 };
 
 CoupledResult run_coupled(const fs::path &dir, const Size &size) {
-  const auto config = structure::CaseConfig::load(dir);
+  const auto config = case_config::CaseConfig::load(dir);
   const std::string fingerprint = config.fingerprint();
   const fs::path output = dir / "output";
   fs::remove_all(output);
@@ -256,7 +257,7 @@ CoupledResult run_coupled(const fs::path &dir, const Size &size) {
   int exit_code = -1;
   std::thread coupler([&] {
     try {
-      coupler::CouplingRun run(structure::CaseConfig::load(dir), output, "tcp://127.0.0.1:0");
+      coupler::CouplingRun run(case_config::coupling_setup(case_config::CaseConfig::load(dir)), output, "tcp://127.0.0.1:0");
       exit_code = run.run();
     } catch (const std::exception &e) {
       std::cerr << "bench coupler: " << e.what() << "\n";

@@ -7,10 +7,11 @@
 // (d_c = 4 mm) every step.
 // Counters: us_per_point (flat when the cost is linear in the number of points).
 
-#include "structure_solver/CaseConfig.hpp"
+#include "case/CaseConfig.hpp"
+#include "case/ModuleSetups.hpp"
 #include "structure_solver/Scene.hpp"
-#include "structure_solver/collision/MeshGenerators.hpp"
-#include "structure_solver/collision/StlIo.hpp"
+#include "geometry/MeshGenerators.hpp"
+#include "geometry/StlIo.hpp"
 
 #include <benchmark/benchmark.h>
 #include <spdlog/spdlog.h>
@@ -33,9 +34,9 @@ std::filesystem::path bench_dir() {
 std::filesystem::path torus_stl(double side_m) {
   const auto path = bench_dir() / ("torus-" + std::to_string(side_m) + ".stl");
   if (!std::filesystem::exists(path)) {
-    const auto soup = structure::collision::make_torus(Vec3(side_m / 2, side_m / 2, -0.12 * side_m), 0.3 * side_m,
+    const auto soup = geometry::make_torus(Vec3(side_m / 2, side_m / 2, -0.12 * side_m), 0.3 * side_m,
                                                        0.12 * side_m, 250, 200); // tube top at z = 0
-    structure::collision::write_stl(path.string(), soup, structure::collision::StlFormat::binary);
+    geometry::write_stl(path.string(), soup, geometry::StlFormat::binary);
   }
   return path;
 }
@@ -56,7 +57,7 @@ std::unique_ptr<structure::Scene> make_scene(int n, bool collisions) {
   const auto dir = bench_dir() / ("case-" + std::to_string(n) + (collisions ? "-c" : ""));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "case.yaml") << yaml;
-  return std::make_unique<structure::Scene>(structure::CaseConfig::load(dir));
+  return std::make_unique<structure::Scene>(case_config::structure_setup(case_config::CaseConfig::load(dir)));
 }
 
 void membrane_step(benchmark::State &state) {

@@ -1,24 +1,24 @@
 #include "CouplingResults.hpp"
 
-#include "structure_solver/output/H5Attributes.hpp"
-#include "structure_solver/output/H5Error.hpp"
-#include "structure_solver/output/H5FileAccess.hpp"
+#include "hdf5/H5Attributes.hpp"
+#include "hdf5/H5Error.hpp"
+#include "hdf5/H5FileAccess.hpp"
 
 namespace fsi::coupler {
 
-using structure::output::ExtendableDataset;
-using structure::output::H5Handle;
+using hdf5::ExtendableDataset;
+using hdf5::H5Handle;
 
 CouplingResults::CouplingResults(const std::filesystem::path &h5_path, const std::string &config_yaml,
                                  const std::string &version)
     : path_(h5_path) {
-  structure::output::silence_hdf5_error_printing();
+  hdf5::silence_hdf5_error_printing();
   const std::string what = "cannot create the coupling results file " + h5_path.string();
-  const H5Handle access = structure::output::file_access_without_locking(what);
+  const H5Handle access = hdf5::file_access_without_locking(what);
   file_ = H5Handle::file(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), what);
-  structure::output::write_string_attribute(file_.get(), "config_yaml", config_yaml);
-  structure::output::write_string_attribute(file_.get(), "code_version", version);
-  structure::output::write_string_attribute(file_.get(), "status", "running");
+  hdf5::write_string_attribute(file_.get(), "config_yaml", config_yaml);
+  hdf5::write_string_attribute(file_.get(), "code_version", version);
+  hdf5::write_string_attribute(file_.get(), "status", "running");
   constexpr hsize_t chunk = 256;
   step_ = std::make_unique<ExtendableDataset>(file_.get(), "step", ExtendableDataset::ElementType::int64,
                                               std::vector<hsize_t>{}, chunk, "1");
@@ -48,7 +48,7 @@ void CouplingResults::write_step(long step, double time_s, const StepTimings &ti
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ >= std::chrono::seconds(1)) {
     last_flush_ = now;
-    structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+    hdf5::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
   }
 }
 
@@ -74,8 +74,8 @@ void CouplingResults::write_rigid_body_load(const std::string &name, const doubl
 }
 
 void CouplingResults::set_status(const std::string &status) {
-  structure::output::write_string_attribute(file_.get(), "status", status);
-  structure::output::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+  hdf5::write_string_attribute(file_.get(), "status", status);
+  hdf5::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
 }
 
 } // namespace fsi::coupler

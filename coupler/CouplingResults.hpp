@@ -7,7 +7,7 @@
 // second of timings.
 
 #include "StepTimings.hpp"
-#include "structure_solver/output/ExtendableDataset.hpp"
+#include "hdf5/ExtendableDataset.hpp"
 
 #include <chrono>
 #include <filesystem>
@@ -33,14 +33,14 @@ public:
 
 private:
   std::filesystem::path path_;
-  structure::output::H5Handle file_, timings_group_;
-  std::unique_ptr<structure::output::ExtendableDataset> step_, time_, force_;
-  std::vector<structure::output::ExtendableDataset> timings_;
+  hdf5::H5Handle file_, timings_group_;
+  std::unique_ptr<hdf5::ExtendableDataset> step_, time_, force_;
+  std::vector<hdf5::ExtendableDataset> timings_;
   struct BodySeries {
-    structure::output::H5Handle group;
-    std::unique_ptr<structure::output::ExtendableDataset> force, torque;
+    hdf5::H5Handle group;
+    std::unique_ptr<hdf5::ExtendableDataset> force, torque;
   };
-  structure::output::H5Handle bodies_group_;
+  hdf5::H5Handle bodies_group_;
   std::map<std::string, BodySeries> bodies_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };

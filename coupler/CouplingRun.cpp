@@ -1,11 +1,11 @@
 #include "CouplingRun.hpp"
 
 #include "CouplingErrors.hpp"
-#include "common/ConfigEmitter.hpp"
 #include "common/Logging.hpp"
-#include "common/MotionFactory.hpp"
+#include "motion/MotionFactory.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/TransportError.hpp"
+#include "common/ExitCodes.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -33,7 +33,7 @@ std::string format_duration(double seconds) {
   return text;
 }
 
-void write_pose(const std::string &name, const common::RigidMotion &motion, double t, proto::v1::RigidBodyPose &out) {
+void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v1::RigidBodyPose &out) {
   const Eigen::Isometry3d pose = motion.pose_at(t);
   out.set_name(name);
   proto::write_matrix3(pose.linear(), *out.mutable_rotation());
@@ -57,13 +57,11 @@ std::atomic<int> &CouplingRun::stop_signal() {
   return signal;
 }
 
-CouplingRun::CouplingRun(structure::CaseConfig config, std::filesystem::path output_dir, std::string endpoint_override)
-    : config_(std::move(config)), output_dir_(std::move(output_dir)), endpoint_override_(std::move(endpoint_override)) {
-  if (!config_.coupling)
-    throw std::logic_error("CouplingRun needs a case with a coupling section");
-  config_yaml_ = common::to_yaml(config_);
+CouplingRun::CouplingRun(CouplingSetup setup, std::filesystem::path output_dir, std::string endpoint_override)
+    : config_(std::move(setup)), output_dir_(std::move(output_dir)), endpoint_override_(std::move(endpoint_override)) {
+  config_yaml_ = config_.case_yaml;
   dt_ = config_.run.time_step_s;
-  n_steps_ = std::lround(config_.run.end_time_s / dt_);
+  n_steps_ = config_.run.n_steps();
 }
 
 CouplingRun::~CouplingRun() = default;
@@ -114,7 +112,7 @@ int CouplingRun::interrupted(long step) {
     participants_->shutdown_all("interrupted (signal at the coupler)", false, step);
   if (results_)
     results_->set_status("interrupted");
-  return 130;
+  return common::exit_code_interrupted;
 }
 
 // ---- the run, step by step ------------------------------------------------------------------
@@ -122,7 +120,7 @@ int CouplingRun::interrupted(long step) {
 void CouplingRun::open() {
   std::filesystem::create_directories(output_dir_);
   common::add_log_file(output_dir_ / "coupler.log");
-  const auto &c = *config_.coupling;
+  const auto &c = config_.coupling;
   const auto endpoint = proto::Endpoint::parse(endpoint_override_.empty() ? c.endpoint : endpoint_override_);
   proto::ChannelOptions options;
   options.allow_remote = c.allow_remote;
@@ -133,21 +131,20 @@ void CouplingRun::open() {
   }
   write_endpoint_file(channel_->endpoint().str());
   spdlog::info("coupler listening on {} (protocol version {}, case fingerprint {})", channel_->endpoint().str(),
-               proto::current_protocol_version, config_.fingerprint());
+               proto::current_protocol_version, config_.case_fingerprint);
   participants_ = std::make_unique<ParticipantTable>(
       *channel_, Liveness{to_ms(c.heartbeat_interval_s), to_ms(c.timeout_s), to_ms(c.step_timeout_s)}, &stop_signal());
   results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_yaml_, FSI_VERSION);
   law_ = c.parameters->build();
   spdlog::info("coupling law: {}", law_->name());
-  if (config_.collisions)
-    for (std::size_t i = 0; i < config_.collisions->surfaces.size(); ++i)
-      if (const auto &motion = config_.collisions->surfaces[i].motion)
-        moving_bodies_.emplace_back("surface" + std::to_string(i),
-                                    common::make_motion(*motion, config_.gravity_m_per_s2.norm()));
+  for (std::size_t i = 0; i < config_.rigid_surfaces.size(); ++i)
+    if (const auto &motion = config_.rigid_surfaces[i].motion)
+      moving_bodies_.emplace_back("surface" + std::to_string(i),
+                                  motion::make_motion(*motion, config_.gravity_m_per_s2.norm()));
 }
 
 void CouplingRun::handshake() {
-  const auto deadline = Clock::now() + to_ms(config_.coupling->handshake_timeout_s);
+  const auto deadline = Clock::now() + to_ms(config_.coupling.handshake_timeout_s);
   while (fluid_id_.empty() || structure_id_.empty()) {
     const std::string missing = structure_id_.empty() ? (fluid_id_.empty() ? "structure and fluid" : "structure")
                                                        : "fluid";
@@ -158,7 +155,7 @@ void CouplingRun::handshake() {
       if (!e.participant.empty() && participants_->knows(e.participant))
         throw;
       throw ParticipantFailed(missing, "no " + missing + " participant joined within coupling.handshake_timeout_s = " +
-                                           std::to_string(config_.coupling->handshake_timeout_s) + " s at " +
+                                           std::to_string(config_.coupling.handshake_timeout_s) + " s at " +
                                            channel_->endpoint().str() + "; start it with ./fsi run --participant " +
                                            (structure_id_.empty() ? "structure" : "fluid") + " CASE_DIR");
     }
@@ -180,9 +177,9 @@ bool CouplingRun::accept_hello(const proto::Incoming &incoming) {
     refuse(peer, "participant " + peer + " speaks protocol version " + std::to_string(hello.protocol_version()) +
                      ", this coupler version " + std::to_string(proto::current_protocol_version) +
                      ": build all processes of a run from the same version");
-  if (hello.case_fingerprint() != config_.fingerprint())
+  if (hello.case_fingerprint() != config_.case_fingerprint)
     refuse(peer, "participant " + peer + " was started with another case (fingerprint " + hello.case_fingerprint() +
-                     ", the coupler's is " + config_.fingerprint() +
+                     ", the coupler's is " + config_.case_fingerprint +
                      "): give every process the same case folder (copy it to every machine)");
   const bool is_fluid = hello.role() == proto::v1::ROLE_FLUID;
   if (!is_fluid && hello.role() != proto::v1::ROLE_STRUCTURE)
@@ -193,9 +190,9 @@ bool CouplingRun::accept_hello(const proto::Incoming &incoming) {
     refuse(peer, "participant " + peer + " is a second " + std::string(proto::role_name(hello.role())) +
                      " participant; " + slot + " has joined already");
   if (!is_fluid) {
-    if (hello.structures_size() != static_cast<int>(config_.structures.size()))
+    if (hello.structures_size() != static_cast<int>(config_.n_structures))
       refuse(peer, "participant " + peer + " announced " + std::to_string(hello.structures_size()) +
-                       " structures; the case has " + std::to_string(config_.structures.size()));
+                       " structures; the case has " + std::to_string(config_.n_structures));
     topology_.assign(hello.structures().begin(), hello.structures().end());
     Eigen::Index n = 0;
     for (const auto &s : topology_) {
@@ -228,8 +225,8 @@ void CouplingRun::welcome(const std::string &id, bool with_structures) {
   auto *w = envelope.mutable_welcome();
   w->set_time_step_s(dt_);
   w->set_n_steps(static_cast<std::uint64_t>(n_steps_));
-  w->set_heartbeat_interval_s(config_.coupling->heartbeat_interval_s);
-  w->set_timeout_s(config_.coupling->timeout_s);
+  w->set_heartbeat_interval_s(config_.coupling.heartbeat_interval_s);
+  w->set_timeout_s(config_.coupling.timeout_s);
   if (with_structures)
     for (const auto &s : topology_)
       *w->add_structures() = s;
@@ -307,7 +304,7 @@ void CouplingRun::advance_fluid_and_structure(long n) {
 
   // Collect both replies, in whichever order they come.
   bool fluid_done = false, structure_done = false;
-  const auto deadline = Clock::now() + to_ms(config_.coupling->step_timeout_s);
+  const auto deadline = Clock::now() + to_ms(config_.coupling.step_timeout_s);
   while (!fluid_done || !structure_done) {
     const std::string &waited = structure_done ? fluid_id_ : structure_id_;
     auto &incoming = participants_->next(deadline, waited, "AdvanceReply", static_cast<std::uint64_t>(n));
@@ -344,7 +341,7 @@ void CouplingRun::advance_fluid_and_structure(long n) {
 
 proto::Envelope &CouplingRun::await(const std::string &peer, Envelope::BodyCase body, long step,
                                     const std::string &what) {
-  const auto deadline = Clock::now() + to_ms(config_.coupling->step_timeout_s);
+  const auto deadline = Clock::now() + to_ms(config_.coupling.step_timeout_s);
   while (true) {
     auto &incoming = participants_->next(deadline, peer, what, static_cast<std::uint64_t>(step));
     auto &envelope = incoming.envelope();
@@ -362,7 +359,7 @@ void CouplingRun::check_stability() const {
     const double rho = s.mass_per_measure();
     if (!(rho > 0.0))
       continue;
-    const double limit = config_.coupling->parameters->stable_time_step_s(rho);
+    const double limit = config_.coupling.parameters->stable_time_step_s(rho);
     spdlog::info("structure '{}': coupling time step limit {:.3g} s (dt = {:.3g} s)", s.name(), limit, dt_);
     if (dt_ > limit)
       spdlog::warn("structure '{}': run.time_step_s = {:.3g} s exceeds the stability limit {:.3g} s of the coupling "

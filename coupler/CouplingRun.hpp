@@ -8,8 +8,8 @@
 #include "CouplingLaw.hpp"
 #include "CouplingResults.hpp"
 #include "ParticipantTable.hpp"
-#include "structure_solver/CaseConfig.hpp"
-#include "common/RigidMotion.hpp"
+#include "CouplingSetup.hpp"
+#include "motion/RigidMotion.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -21,7 +21,7 @@ namespace fsi::coupler {
 class CouplingRun {
 public:
   /// endpoint_override: "" to use coupling.endpoint of the case.
-  CouplingRun(structure::CaseConfig config, std::filesystem::path output_dir, std::string endpoint_override);
+  CouplingRun(CouplingSetup setup, std::filesystem::path output_dir, std::string endpoint_override);
   ~CouplingRun();
 
   /// Returns the exit code: 0 completed, 1 a participant failed, 2 refused handshake, 130 interrupted.
@@ -52,7 +52,7 @@ private:
   void report_progress(long n, bool force);
   void write_endpoint_file(const std::string &endpoint) const;
 
-  structure::CaseConfig config_;
+  CouplingSetup config_;
   std::filesystem::path output_dir_;
   std::string endpoint_override_, config_yaml_;
   long n_steps_ = 0;
@@ -64,7 +64,7 @@ private:
   std::unique_ptr<CouplingLaw> law_;
   std::string fluid_id_, structure_id_;
   std::vector<proto::v1::StructureTopology> topology_;
-  std::vector<std::pair<std::string, std::shared_ptr<const common::RigidMotion>>> moving_bodies_;
+  std::vector<std::pair<std::string, std::shared_ptr<const motion::RigidMotion>>> moving_bodies_;
 
   // Lagrangian state of all structures, concatenated (N x 3, SI).
   PointArray x_now_, x_prev_, u_ib_;

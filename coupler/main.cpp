@@ -11,7 +11,10 @@
 
 #include "proto/ZmqContext.hpp"
 
-#include "structure_solver/CaseOptions.hpp"
+#include "case/CaseOptions.hpp"
+#include "case/ModuleSetups.hpp"
+#include "common/ExitCodes.hpp"
+#include "common/GuardedMain.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -24,7 +27,7 @@ namespace {
 extern "C" void on_stop_signal(int signal) { fsi::coupler::CouplingRun::stop_signal() = signal; }
 
 /// The processes a case needs, for ./fsi run: "model only what a scene needs".
-int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::path &output_dir) {
+int print_plan(const fsi::case_config::CaseConfig &config, const std::filesystem::path &output_dir) {
   std::cout << "output " << std::filesystem::absolute(output_dir).lexically_normal().string() << "\n";
   if (config.is_coupled()) {
     std::cout << "process coupler fsi-coupler\n";
@@ -43,17 +46,17 @@ int print_plan(const fsi::structure::CaseConfig &config, const std::filesystem::
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-coupler: the coupling daemon of a fluid-structure run"};
-  fsi::structure::CaseOptions options;
+  fsi::case_config::CaseOptions options;
   std::string endpoint;
   bool plan = false, verbose = false;
   options.add_to(app);
   app.add_option("--endpoint", endpoint, "Listen here instead of coupling.endpoint");
   app.add_flag("--plan", plan, "Print the output folder and the processes this case needs, then exit");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
-  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+  if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   fsi::common::setup_logging("coupler", verbose);
-  try {
+  return fsi::common::guarded_main("coupler", [&] {
     auto config = options.load();
     const std::string &case_dir = options.case_dir;
     const std::filesystem::path out = options.output_directory(config);
@@ -67,13 +70,7 @@ int main(int argc, char **argv) {
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    fsi::coupler::CouplingRun run(std::move(config), out, endpoint);
+    fsi::coupler::CouplingRun run(fsi::case_config::coupling_setup(std::move(config)), out, endpoint);
     return run.run();
-  } catch (const fsi::common::ConfigError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const std::exception &e) {
-    spdlog::error("coupler failed: {}", e.what());
-    return fsi::common::exit_code_run_failed;
-  }
+  });
 }

@@ -61,30 +61,28 @@ std::string read_text(const fs::path &file) {
 
 } // namespace
 
-Precursor::Precursor(const structure::CaseConfig &config, fs::path case_dir, fs::path output_dir)
+Precursor::Precursor(const PrecursorInputs &inputs, fs::path case_dir, fs::path output_dir)
     : folder_(std::move(output_dir) / "precursor") {
-  if (!config.fluid || !config.fluid->openfoam)
+  if (!inputs.openfoam)
     return;
-  const auto &foam = *config.fluid->openfoam;
+  const auto &foam = *inputs.openfoam;
   end_time_s_ = foam.precursor_time_s;
-  time_step_s_ = foam.precursor_time_step_s > 0.0 ? foam.precursor_time_step_s : config.run.time_step_s;
-  coupled_time_step_s_ = config.run.time_step_s;
+  time_step_s_ = foam.precursor_time_step_s > 0.0 ? foam.precursor_time_step_s : inputs.coupled_time_step_s;
+  coupled_time_step_s_ = inputs.coupled_time_step_s;
   if (wanted())
-    fingerprint_ = compute_fingerprint(config, case_dir);
+    fingerprint_ = compute_fingerprint(inputs, case_dir);
 }
 
-std::string Precursor::compute_fingerprint(const structure::CaseConfig &config, const fs::path &case_dir) const {
+std::string Precursor::compute_fingerprint(const PrecursorInputs &inputs, const fs::path &case_dir) const {
   Fnv1a hash;
-  // The emitter only reads; visit() is non-const because the reader shares it.
-  const YAML::Node node = YAML::Load(common::to_yaml(const_cast<structure::CaseConfig &>(config)));
-  hash.add(YAML::Dump(node["fluid"]));
-  if (node["collisions"])
-    hash.add(YAML::Dump(node["collisions"]));
+  hash.add(inputs.fluid_yaml);
+  if (!inputs.collisions_yaml.empty())
+    hash.add(inputs.collisions_yaml);
   hash.add(std::to_string(end_time_s_));
   for (const double dt : step_sizes()) // the schedule itself, hand-over ramp included
     hash.add(std::to_string(dt));
   // Every file of the OpenFOAM case folder, in a fixed order, with its relative path.
-  const fs::path template_dir = case_dir / config.fluid->openfoam->case_directory;
+  const fs::path template_dir = case_dir / inputs.openfoam->case_directory;
   std::vector<fs::path> files;
   if (fs::is_directory(template_dir))
     for (const auto &entry : fs::recursive_directory_iterator(template_dir))
@@ -95,10 +93,8 @@ std::string Precursor::compute_fingerprint(const structure::CaseConfig &config, 
     hash.add(fs::relative(file, template_dir).generic_string());
     hash.add_file(file);
   }
-  if (config.collisions)
-    for (const auto &surface : config.collisions->surfaces)
-      if (surface.mesh)
-        hash.add_file(surface.mesh->file);
+  for (const auto &file : inputs.surface_stl_files)
+    hash.add_file(file);
   return hash.hex();
 }
 

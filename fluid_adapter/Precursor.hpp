@@ -7,7 +7,7 @@
 // valid for the case (a fingerprint of everything the precursor's flow depends on) and how to
 // hand its fields to the coupled run. fsi-openfoam-fluid --precursor runs it.
 
-#include "structure_solver/CaseConfig.hpp"
+#include "OpenFoamConfig.hpp"
 
 #include <filesystem>
 #include <string>
@@ -15,9 +15,18 @@
 
 namespace fsi::fluid {
 
+/// What the precursor needs of a case (filled by the executable, case/ModuleSetups.hpp).
+struct PrecursorInputs {
+  std::optional<OpenFoamConfig> openfoam; ///< fluid.openfoam (absent: no precursor)
+  double coupled_time_step_s = 0.0;       ///< run.time_step_s
+  std::string fluid_yaml;                 ///< the effective `fluid` section (YAML)
+  std::string collisions_yaml;            ///< the effective `collisions` section ("" if none)
+  std::vector<std::filesystem::path> surface_stl_files; ///< STL files of the collision surfaces
+};
+
 class Precursor {
 public:
-  Precursor(const structure::CaseConfig &config, std::filesystem::path case_dir, std::filesystem::path output_dir);
+  Precursor(const PrecursorInputs &inputs, std::filesystem::path case_dir, std::filesystem::path output_dir);
 
   /// The case asks for one (fluid.openfoam.precursor_time_s > 0).
   bool wanted() const { return end_time_s_ > 0.0; }
@@ -58,7 +67,7 @@ public:
 
 private:
   std::filesystem::path stamp_file() const { return folder_ / "completed.fingerprint"; }
-  std::string compute_fingerprint(const structure::CaseConfig &config, const std::filesystem::path &case_dir) const;
+  std::string compute_fingerprint(const PrecursorInputs &inputs, const std::filesystem::path &case_dir) const;
 
   std::filesystem::path folder_;
   double end_time_s_ = 0.0;

@@ -15,15 +15,18 @@
 #include "FoamFlow.hpp"
 #include "OpenFoamFluidModel.hpp"
 #include "Precursor.hpp"
-#include "structure_solver/ParticipantSettings.hpp"
+#include "case/ParticipantSettings.hpp"
 #include "common/ConfigError.hpp"
-#include "common/MotionFactory.hpp"
+#include "motion/MotionFactory.hpp"
 #include "common/Logging.hpp"
 #include "proto/FluidParticipant.hpp"
 #include "proto/TransportError.hpp"
 #include "proto/ZmqContext.hpp"
 
-#include "structure_solver/CaseOptions.hpp"
+#include "case/CaseOptions.hpp"
+#include "case/ModuleSetups.hpp"
+#include "common/ExitCodes.hpp"
+#include "common/GuardedMain.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -67,7 +70,7 @@ std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_di
 
 /// The rigid bodies the fluid penalizes: the closed STL meshes among the collision surfaces,
 /// with their motions (the structure collides with the very same surfaces).
-std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> rigid_bodies(const fsi::structure::CaseConfig &config) {
+std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> rigid_bodies(const fsi::case_config::CaseConfig &config) {
   std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> bodies;
   if (!config.collisions)
     return bodies;
@@ -85,12 +88,12 @@ std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> rigid_bodies(const fs
                    i);
       continue;
     }
-    if (surface.mesh->fluid_side != fsi::structure::FluidSide::outside) {
+    if (surface.mesh->fluid_side != fsi::geometry::FluidSide::outside) {
       spdlog::warn("collisions.surfaces[{}] has the fluid inside: it is a container, left to the OpenFOAM mesh", i);
       continue;
     }
-    auto motion = surface.motion ? fsi::common::make_motion(*surface.motion, config.gravity_m_per_s2.norm())
-                                 : std::make_shared<const fsi::common::StaticPose>();
+    auto motion = surface.motion ? fsi::motion::make_motion(*surface.motion, config.gravity_m_per_s2.norm())
+                                 : std::make_shared<const fsi::motion::StaticPose>();
     bodies.push_back(fsi::fluid::rigid::RigidBody::from_stl(name, surface.mesh->file.string(), std::move(motion)));
   }
   return bodies;
@@ -157,7 +160,7 @@ int run_precursor_steps(fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamF
   for (long step = 0; step < n_steps; ++step) {
     if (fsi::proto::FluidParticipant::stop_signal() != 0) {
       spdlog::warn("precursor interrupted at t = {:.6g} s; its result is not kept", t);
-      return 130;
+      return fsi::common::exit_code_interrupted;
     }
     const auto loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
     t += steps[static_cast<std::size_t>(step)];
@@ -215,7 +218,7 @@ int run_precursor_steps(fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamF
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-openfoam-fluid: OpenFOAM fluid participant with the diffuse immersed boundary"};
-  fsi::structure::CaseOptions options;
+  fsi::case_config::CaseOptions options;
   std::string endpoint;
   bool verbose = false, mpi_rank = false, precursor_only = false;
   options.add_to(app);
@@ -226,7 +229,7 @@ int main(int argc, char **argv) {
   app.add_flag("--precursor", precursor_only,
                "Run only the precursor (fluid.openfoam.precursor_time_s: the flow with its rigid bodies, no "
                "structure, no coupler) in <output>/precursor, unless it is up to date");
-  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+  if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   fsi::common::setup_logging("fluid", verbose);
   // Debian's OpenFOAM finds its etc/ through WM_PROJECT_DIR, read while its libraries load
@@ -236,7 +239,7 @@ int main(int argc, char **argv) {
                  "WM_PROJECT_DIR=/usr/share/openfoam\n";
     return fsi::common::exit_code_bad_input;
   }
-  try {
+  return fsi::common::guarded_main("OpenFOAM fluid", [&] {
     const auto config = options.load();
     const std::string &case_dir = options.case_dir;
     if (!config.fluid || !config.fluid->openfoam) {
@@ -246,7 +249,7 @@ int main(int argc, char **argv) {
     const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     const int n_ranks = config.fluid->openfoam->mpi_ranks;
-    const fsi::fluid::Precursor precursor(config, case_dir, out);
+    const fsi::fluid::Precursor precursor(fsi::case_config::precursor_inputs(config), case_dir, out);
     if (precursor_only && !precursor.wanted()) {
       spdlog::error("case {}: --precursor needs fluid.openfoam.precursor_time_s > 0", case_dir);
       return fsi::common::exit_code_bad_input;
@@ -309,17 +312,8 @@ int main(int argc, char **argv) {
     }
     if (mpi_rank)
       fsi::common::add_log_file(out / "fluid.log");
-    auto settings = fsi::structure::participant_settings(config, endpoint);
+    auto settings = fsi::case_config::participant_settings(config, endpoint);
     fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
-  } catch (const fsi::common::ConfigError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const fsi::proto::TransportError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const std::exception &e) {
-    spdlog::error("OpenFOAM fluid failed: {}", e.what());
-    return fsi::common::exit_code_run_failed;
-  }
+  });
 }

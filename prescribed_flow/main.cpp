@@ -8,14 +8,16 @@
 #include "FlowFactory.hpp"
 #include "PrescribedFlowModel.hpp"
 #include "proto/FluidParticipant.hpp"
-#include "structure_solver/ParticipantSettings.hpp"
+#include "case/ParticipantSettings.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 #include "proto/TransportError.hpp"
 
 #include "proto/ZmqContext.hpp"
 
-#include "structure_solver/CaseOptions.hpp"
+#include "case/CaseOptions.hpp"
+#include "common/ExitCodes.hpp"
+#include "common/GuardedMain.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -29,16 +31,16 @@ extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-prescribed-flow: fluid participant with a prescribed velocity field (one-way coupling)"};
-  fsi::structure::CaseOptions options;
+  fsi::case_config::CaseOptions options;
   std::string endpoint;
   bool verbose = false;
   options.add_to(app);
   app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
-  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+  if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   fsi::common::setup_logging("fluid", verbose);
-  try {
+  return fsi::common::guarded_main("prescribed flow", [&] {
     const auto config = options.load();
     const std::string &case_dir = options.case_dir;
     if (!config.fluid || !config.fluid->prescribed) {
@@ -48,20 +50,11 @@ int main(int argc, char **argv) {
     const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     fsi::common::add_log_file(out / "fluid.log");
-    auto settings = fsi::structure::participant_settings(config, endpoint);
+    auto settings = fsi::case_config::participant_settings(config, endpoint);
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed));
     fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
-  } catch (const fsi::common::ConfigError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const fsi::proto::TransportError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const std::exception &e) {
-    spdlog::error("prescribed flow failed: {}", e.what());
-    return fsi::common::exit_code_run_failed;
-  }
+  });
 }

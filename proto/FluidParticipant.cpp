@@ -1,6 +1,7 @@
 #include "FluidParticipant.hpp"
 
 #include "TransportError.hpp"
+#include "common/ExitCodes.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -56,7 +57,7 @@ int FluidParticipant::run() {
     model_.finish(false);
     if (session_)
       session_->report_error("participant " + session_->routing_id() + " " + e.what(), steps_);
-    return 130;
+    return common::exit_code_interrupted;
   } catch (const RunStopped &e) {
     spdlog::error("the coupler stopped the run at step {}: {}", steps_, e.what());
   } catch (const CouplerLost &e) {

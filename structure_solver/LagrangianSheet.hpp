@@ -6,7 +6,7 @@
 #include "ElasticTerms.hpp"
 #include "SemiImplicitSystem.hpp"
 #include "StructureModel.hpp"
-#include "common/RigidMotion.hpp"
+#include "motion/RigidMotion.hpp"
 
 #include <cmath>
 #include <memory>
@@ -23,7 +23,7 @@ struct SheetSetup {
   PointArray shape_body_m;              ///< initial shape; world = clamp pose(0) * body
   Vec3 initial_velocity_m_per_s = Vec3::Zero();
   EdgeConditions edges;
-  std::shared_ptr<const common::RigidMotion> clamp_motion; ///< null: prescribed points stay put
+  std::shared_ptr<const motion::RigidMotion> clamp_motion; ///< null: prescribed points stay put
   double mass_per_measure = 0.0;        ///< rho_1 (kg/m^2) or linear density (kg/m)
   double tension_coefficient = 0.0;     ///< phi (N/m or N)
   double bending_rigidity = 0.0;        ///< zeta (N m or N m^2)

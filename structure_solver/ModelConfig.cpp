@@ -1,7 +1,7 @@
 #include "ModelConfig.hpp"
 
 #include "LagrangianSheet.hpp"
-#include "common/MotionFactory.hpp"
+#include "motion/MotionFactory.hpp"
 
 namespace fsi::structure {
 
@@ -10,7 +10,7 @@ void fill_shared_setup(SheetSetup &setup, const SharedSheetKeys &keys, const Bui
   setup.initial_velocity_m_per_s = initial.velocity_m_per_s;
   setup.curved_rest_state = initial.curved_rest_state;
   if (clamp_motion)
-    setup.clamp_motion = common::make_motion(*clamp_motion, context.gravity_m_per_s2.norm());
+    setup.clamp_motion = motion::make_motion(*clamp_motion, context.gravity_m_per_s2.norm());
   setup.gravity_m_per_s2 = context.gravity_m_per_s2;
   setup.time_step_s = context.time_step_s;
   setup.linear_solver = solver.linear_solver;

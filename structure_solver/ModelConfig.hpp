@@ -8,7 +8,7 @@
 #include "common/ConfigDocWriter.hpp"
 #include "common/ConfigEmitter.hpp"
 #include "common/ConfigReader.hpp"
-#include "common/MotionConfig.hpp"
+#include "motion/MotionConfig.hpp"
 
 #include <memory>
 
@@ -100,7 +100,7 @@ namespace fsi::structure {
 
 /// Keys every sheet-like model shares, declared after the model's own keys.
 struct SharedSheetKeys {
-  std::optional<common::MotionConfig> clamp_motion;
+  std::optional<motion::MotionConfig> clamp_motion;
   InitialStateConfig initial;
   SolverConfig solver;
 

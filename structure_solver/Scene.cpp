@@ -1,10 +1,10 @@
 #include "Scene.hpp"
 
-#include "structure_solver/collision/BoxSurface.hpp"
-#include "structure_solver/collision/CylinderSurface.hpp"
-#include "structure_solver/collision/PlaneSurface.hpp"
-#include "structure_solver/collision/TriangleMeshSurface.hpp"
-#include "common/MotionFactory.hpp"
+#include "geometry/BoxSurface.hpp"
+#include "geometry/CylinderSurface.hpp"
+#include "geometry/PlaneSurface.hpp"
+#include "geometry/TriangleMeshSurface.hpp"
+#include "motion/MotionFactory.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -12,8 +12,8 @@ namespace fsi::structure {
 
 namespace {
 
-std::unique_ptr<collision::RigidSurface> make_surface(const SurfaceConfig &c) {
-  using namespace collision;
+std::unique_ptr<geometry::RigidSurface> make_surface(const geometry::SurfaceConfig &c) {
+  using namespace geometry;
   if (c.plane)
     return std::make_unique<PlaneSurface>(c.plane->point_m, c.plane->normal);
   if (c.box)
@@ -27,7 +27,7 @@ std::unique_ptr<collision::RigidSurface> make_surface(const SurfaceConfig &c) {
 
 } // namespace
 
-Scene::Scene(const CaseConfig &config) {
+Scene::Scene(const StructureSetup &config) {
   for (const auto &entry : config.structures) {
     const BuildContext context{entry.name, config.gravity_m_per_s2, config.run.time_step_s};
     structures_.push_back(entry.parameters->build(context));
@@ -46,8 +46,8 @@ void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per
   if (!config.surfaces.empty()) {
     collisions_ = std::make_unique<collision::CollisionSet>(config.threshold_m, config.target_distance_m);
     for (const auto &surface : config.surfaces) {
-      auto motion = surface.motion ? common::make_motion(*surface.motion, gravity_m_per_s2)
-                                   : std::make_shared<const common::StaticPose>();
+      auto motion = surface.motion ? motion::make_motion(*surface.motion, gravity_m_per_s2)
+                                   : std::make_shared<const motion::StaticPose>();
       collisions_->add_surface(make_surface(surface), std::move(motion));
     }
     spdlog::info("collisions: {}", collisions_->describe());

@@ -3,7 +3,7 @@
 // with, and one time step of the algorithm of section 2.3 without fluid:
 // solve Eq. (4) for every structure, then correct positions for collisions (Eq. 11).
 
-#include "CaseConfig.hpp"
+#include "StructureSetup.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
 #include "structure_solver/collision/SelfCollision.hpp"
 
@@ -14,7 +14,7 @@ namespace fsi::structure {
 
 class Scene {
 public:
-  explicit Scene(const CaseConfig &config);
+  explicit Scene(const StructureSetup &setup);
 
   /// One step for every structure (no fluid load): Eq. (4), then Eq. (11).
   void advance();

@@ -3,6 +3,7 @@
 #include "common/ConfigError.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/TransportError.hpp"
+#include "common/ExitCodes.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -21,7 +22,7 @@ public:
 StructureParticipant::StructureParticipant(StructureRun &run, proto::SessionSettings settings)
     : run_(run), settings_(std::move(settings)) {
   settings_.role = proto::v1::ROLE_STRUCTURE;
-  settings_.case_fingerprint = run_.config().fingerprint();
+  settings_.case_fingerprint = run_.config().case_fingerprint;
   settings_.stop_signal = &StructureRun::stop_signal();
 }
 
@@ -72,7 +73,7 @@ int StructureParticipant::run() {
       if (outcome.kind == StepOutcome::Kind::interrupted) {
         session_->report_error("participant " + session_->routing_id() + " " + outcome.message,
                                static_cast<std::uint64_t>(step - 1));
-        return 130;
+        return common::exit_code_interrupted;
       }
       send_state(static_cast<std::uint64_t>(step - 1), solve_s, false);
     }
@@ -88,7 +89,7 @@ int StructureParticipant::run() {
       session_->report_error("participant " + session_->routing_id() + " " + e.what(),
                              static_cast<std::uint64_t>(std::max(0L, step - 1)));
     spdlog::warn("{} while waiting for the coupler at step {}", e.what(), step);
-    return 130;
+    return common::exit_code_interrupted;
   } catch (const proto::RunStopped &e) {
     spdlog::error("the coupler stopped the run at step {}: {}", step, e.what());
     run_.finish(std::string("stopped: ") + e.what(), step - 1);

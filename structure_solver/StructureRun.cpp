@@ -1,8 +1,8 @@
 #include "StructureRun.hpp"
 
-#include "common/ConfigEmitter.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
+#include "common/ExitCodes.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -27,9 +27,9 @@ std::string format_duration(double seconds) {
 }
 } // namespace
 
-StructureRun::StructureRun(CaseConfig config, std::filesystem::path case_dir, std::filesystem::path output_dir)
+StructureRun::StructureRun(StructureSetup config, std::filesystem::path case_dir, std::filesystem::path output_dir)
     : config_(std::move(config)), case_dir_(std::move(case_dir)), output_dir_(std::move(output_dir)) {
-  config_yaml_ = common::to_yaml(config_);
+  config_yaml_ = config_.case_yaml;
 }
 
 StructureRun::~StructureRun() = default;
@@ -159,7 +159,7 @@ void StructureRun::stop_with(const std::string &status, long last_good_step) {
 
 const std::atomic<int> &StructureRun::stop_signal() { return received_stop_signal; }
 
-long StructureRun::n_steps() const { return std::lround(config_.run.end_time_s / config_.run.time_step_s); }
+long StructureRun::n_steps() const { return config_.run.n_steps(); }
 
 void StructureRun::start() {
   std::filesystem::create_directories(output_dir_);
@@ -221,7 +221,7 @@ int StructureRun::run() {
     if (outcome.kind == StepOutcome::Kind::diverged)
       return common::exit_code_run_failed;
     if (outcome.kind == StepOutcome::Kind::interrupted)
-      return 130;
+      return common::exit_code_interrupted;
   }
   results_->set_status("completed");
   spdlog::info("completed: {} saved steps in {} (open {} in ParaView)", results_->n_saved(),

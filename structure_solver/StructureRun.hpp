@@ -4,9 +4,9 @@
 // the probes of the case: /probes in the HDF5 file, probes.csv) at the output interval, and
 // stops cleanly (last good state on disk, status in the file) on divergence or on SIGINT/SIGTERM.
 
-#include "CaseConfig.hpp"
 #include "ProbeSet.hpp"
 #include "Scene.hpp"
+#include "StructureSetup.hpp"
 #include "structure_solver/output/ProbeCsv.hpp"
 #include "structure_solver/output/ResultsWriter.hpp"
 
@@ -31,7 +31,7 @@ struct StepOutcome {
 class StructureRun {
 public:
   /// output_dir: where results go (absolute, or relative to the working folder).
-  StructureRun(CaseConfig config, std::filesystem::path case_dir, std::filesystem::path output_dir);
+  StructureRun(StructureSetup setup, std::filesystem::path case_dir, std::filesystem::path output_dir);
   ~StructureRun();
 
   /// Runs to the end time; returns the process exit code (0 completed, 1 diverged,
@@ -48,7 +48,7 @@ public:
   void finish(const std::string &status, long step);
   Scene &scene() { return *scene_; }
   long n_steps() const;
-  const CaseConfig &config() const { return config_; }
+  const StructureSetup &config() const { return config_; }
   /// The signal (SIGINT, SIGTERM) that asked to stop, 0 if none.
   static const std::atomic<int> &stop_signal();
 
@@ -64,7 +64,7 @@ private:
   void report_progress(long step, long n_steps, bool force);
   void stop_with(const std::string &status, long last_good_step);
 
-  CaseConfig config_;
+  StructureSetup config_;
   std::filesystem::path case_dir_, output_dir_;
   std::string config_yaml_;
   std::unique_ptr<Scene> scene_;

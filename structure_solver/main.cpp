@@ -9,19 +9,22 @@
 // Exit codes: 0 success, 1 run failed (diverged, or the coupled run stopped), 2 bad input,
 // 130 interrupted.
 
-#include "CaseConfig.hpp"
-#include "CaseOptions.hpp"
-#include "SchemaDoc.hpp"
-#include "ParticipantSettings.hpp"
+#include "case/CaseConfig.hpp"
+#include "case/CaseOptions.hpp"
+#include "case/ModuleSetups.hpp"
+#include "case/SchemaDoc.hpp"
+#include "case/ParticipantSettings.hpp"
 #include "StructureParticipant.hpp"
 #include "prescribed_flow/FlowFactory.hpp"
 #include "StructureRun.hpp"
 #include "proto/TransportError.hpp"
-#include "structure_solver/collision/MeshErrors.hpp"
+#include "geometry/MeshErrors.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 
 #include "proto/ZmqContext.hpp"
+#include "common/ExitCodes.hpp"
+#include "common/GuardedMain.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -30,16 +33,19 @@
 
 namespace {
 
-int check_case(const fsi::structure::CaseOptions &options) {
-  const auto config = options.load();
+int check_case(const fsi::case_config::CaseOptions &options) {
+  auto config = options.load();
   const std::string &case_dir = options.case_dir;
-  fsi::structure::Scene scene(config); // builds geometry: catches missing/open STL meshes too
+  const auto n_structures = config.structures.size();
+  const long n_steps = config.run.n_steps();
+  const double dt = config.run.time_step_s;
   if (config.fluid && config.fluid->prescribed) // reads a velocity table, if any
     spdlog::info("fluid: prescribed, {}", fsi::prescribed_flow::make_flow(*config.fluid->prescribed)->describe());
-  for (const auto &warning : fsi::structure::StructureRun::time_step_warnings(scene, config.run.time_step_s))
+  // Builds the geometry: catches missing or open STL meshes too.
+  const fsi::structure::Scene scene(fsi::case_config::structure_setup(std::move(config)));
+  for (const auto &warning : fsi::structure::StructureRun::time_step_warnings(scene, dt))
     spdlog::warn("{}", warning);
-  spdlog::info("case {} is valid: {} structure(s), {} steps", case_dir, config.structures.size(),
-               std::lround(config.run.end_time_s / config.run.time_step_s));
+  spdlog::info("case {} is valid: {} structure(s), {} steps", case_dir, n_structures, n_steps);
   return 0;
 }
 
@@ -48,7 +54,7 @@ int check_case(const fsi::structure::CaseOptions &options) {
 int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-structure: membrane and filament solver with collisions (standalone, no fluid)"};
-  fsi::structure::CaseOptions options;
+  fsi::case_config::CaseOptions options;
   std::string endpoint;
   bool check = false, schema = false, verbose = false, coupled = false;
   options.add_to(app, false);
@@ -57,10 +63,10 @@ int main(int argc, char **argv) {
   app.add_flag("--coupled", coupled, "Take part in a coupled run (the case must have a fluid section)");
   app.add_option("--endpoint", endpoint, "Coupler endpoint (with --coupled; default: coupling.endpoint)");
   app.add_flag("-v,--verbose", verbose, "Debug logging");
-  if (const int code = fsi::structure::parse_command_line(app, argc, argv); code >= 0)
+  if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   if (schema) {
-    std::cout << fsi::structure::case_schema_markdown();
+    std::cout << fsi::case_config::case_schema_markdown();
     return 0;
   }
   const std::string &case_dir = options.case_dir;
@@ -69,7 +75,7 @@ int main(int argc, char **argv) {
     return fsi::common::exit_code_bad_input;
   }
   fsi::common::setup_logging("structure", verbose);
-  try {
+  return fsi::common::guarded_main("run", [&] {
     if (check)
       return check_case(options);
     auto config = options.load();
@@ -79,28 +85,16 @@ int main(int argc, char **argv) {
         spdlog::warn("case {} has a fluid section; running the structure alone (no fluid load). Use ./fsi run "
                      "for the coupled run.",
                      case_dir);
-      fsi::structure::StructureRun run(std::move(config), case_dir, out);
+      fsi::structure::StructureRun run(fsi::case_config::structure_setup(std::move(config)), case_dir, out);
       return run.run();
     }
     if (!config.is_coupled()) {
       spdlog::error("--coupled: case {} has no `fluid` section, so there is nothing to couple to", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    auto settings = fsi::structure::participant_settings(config, endpoint);
-    fsi::structure::StructureRun run(std::move(config), case_dir, out);
+    auto settings = fsi::case_config::participant_settings(config, endpoint);
+    fsi::structure::StructureRun run(fsi::case_config::structure_setup(std::move(config)), case_dir, out);
     fsi::structure::StructureParticipant participant(run, std::move(settings));
     return participant.run();
-  } catch (const fsi::common::ConfigError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const fsi::proto::TransportError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const fsi::structure::collision::MeshError &e) {
-    spdlog::error("{}", e.what());
-    return fsi::common::exit_code_bad_input;
-  } catch (const std::exception &e) {
-    spdlog::error("run failed: {}", e.what());
-    return fsi::common::exit_code_run_failed;
-  }
+  });
 }

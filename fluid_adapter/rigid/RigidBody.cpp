@@ -1,6 +1,6 @@
 #include "fluid_adapter/rigid/RigidBody.hpp"
 
-#include "structure_solver/collision/StlIo.hpp"
+#include "geometry/StlIo.hpp"
 
 #include <stdexcept>
 #include <utility>
@@ -16,7 +16,7 @@ constexpr double kCullingFraction = 4e-3;
 } // namespace
 
 RigidBody::RigidBody(std::string name, Soup soup, std::unique_ptr<Surface> surface,
-                     std::shared_ptr<const common::RigidMotion> motion)
+                     std::shared_ptr<const motion::RigidMotion> motion)
     : name_(std::move(name)), soup_(std::move(soup)), surface_(std::move(surface)),
       motion_(std::move(motion)) {
   if (!motion_)
@@ -27,8 +27,8 @@ RigidBody::RigidBody(std::string name, Soup soup, std::unique_ptr<Surface> surfa
 }
 
 std::unique_ptr<RigidBody> RigidBody::from_stl(const std::string &name, const std::string &stl_path,
-                                               std::shared_ptr<const common::RigidMotion> motion) {
-  Soup soup = structure::collision::read_stl(stl_path);
+                                               std::shared_ptr<const motion::RigidMotion> motion) {
+  Soup soup = geometry::read_stl(stl_path);
   auto surface = Surface::from_triangles(soup.vertices_m, soup.triangles,
                                          Surface::FluidSide::outside, stl_path);
   return std::unique_ptr<RigidBody>(
@@ -36,7 +36,7 @@ std::unique_ptr<RigidBody> RigidBody::from_stl(const std::string &name, const st
 }
 
 std::unique_ptr<RigidBody> RigidBody::from_soup(const std::string &name, const Soup &soup,
-                                                std::shared_ptr<const common::RigidMotion> motion) {
+                                                std::shared_ptr<const motion::RigidMotion> motion) {
   auto surface = Surface::from_triangles(soup.vertices_m, soup.triangles,
                                          Surface::FluidSide::outside, name);
   return std::unique_ptr<RigidBody>(new RigidBody(name, soup, std::move(surface), std::move(motion)));

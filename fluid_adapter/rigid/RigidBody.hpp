@@ -5,10 +5,10 @@
 // TriangleMeshSurface, so the body-frame AABB tree, the exact CGAL inside test and the voxel
 // classification that spares most points that test are built once, here.
 
-#include "common/RigidMotion.hpp"
+#include "motion/RigidMotion.hpp"
 #include "common/Types.hpp"
-#include "structure_solver/collision/TriangleMeshSurface.hpp"
-#include "structure_solver/collision/TriangleSoup.hpp"
+#include "geometry/TriangleMeshSurface.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 #include <Eigen/Geometry>
 
@@ -19,19 +19,19 @@ namespace fsi::fluid::rigid {
 
 class RigidBody {
 public:
-  using Soup = structure::collision::TriangleSoup;
-  using Surface = structure::collision::TriangleMeshSurface;
+  using Soup = geometry::TriangleSoup;
+  using Surface = geometry::TriangleMeshSurface;
 
-  /// Loads a closed STL surface (body frame, metres). Throws a collision::MeshError naming
+  /// Loads a closed STL surface (body frame, metres). Throws a geometry::MeshError naming
   /// the file when it is missing, unreadable, open or degenerate.
   static std::unique_ptr<RigidBody> from_stl(const std::string &name, const std::string &stl_path,
-                                             std::shared_ptr<const common::RigidMotion> motion);
+                                             std::shared_ptr<const motion::RigidMotion> motion);
   /// Same from arrays (generated meshes, tests).
   static std::unique_ptr<RigidBody> from_soup(const std::string &name, const Soup &soup,
-                                              std::shared_ptr<const common::RigidMotion> motion);
+                                              std::shared_ptr<const motion::RigidMotion> motion);
 
   const std::string &name() const { return name_; }
-  const common::RigidMotion &motion() const { return *motion_; }
+  const motion::RigidMotion &motion() const { return *motion_; }
   const Surface &surface() const { return *surface_; }
   /// Vertices and triangles in the body frame (for the swept-region bounds).
   const Soup &soup() const { return soup_; }
@@ -45,12 +45,12 @@ public:
 
 private:
   RigidBody(std::string name, Soup soup, std::unique_ptr<Surface> surface,
-            std::shared_ptr<const common::RigidMotion> motion);
+            std::shared_ptr<const motion::RigidMotion> motion);
 
   std::string name_;
   Soup soup_;
   std::unique_ptr<Surface> surface_;
-  std::shared_ptr<const common::RigidMotion> motion_;
+  std::shared_ptr<const motion::RigidMotion> motion_;
   Eigen::AlignedBox3d body_box_m_;
 };
 

@@ -2,7 +2,7 @@
 
 namespace fsi::fluid::rigid {
 
-RigidVelocity RigidVelocity::of(const common::RigidMotion &motion, double time_s) {
+RigidVelocity RigidVelocity::of(const motion::RigidMotion &motion, double time_s) {
   if (motion.is_static())
     return {};
   RigidVelocity velocity;

@@ -1,6 +1,6 @@
 #include "fluid_adapter/rigid/SweptRegion.hpp"
 
-#include "common/AxisRotation.hpp"
+#include "motion/AxisRotation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +46,7 @@ SweptRegion SweptRegion::of(const RigidBody &body, double margin_m) {
     region.box_m_.max().array() += margin_m;
     return region;
   }
-  const auto *rotation = dynamic_cast<const common::AxisRotation *>(&body.motion());
+  const auto *rotation = dynamic_cast<const motion::AxisRotation *>(&body.motion());
   if (!rotation)
     return region; // unbounded
   region.kind_ = Kind::revolution;

@@ -2,7 +2,7 @@
 // The world region a rigid body can occupy over its whole motion, used once per fluid mesh to
 // pick the candidate cells whose indicator can ever be non-zero:
 //   * a static body: its world-frame bounding box;
-//   * a rotation about a fixed axis (common::AxisRotation, every prescribed motion of this
+//   * a rotation about a fixed axis (motion::AxisRotation, every prescribed motion of this
 //     project): the solid of revolution bounded by the body's axial extent [a_min, a_max] and
 //     radial extent [r_min, r_max] about the axis (an annulus, or a cylinder when the axis
 //     crosses the body). Both extents are exact for the solid enclosed by the surface: the

@@ -35,8 +35,8 @@ CollisionSet::CollisionSet(double threshold_m, double target_distance_m, int max
   }
 }
 
-void CollisionSet::add_surface(std::unique_ptr<RigidSurface> surface,
-                               std::shared_ptr<const common::RigidMotion> motion) {
+void CollisionSet::add_surface(std::unique_ptr<geometry::RigidSurface> surface,
+                               std::shared_ptr<const motion::RigidMotion> motion) {
   if (!surface || !motion) {
     throw std::invalid_argument("CollisionSet::add_surface needs a surface and a motion.");
   }
@@ -89,7 +89,7 @@ void CollisionSet::correct_against(const Body &body, PointArray &positions_m, do
     const Vec3 body_m = world_to_body * world_m;
     if (!body.surface->may_be_within(body_m, threshold_m_))
       continue;
-    const SurfaceDistance d = body.surface->distance(body_m);
+    const geometry::SurfaceDistance d = body.surface->distance(body_m);
     if (!(d.signed_distance_m < trigger_m))
       continue;
     // Eq. 11: X_c = X + n_w (d_t - eps_c), with n_w rotated from the body to the world.

@@ -2,9 +2,9 @@
 // The collision model of Sec. 2.5: rigid surfaces, each following its own prescribed motion,
 // and the correction of Eq. 11 applied to the Lagrangian points of a sheet.
 
-#include "common/RigidMotion.hpp"
+#include "motion/RigidMotion.hpp"
 #include "common/Types.hpp"
-#include "structure_solver/collision/RigidSurface.hpp"
+#include "geometry/RigidSurface.hpp"
 
 #include <cstddef>
 #include <limits>
@@ -35,8 +35,8 @@ public:
 
   /// Adds a surface that follows `motion` (body frame -> world). Prepares its culling data
   /// for the threshold. Throws std::invalid_argument for a null surface or motion.
-  void add_surface(std::unique_ptr<RigidSurface> surface,
-                   std::shared_ptr<const common::RigidMotion> motion);
+  void add_surface(std::unique_ptr<geometry::RigidSurface> surface,
+                   std::shared_ptr<const motion::RigidMotion> motion);
 
   /// Eq. 11: every point closer than d_c to a surface (or inside it) is moved along the wall
   /// normal to distance d_t. Surfaces are applied in turn and the pass repeated until no point
@@ -51,8 +51,8 @@ public:
 
 private:
   struct Body {
-    std::unique_ptr<RigidSurface> surface;
-    std::shared_ptr<const common::RigidMotion> motion;
+    std::unique_ptr<geometry::RigidSurface> surface;
+    std::shared_ptr<const motion::RigidMotion> motion;
   };
 
   /// Applies Eq. 11 for one surface to the points listed in `active`; marks the points it

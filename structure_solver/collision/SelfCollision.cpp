@@ -1,6 +1,6 @@
 #include "structure_solver/collision/SelfCollision.hpp"
 
-#include "structure_solver/collision/SpatialHashGrid.hpp"
+#include "geometry/SpatialHashGrid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ SelfCollision::SelfCollision(const PointArray &rest_positions_m, double threshol
   const double exclusion_m = exclusion_factor * target_distance_m;
   if (exclusion_m <= 0.0 || n_points == 0)
     return;
-  const SpatialHashGrid grid(rest_positions_m_, exclusion_m);
+  const geometry::SpatialHashGrid grid(rest_positions_m_, exclusion_m);
   const auto pairs = grid.pairs_within(exclusion_m); // sorted by i, then j
   for (const auto &[i, j] : pairs) {
     ++offsets_[static_cast<std::size_t>(i) + 1];
@@ -66,7 +66,7 @@ std::size_t SelfCollision::correct(PointArray &positions_m) const {
   }
   if (positions_m.rows() < 2)
     return 0;
-  const SpatialHashGrid grid(positions_m, threshold_m_);
+  const geometry::SpatialHashGrid grid(positions_m, threshold_m_);
   const auto candidates = grid.pairs_within(threshold_m_);
   std::size_t n_corrected = 0;
   for (const auto &[i, j] : candidates) {

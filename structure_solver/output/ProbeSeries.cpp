@@ -1,6 +1,6 @@
 #include "structure_solver/output/ProbeSeries.hpp"
 
-#include "structure_solver/output/H5Error.hpp"
+#include "hdf5/H5Error.hpp"
 #include "structure_solver/output/ResultsPaths.hpp"
 
 namespace fsi::structure::output {
@@ -9,9 +9,9 @@ namespace {
 /// A probe row is 3 doubles; 256 rows (6 KiB) per chunk.
 constexpr hsize_t probe_rows_per_chunk = 256;
 
-H5Handle create_group(hid_t parent_id, const std::string &name) {
-  return H5Handle::group(H5Gcreate2(parent_id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                         "cannot create group '" + name + "' in " + hdf5_object_name(parent_id));
+hdf5::H5Handle create_group(hid_t parent_id, const std::string &name) {
+  return hdf5::H5Handle::group(H5Gcreate2(parent_id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                         "cannot create group '" + name + "' in " + hdf5::hdf5_object_name(parent_id));
 }
 
 } // namespace
@@ -26,8 +26,8 @@ void ProbeSeries::append(const ProbeState &state) {
   velocity_m_per_s_.append_row(state.velocity_m_per_s.data());
 }
 
-ExtendableDataset ProbeSeries::vector_series(const char *dataset, const char *units) const {
-  return ExtendableDataset(group_.get(), dataset, ExtendableDataset::ElementType::float64, {3},
+hdf5::ExtendableDataset ProbeSeries::vector_series(const char *dataset, const char *units) const {
+  return hdf5::ExtendableDataset(group_.get(), dataset, hdf5::ExtendableDataset::ElementType::float64, {3},
                            probe_rows_per_chunk, units);
 }
 

@@ -2,8 +2,8 @@
 // The group `/probes/<name>` of the results file: the position (m) and velocity (m/s) of one
 // probe, one [3] row per saved step, aligned with /time_s.
 
-#include "structure_solver/output/ExtendableDataset.hpp"
-#include "structure_solver/output/H5Handle.hpp"
+#include "hdf5/ExtendableDataset.hpp"
+#include "hdf5/H5Handle.hpp"
 #include "structure_solver/output/ResultsRecords.hpp"
 
 #include <string>
@@ -21,12 +21,12 @@ public:
   const std::string &name() const { return name_; }
 
 private:
-  ExtendableDataset vector_series(const char *dataset, const char *units) const;
+  hdf5::ExtendableDataset vector_series(const char *dataset, const char *units) const;
 
   std::string name_;
-  H5Handle group_;
-  ExtendableDataset position_m_;
-  ExtendableDataset velocity_m_per_s_;
+  hdf5::H5Handle group_;
+  hdf5::ExtendableDataset position_m_;
+  hdf5::ExtendableDataset velocity_m_per_s_;
 };
 
 } // namespace fsi::structure::output

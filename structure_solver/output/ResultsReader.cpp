@@ -1,8 +1,8 @@
 #include "structure_solver/output/ResultsReader.hpp"
 
-#include "structure_solver/output/H5Attributes.hpp"
-#include "structure_solver/output/H5Error.hpp"
-#include "structure_solver/output/H5FileAccess.hpp"
+#include "hdf5/H5Attributes.hpp"
+#include "hdf5/H5Error.hpp"
+#include "hdf5/H5FileAccess.hpp"
 #include "structure_solver/output/ResultsPaths.hpp"
 
 #include <algorithm>
@@ -11,11 +11,11 @@
 namespace fsi::structure::output {
 namespace {
 
-H5Handle open_file(const std::filesystem::path &h5_path) {
-  silence_hdf5_error_printing();
+hdf5::H5Handle open_file(const std::filesystem::path &h5_path) {
+  hdf5::silence_hdf5_error_printing();
   const std::string what = "cannot open the results file '" + h5_path.string() + "'";
-  const H5Handle access = file_access_without_locking(what);
-  return H5Handle::file(H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, access.get()), what);
+  const hdf5::H5Handle access = hdf5::file_access_without_locking(what);
+  return hdf5::H5Handle::file(H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, access.get()), what);
 }
 
 herr_t collect_link_name(hid_t, const char *name, const H5L_info_t *, void *names) {
@@ -24,16 +24,16 @@ herr_t collect_link_name(hid_t, const char *name, const H5L_info_t *, void *name
 }
 
 /// Selects rows [first_row, first_row + n_rows) of a dataset in its file space.
-H5Handle select_rows(hid_t dataset_id, hsize_t first_row, hsize_t n_rows,
+hdf5::H5Handle select_rows(hid_t dataset_id, hsize_t first_row, hsize_t n_rows,
                      std::vector<hsize_t> &count, const std::string &what) {
-  H5Handle space = H5Handle::dataspace(H5Dget_space(dataset_id), what);
+  hdf5::H5Handle space = hdf5::H5Handle::dataspace(H5Dget_space(dataset_id), what);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   count.assign(static_cast<std::size_t>(std::max(rank, 0)), 0);
   H5Sget_simple_extent_dims(space.get(), count.data(), nullptr);
   std::vector<hsize_t> start(count.size(), 0);
   start[0] = first_row;
   count[0] = n_rows;
-  check_hdf5(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+  hdf5::check_hdf5(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                                  nullptr),
              what);
   return space;
@@ -57,12 +57,12 @@ std::vector<std::int64_t> ResultsReader::steps() const {
   if (n_saved() == 0) {
     return {};
   }
-  H5Handle dataset = open_dataset(std::string("/") + paths::step);
+  hdf5::H5Handle dataset = open_dataset(std::string("/") + paths::step);
   std::vector<hsize_t> count;
-  H5Handle file_space = select_rows(dataset.get(), 0, static_cast<hsize_t>(n_saved()), count, what);
-  H5Handle memory_space = H5Handle::dataspace(H5Screate_simple(1, count.data(), nullptr), what);
+  hdf5::H5Handle file_space = select_rows(dataset.get(), 0, static_cast<hsize_t>(n_saved()), count, what);
+  hdf5::H5Handle memory_space = hdf5::H5Handle::dataspace(H5Screate_simple(1, count.data(), nullptr), what);
   std::vector<std::int64_t> values(count[0]);
-  check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_INT64, memory_space.get(), file_space.get(),
+  hdf5::check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_INT64, memory_space.get(), file_space.get(),
                      H5P_DEFAULT, values.data()),
              what);
   return values;
@@ -89,23 +89,23 @@ PointArray ResultsReader::probe_series(const std::string &probe, const std::stri
   if (n_rows == 0) {
     return rows;
   }
-  H5Handle data = open_dataset(path);
+  hdf5::H5Handle data = open_dataset(path);
   std::vector<hsize_t> count;
-  H5Handle file_space = select_rows(data.get(), 0, n_rows, count, what);
+  hdf5::H5Handle file_space = select_rows(data.get(), 0, n_rows, count, what);
   if (count.size() != 2 || count[1] != 3) {
     throw std::runtime_error(what + ": expected a [n_saved, 3] dataset");
   }
-  H5Handle memory_space = H5Handle::dataspace(H5Screate_simple(2, count.data(), nullptr), what);
-  check_hdf5(H5Dread(data.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+  hdf5::H5Handle memory_space = hdf5::H5Handle::dataspace(H5Screate_simple(2, count.data(), nullptr), what);
+  hdf5::check_hdf5(H5Dread(data.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
                      H5P_DEFAULT, rows.data()),
              what);
   return rows;
 }
 
 std::vector<std::string> ResultsReader::group_members(const std::string &group_path) const {
-  H5Handle group = open_object(group_path);
+  hdf5::H5Handle group = open_object(group_path);
   std::vector<std::string> names;
-  check_hdf5(
+  hdf5::check_hdf5(
       H5Literate(group.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_link_name, &names),
       context("cannot list " + group_path));
   return names;
@@ -126,13 +126,13 @@ Connectivity ResultsReader::connectivity(const std::string &structure) const {
   require_structure(structure);
   const std::string path = paths::structure_dataset(structure, paths::connectivity);
   const std::string what = context("cannot read " + path);
-  H5Handle dataset = open_dataset(path);
+  hdf5::H5Handle dataset = open_dataset(path);
   const std::vector<hsize_t> shape = dataset_shape(path);
   if (shape.size() != 2) {
     throw std::runtime_error(what + ": expected a 2-D dataset");
   }
   Connectivity cells{std::vector<std::int64_t>(shape[0] * shape[1]), static_cast<int>(shape[1])};
-  check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+  hdf5::check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                      cells.node_indices.data()),
              what);
   return cells;
@@ -157,11 +157,11 @@ std::vector<double> ResultsReader::structure_series(const std::string &structure
 
 std::vector<hsize_t> ResultsReader::dataset_shape(const std::string &dataset_path) const {
   const std::string what = context("cannot read the shape of " + dataset_path);
-  H5Handle dataset = open_dataset(dataset_path);
-  H5Handle space = H5Handle::dataspace(H5Dget_space(dataset.get()), what);
+  hdf5::H5Handle dataset = open_dataset(dataset_path);
+  hdf5::H5Handle space = hdf5::H5Handle::dataspace(H5Dget_space(dataset.get()), what);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 0) {
-    throw_hdf5_error(what);
+    hdf5::throw_hdf5_error(what);
   }
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
@@ -171,7 +171,7 @@ std::vector<hsize_t> ResultsReader::dataset_shape(const std::string &dataset_pat
 std::string ResultsReader::string_attribute(const std::string &object_path,
                                             const std::string &name) const {
   try {
-    return read_string_attribute(open_object(object_path).get(), name);
+    return hdf5::read_string_attribute(open_object(object_path).get(), name);
   } catch (const std::runtime_error &error) {
     throw std::runtime_error(context(error.what()));
   }
@@ -180,7 +180,7 @@ std::string ResultsReader::string_attribute(const std::string &object_path,
 std::vector<std::int64_t> ResultsReader::int_attribute(const std::string &object_path,
                                                        const std::string &name) const {
   try {
-    return read_int64_array_attribute(open_object(object_path).get(), name);
+    return hdf5::read_int64_array_attribute(open_object(object_path).get(), name);
   } catch (const std::runtime_error &error) {
     throw std::runtime_error(context(error.what()));
   }
@@ -198,12 +198,12 @@ void ResultsReader::require_structure(const std::string &structure) const {
   }
 }
 
-H5Handle ResultsReader::open_dataset(const std::string &dataset_path) const {
-  return H5Handle::dataset(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT),
+hdf5::H5Handle ResultsReader::open_dataset(const std::string &dataset_path) const {
+  return hdf5::H5Handle::dataset(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT),
                            context("cannot open dataset " + dataset_path));
 }
 
-H5Handle ResultsReader::open_object(const std::string &object_path) const {
+hdf5::H5Handle ResultsReader::open_object(const std::string &object_path) const {
   return {H5Oopen(file_.get(), object_path.c_str(), H5P_DEFAULT), H5Oclose,
           context("cannot open " + object_path)};
 }
@@ -214,16 +214,16 @@ PointArray ResultsReader::point_row(const std::string &dataset_path, long saved_
   if (saved_index < 0 || saved_index >= n_saved()) {
     throw std::out_of_range(what + ": the file holds " + std::to_string(n_saved()) + " steps");
   }
-  H5Handle dataset = open_dataset(dataset_path);
+  hdf5::H5Handle dataset = open_dataset(dataset_path);
   std::vector<hsize_t> count;
-  H5Handle file_space =
+  hdf5::H5Handle file_space =
       select_rows(dataset.get(), static_cast<hsize_t>(saved_index), 1, count, what);
   if (count.size() != 3 || count[2] != 3) {
     throw std::runtime_error(what + ": expected a [n_saved, n_points, 3] dataset");
   }
-  H5Handle memory_space = H5Handle::dataspace(H5Screate_simple(3, count.data(), nullptr), what);
+  hdf5::H5Handle memory_space = hdf5::H5Handle::dataspace(H5Screate_simple(3, count.data(), nullptr), what);
   PointArray points(static_cast<Eigen::Index>(count[1]), 3);
-  check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+  hdf5::check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
                      H5P_DEFAULT, points.data()),
              what);
   return points;
@@ -235,12 +235,12 @@ std::vector<double> ResultsReader::leading_doubles(const std::string &dataset_pa
   if (n_values == 0) {
     return {};
   }
-  H5Handle dataset = open_dataset(dataset_path);
+  hdf5::H5Handle dataset = open_dataset(dataset_path);
   std::vector<hsize_t> count;
-  H5Handle file_space = select_rows(dataset.get(), 0, n_values, count, what);
-  H5Handle memory_space = H5Handle::dataspace(H5Screate_simple(1, &n_values, nullptr), what);
+  hdf5::H5Handle file_space = select_rows(dataset.get(), 0, n_values, count, what);
+  hdf5::H5Handle memory_space = hdf5::H5Handle::dataspace(H5Screate_simple(1, &n_values, nullptr), what);
   std::vector<double> values(n_values);
-  check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+  hdf5::check_hdf5(H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
                      H5P_DEFAULT, values.data()),
              what);
   return values;

@@ -4,7 +4,7 @@
 // tests and by post-processing tools. The number of saved steps is the length of /time_s.
 
 #include "common/Types.hpp"
-#include "structure_solver/output/H5Handle.hpp"
+#include "hdf5/H5Handle.hpp"
 #include "structure_solver/output/ResultsRecords.hpp"
 #include "structure_solver/output/StructureTopology.hpp"
 
@@ -56,15 +56,15 @@ public:
 
 private:
   void require_structure(const std::string &structure) const;
-  H5Handle open_dataset(const std::string &dataset_path) const;
-  H5Handle open_object(const std::string &object_path) const;
+  hdf5::H5Handle open_dataset(const std::string &dataset_path) const;
+  hdf5::H5Handle open_object(const std::string &object_path) const;
   PointArray point_row(const std::string &dataset_path, long saved_index) const;
   std::vector<std::string> group_members(const std::string &group_path) const;
   std::vector<double> leading_doubles(const std::string &dataset_path, hsize_t count) const;
   std::string context(const std::string &what) const;
 
   std::filesystem::path h5_path_;
-  H5Handle file_;
+  hdf5::H5Handle file_;
 };
 
 } // namespace fsi::structure::output

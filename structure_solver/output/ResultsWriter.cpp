@@ -1,8 +1,8 @@
 #include "structure_solver/output/ResultsWriter.hpp"
 
-#include "structure_solver/output/H5Attributes.hpp"
-#include "structure_solver/output/H5Error.hpp"
-#include "structure_solver/output/H5FileAccess.hpp"
+#include "hdf5/H5Attributes.hpp"
+#include "hdf5/H5Error.hpp"
+#include "hdf5/H5FileAccess.hpp"
 #include "structure_solver/output/ResultsPaths.hpp"
 
 #include <ctime>
@@ -22,11 +22,11 @@ std::string utc_now_iso8601() {
   return text;
 }
 
-H5Handle create_file(const std::filesystem::path &h5_path) {
-  silence_hdf5_error_printing();
+hdf5::H5Handle create_file(const std::filesystem::path &h5_path) {
+  hdf5::silence_hdf5_error_printing();
   const std::string what = "cannot create the results file '" + h5_path.string() + "'";
-  const H5Handle access = file_access_without_locking(what);
-  return H5Handle::file(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), what);
+  const hdf5::H5Handle access = hdf5::file_access_without_locking(what);
+  return hdf5::H5Handle::file(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), what);
 }
 
 std::string prefixed(const std::filesystem::path &h5_path, const std::string &message) {
@@ -40,14 +40,14 @@ ResultsWriter::ResultsWriter(std::filesystem::path h5_path, std::filesystem::pat
     : h5_path_(std::move(h5_path)), file_(create_file(h5_path_)) {
   try {
     write_root_attributes(meta);
-    structures_group_ = H5Handle::group(
+    structures_group_ = hdf5::H5Handle::group(
         H5Gcreate2(file_.get(), paths::structures_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
         "cannot create group /structures");
-    time_s_ = std::make_unique<ExtendableDataset>(
-        file_.get(), paths::time_s, ExtendableDataset::ElementType::float64, std::vector<hsize_t>{},
+    time_s_ = std::make_unique<hdf5::ExtendableDataset>(
+        file_.get(), paths::time_s, hdf5::ExtendableDataset::ElementType::float64, std::vector<hsize_t>{},
         scalar_rows_per_chunk, "s");
-    step_ = std::make_unique<ExtendableDataset>(file_.get(), paths::step,
-                                                ExtendableDataset::ElementType::int64,
+    step_ = std::make_unique<hdf5::ExtendableDataset>(file_.get(), paths::step,
+                                                hdf5::ExtendableDataset::ElementType::int64,
                                                 std::vector<hsize_t>{}, scalar_rows_per_chunk, "1");
     flush();
   } catch (const std::runtime_error &error) {
@@ -85,7 +85,7 @@ void ResultsWriter::add_probe(const std::string &name) {
   }
   try {
     if (!probes_group_.valid()) {
-      probes_group_ = H5Handle::group(
+      probes_group_ = hdf5::H5Handle::group(
           H5Gcreate2(file_.get(), paths::probes_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
           "cannot create group /probes");
     }
@@ -111,7 +111,7 @@ void ResultsWriter::write_step(const StepRecord &record) {
 
 void ResultsWriter::set_status(const std::string &status) {
   try {
-    write_string_attribute(file_.get(), "status", status);
+    hdf5::write_string_attribute(file_.get(), "status", status);
     flush();
   } catch (const std::runtime_error &error) {
     throw std::runtime_error(prefixed(h5_path_, error.what()));
@@ -119,11 +119,11 @@ void ResultsWriter::set_status(const std::string &status) {
 }
 
 void ResultsWriter::write_root_attributes(const RunMetadata &meta) {
-  write_string_attribute(file_.get(), "units", "SI");
-  write_string_attribute(file_.get(), "config_yaml", meta.config_yaml);
-  write_string_attribute(file_.get(), "code_version", meta.code_version);
-  write_string_attribute(file_.get(), "status", "running");
-  write_string_attribute(file_.get(), "created_utc", utc_now_iso8601());
+  hdf5::write_string_attribute(file_.get(), "units", "SI");
+  hdf5::write_string_attribute(file_.get(), "config_yaml", meta.config_yaml);
+  hdf5::write_string_attribute(file_.get(), "code_version", meta.code_version);
+  hdf5::write_string_attribute(file_.get(), "status", "running");
+  hdf5::write_string_attribute(file_.get(), "created_utc", utc_now_iso8601());
 }
 
 void ResultsWriter::check_before_first_step(const std::string &what) const {
@@ -170,7 +170,7 @@ void ResultsWriter::append_rows(const StepRecord &record) {
   time_s_->append_row(&record.time_s);
 }
 
-void ResultsWriter::flush() { check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush"); }
+void ResultsWriter::flush() { hdf5::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush"); }
 
 void ResultsWriter::throw_if_failed() const {
   if (!failure_.empty()) {

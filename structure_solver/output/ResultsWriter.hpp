@@ -16,7 +16,7 @@
 // The file is flushed after every step and status change, so it stays readable when the
 // process dies; the length of /time_s is the number of complete steps.
 
-#include "structure_solver/output/H5Handle.hpp"
+#include "hdf5/H5Handle.hpp"
 #include "structure_solver/output/ProbeSeries.hpp"
 #include "structure_solver/output/ResultsRecords.hpp"
 #include "structure_solver/output/StructureSeries.hpp"
@@ -68,12 +68,12 @@ private:
   [[noreturn]] void fail(const std::exception &error);
 
   std::filesystem::path h5_path_;
-  H5Handle file_;
-  H5Handle structures_group_;
-  std::unique_ptr<ExtendableDataset> time_s_;
-  std::unique_ptr<ExtendableDataset> step_;
+  hdf5::H5Handle file_;
+  hdf5::H5Handle structures_group_;
+  std::unique_ptr<hdf5::ExtendableDataset> time_s_;
+  std::unique_ptr<hdf5::ExtendableDataset> step_;
   std::vector<StructureSeries> structures_;
-  H5Handle probes_group_;
+  hdf5::H5Handle probes_group_;
   std::vector<ProbeSeries> probes_;
   std::unique_ptr<XdmfWriter> xdmf_;
   long n_saved_ = 0;

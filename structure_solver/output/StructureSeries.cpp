@@ -1,7 +1,7 @@
 #include "structure_solver/output/StructureSeries.hpp"
 
-#include "structure_solver/output/H5Attributes.hpp"
-#include "structure_solver/output/H5Error.hpp"
+#include "hdf5/H5Attributes.hpp"
+#include "hdf5/H5Error.hpp"
 #include "structure_solver/output/ResultsPaths.hpp"
 
 #include <stdexcept>
@@ -12,9 +12,9 @@ namespace {
 /// Scalar series grow by one value per saved step; 1024 values (8 KiB) per chunk.
 constexpr hsize_t scalar_rows_per_chunk = 1024;
 
-H5Handle create_group(hid_t parent_id, const std::string &name) {
-  return H5Handle::group(H5Gcreate2(parent_id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                         "cannot create group '" + name + "' in " + hdf5_object_name(parent_id));
+hdf5::H5Handle create_group(hid_t parent_id, const std::string &name) {
+  return hdf5::H5Handle::group(H5Gcreate2(parent_id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                         "cannot create group '" + name + "' in " + hdf5::hdf5_object_name(parent_id));
 }
 
 void check_points(const PointArray *points, const char *name, const StructureLayout &layout) {
@@ -58,9 +58,9 @@ void StructureSeries::append(const StructureState &state) {
 }
 
 void StructureSeries::write_group_attributes() {
-  write_string_attribute(group_.get(), "model", layout_.model);
-  write_int64_array_attribute(group_.get(), "grid_shape", {layout_.n1, layout_.n2});
-  write_string_attribute(group_.get(), "point_order", paths::point_order);
+  hdf5::write_string_attribute(group_.get(), "model", layout_.model);
+  hdf5::write_int64_array_attribute(group_.get(), "grid_shape", {layout_.n1, layout_.n2});
+  hdf5::write_string_attribute(group_.get(), "point_order", paths::point_order);
 }
 
 void StructureSeries::write_connectivity(const Connectivity &connectivity) {
@@ -68,26 +68,26 @@ void StructureSeries::write_connectivity(const Connectivity &connectivity) {
       "cannot write " + paths::structure_dataset(layout_.name, paths::connectivity);
   const hsize_t dims[2] = {connectivity.n_cells(),
                            static_cast<hsize_t>(connectivity.nodes_per_cell)};
-  H5Handle space = H5Handle::dataspace(H5Screate_simple(2, dims, nullptr), what);
-  H5Handle dataset =
-      H5Handle::dataset(H5Dcreate2(group_.get(), paths::connectivity, H5T_STD_I64LE, space.get(),
+  hdf5::H5Handle space = hdf5::H5Handle::dataspace(H5Screate_simple(2, dims, nullptr), what);
+  hdf5::H5Handle dataset =
+      hdf5::H5Handle::dataset(H5Dcreate2(group_.get(), paths::connectivity, H5T_STD_I64LE, space.get(),
                                    H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                         what);
-  check_hdf5(H5Dwrite(dataset.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+  hdf5::check_hdf5(H5Dwrite(dataset.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                       connectivity.node_indices.data()),
              what);
-  write_string_attribute(dataset.get(), "units", "1");
+  hdf5::write_string_attribute(dataset.get(), "units", "1");
 }
 
 /// [n_saved, n_points, 3] doubles, one chunk per saved step.
-ExtendableDataset StructureSeries::point_series(const char *name, const char *units) const {
+hdf5::ExtendableDataset StructureSeries::point_series(const char *name, const char *units) const {
   const auto n_points = static_cast<hsize_t>(layout_.n_points());
-  return ExtendableDataset(group_.get(), name, ExtendableDataset::ElementType::float64,
+  return hdf5::ExtendableDataset(group_.get(), name, hdf5::ExtendableDataset::ElementType::float64,
                            {n_points, 3}, 1, units);
 }
 
-ExtendableDataset StructureSeries::scalar_series(const char *name, const char *units) const {
-  return ExtendableDataset(group_.get(), name, ExtendableDataset::ElementType::float64, {},
+hdf5::ExtendableDataset StructureSeries::scalar_series(const char *name, const char *units) const {
+  return hdf5::ExtendableDataset(group_.get(), name, hdf5::ExtendableDataset::ElementType::float64, {},
                            scalar_rows_per_chunk, units);
 }
 

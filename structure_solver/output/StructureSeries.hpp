@@ -2,8 +2,8 @@
 // The group `/structures/<name>` of the results file: layout attributes, the connectivity,
 // and the per-step datasets (positions, velocities, stretch, energies) of one structure.
 
-#include "structure_solver/output/ExtendableDataset.hpp"
-#include "structure_solver/output/H5Handle.hpp"
+#include "hdf5/ExtendableDataset.hpp"
+#include "hdf5/H5Handle.hpp"
 #include "structure_solver/output/ResultsRecords.hpp"
 #include "structure_solver/output/StructureTopology.hpp"
 
@@ -27,17 +27,17 @@ public:
 private:
   void write_group_attributes();
   void write_connectivity(const Connectivity &connectivity);
-  ExtendableDataset point_series(const char *name, const char *units) const;
-  ExtendableDataset scalar_series(const char *name, const char *units) const;
+  hdf5::ExtendableDataset point_series(const char *name, const char *units) const;
+  hdf5::ExtendableDataset scalar_series(const char *name, const char *units) const;
 
   StructureLayout layout_;
-  H5Handle group_;
-  ExtendableDataset position_m_;
-  ExtendableDataset velocity_m_per_s_;
-  ExtendableDataset max_stretch_ratio_;
-  ExtendableDataset kinetic_energy_j_;
-  ExtendableDataset elastic_energy_j_;
-  ExtendableDataset potential_energy_j_;
+  hdf5::H5Handle group_;
+  hdf5::ExtendableDataset position_m_;
+  hdf5::ExtendableDataset velocity_m_per_s_;
+  hdf5::ExtendableDataset max_stretch_ratio_;
+  hdf5::ExtendableDataset kinetic_energy_j_;
+  hdf5::ExtendableDataset elastic_energy_j_;
+  hdf5::ExtendableDataset potential_energy_j_;
 };
 
 } // namespace fsi::structure::output

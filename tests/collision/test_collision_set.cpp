@@ -6,11 +6,11 @@
 #include "BruteForceMesh.hpp"
 #include "TestGeometry.hpp"
 
-#include "structure_solver/collision/BoxSurface.hpp"
+#include "geometry/BoxSurface.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
-#include "structure_solver/collision/CylinderSurface.hpp"
-#include "structure_solver/collision/PlaneSurface.hpp"
-#include "structure_solver/collision/TriangleMeshSurface.hpp"
+#include "geometry/CylinderSurface.hpp"
+#include "geometry/PlaneSurface.hpp"
+#include "geometry/TriangleMeshSurface.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,11 +19,13 @@
 namespace fsi::structure::collision {
 namespace {
 
+using namespace fsi::geometry;
+
 using FluidSide = TriangleMeshSurface::FluidSide;
 using testing::BruteForceMesh;
 
 /// Rotation at a constant rate about an axis through a point (test-local RigidMotion).
-class ConstantRotation final : public common::RigidMotion {
+class ConstantRotation final : public motion::RigidMotion {
 public:
   ConstantRotation(const Vec3 &centre_m, const Vec3 &axis, double rate_rad_per_s)
       : centre_m_(centre_m), axis_(axis.normalized()), rate_rad_per_s_(rate_rad_per_s) {}
@@ -38,8 +40,8 @@ private:
   double rate_rad_per_s_;
 };
 
-std::shared_ptr<const common::RigidMotion> at_rest() {
-  return std::make_shared<common::StaticPose>();
+std::shared_ptr<const motion::RigidMotion> at_rest() {
+  return std::make_shared<motion::StaticPose>();
 }
 
 TEST(CollisionSet, RejectsInvalidParametersWithTheirNames) {
@@ -125,7 +127,7 @@ TEST(CollisionSet, PointsBetweenFloorAndPoleClearBoth) {
 
 /// A collision set holding one mesh surface that follows `motion`.
 CollisionSet mesh_collision_set(const TriangleSoup &soup, FluidSide side,
-                                const std::shared_ptr<const common::RigidMotion> &motion,
+                                const std::shared_ptr<const motion::RigidMotion> &motion,
                                 double threshold_m, double target_m) {
   CollisionSet set(threshold_m, target_m);
   set.add_surface(TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, side),
@@ -137,7 +139,7 @@ CollisionSet mesh_collision_set(const TriangleSoup &soup, FluidSide side,
 /// checks every point with the oracle in the body frame: moved points end at d_t or more,
 /// the others at d_c or more, none inside the solid.
 void expect_cloud_cleared(const CollisionSet &set, const TriangleSoup &soup, FluidSide side,
-                          const common::RigidMotion &motion, double time_s) {
+                          const motion::RigidMotion &motion, double time_s) {
   const Eigen::Isometry3d pose = motion.pose_at(time_s);
   PointArray points = testing::to_point_array(testing::random_points_around(soup, 3000, 0.1, 21));
   for (Eigen::Index i = 0; i < points.rows(); ++i) {

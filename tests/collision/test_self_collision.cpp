@@ -5,7 +5,7 @@
 #include "TestGeometry.hpp"
 
 #include "structure_solver/collision/SelfCollision.hpp"
-#include "structure_solver/collision/SpatialHashGrid.hpp"
+#include "geometry/SpatialHashGrid.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +13,8 @@
 
 namespace fsi::structure::collision {
 namespace {
+
+using namespace fsi::geometry;
 
 /// n x n points spaced spacing_m in the plane z = height_m, starting at x = x0_m.
 PointArray square_patch(int n, double spacing_m, double x0_m, double height_m) {

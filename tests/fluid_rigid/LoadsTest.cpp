@@ -4,7 +4,7 @@
 #include "TestGrids.hpp"
 
 #include "fluid_adapter/rigid/BodyLoads.hpp"
-#include "structure_solver/collision/MeshGenerators.hpp"
+#include "geometry/MeshGenerators.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ constexpr double kCellVolume_m3 = (2 * kHalf_m / kCellsPerSide) * (2 * kHalf_m /
 /// A sphere centred on the grid's centre: the set of inside cells is mirror-symmetric.
 struct SymmetricSphere : ::testing::Test {
   std::unique_ptr<RigidBody> body = RigidBody::from_soup(
-      "ball", structure::collision::make_icosphere(Vec3::Zero(), 0.6, 3), std::make_shared<common::StaticPose>());
+      "ball", geometry::make_icosphere(Vec3::Zero(), 0.6, 3), std::make_shared<motion::StaticPose>());
   PointArray centres = testing::uniform_centres(-kHalf_m, kHalf_m, kCellsPerSide);
   Eigen::VectorXd volumes = Eigen::VectorXd::Constant(centres.rows(), kCellVolume_m3);
   BodyIndicator indicator{*body, centres};

@@ -2,6 +2,8 @@
 // the coupled run's dt, 100 steps at that dt) and the fingerprint that decides whether an
 // earlier precursor can be reused. The run itself: fluid_penalization.Precursor.
 
+#include "case/CaseConfig.hpp"
+#include "case/ModuleSetups.hpp"
 #include "fluid_adapter/Precursor.hpp"
 
 #include <gtest/gtest.h>
@@ -28,7 +30,7 @@ Precursor precursor_of(const std::string &yaml) {
   const auto dir = std::filesystem::temp_directory_path() / ("fsi-precursor-test-" + std::to_string(rng()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "case.yaml") << yaml;
-  return Precursor(structure::CaseConfig::load(dir), dir, dir / "output");
+  return Precursor(case_config::precursor_inputs(case_config::CaseConfig::load(dir)), dir, dir / "output");
 }
 
 TEST(Precursor, StepsRampDownToTheCoupledTimeStepAndEndExactly) {

@@ -4,9 +4,9 @@
 
 #include "TestGrids.hpp"
 
-#include "common/AxisRotation.hpp"
+#include "motion/AxisRotation.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
-#include "structure_solver/collision/MeshGenerators.hpp"
+#include "geometry/MeshGenerators.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,15 +19,15 @@ const Vec3 kAxisPoint_m(0.05, -0.03, 0.0);
 const Vec3 kAxisDirection = Vec3(0.2, 0.1, 1.0).normalized();
 constexpr double kRate_rad_per_s = 2.0;
 
-std::shared_ptr<common::AxisRotation> spinning() {
-  return std::make_shared<common::AxisRotation>(
+std::shared_ptr<motion::AxisRotation> spinning() {
+  return std::make_shared<motion::AxisRotation>(
       kAxisPoint_m, kAxisDirection, [](double t) { return 0.1 + kRate_rad_per_s * t; },
       [](double) { return kRate_rad_per_s; });
 }
 
 std::unique_ptr<RigidBody> offset_torus() {
   return RigidBody::from_soup(
-      "torus", structure::collision::make_torus(Vec3(0.55, 0.0, 0.1), 0.3, 0.1, 64, 32), spinning());
+      "torus", geometry::make_torus(Vec3(0.55, 0.0, 0.1), 0.3, 0.1, 64, 32), spinning());
 }
 
 TEST(RotatingBody, IndicatorEqualsBruteForceOfEveryCellAtSeveralTimes) {
@@ -72,8 +72,8 @@ TEST(RotatingBody, BodyVelocityIsOmegaCrossArmToRoundOff) {
 
 TEST(StaticBody, CandidatesAreTheBoundingBoxAndVelocityIsZero) {
   const auto body = RigidBody::from_soup(
-      "ball", structure::collision::make_icosphere(Vec3(0.3, 0.2, -0.1), 0.25, 3),
-      std::make_shared<common::StaticPose>());
+      "ball", geometry::make_icosphere(Vec3(0.3, 0.2, -0.1), 0.25, 3),
+      std::make_shared<motion::StaticPose>());
   const PointArray centres = testing::uniform_centres(-1.0, 1.0, 40);
   BodyIndicator indicator(*body, centres);
   indicator.update(0.0);

@@ -5,7 +5,7 @@
 #include "TestGrids.hpp"
 
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
-#include "structure_solver/collision/MeshGenerators.hpp"
+#include "geometry/MeshGenerators.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 namespace fsi::fluid::rigid {
 namespace {
 
-using structure::collision::make_icosphere;
+using geometry::make_icosphere;
 
 constexpr double kRadius_m = 1.0;
 /// Off the grid's symmetry so that the lattice does not line up with the sphere.
@@ -25,7 +25,7 @@ constexpr double kDomainHalf_m = 1.25;
 
 std::unique_ptr<RigidBody> make_sphere(const Vec3 &centre_m = kCentre_m, int n_subdivisions = 5) {
   return RigidBody::from_soup("sphere", make_icosphere(centre_m, kRadius_m, n_subdivisions),
-                              std::make_shared<common::StaticPose>());
+                              std::make_shared<motion::StaticPose>());
 }
 
 double indicator_volume(const RigidBody &body, int n, IndicatorOptions::Sampling sampling) {

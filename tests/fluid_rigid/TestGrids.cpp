@@ -25,7 +25,7 @@ PointArray uniform_centres(double lo_m, double hi_m, int n) {
   return centres;
 }
 
-std::vector<int> brute_force_inside(const structure::collision::TriangleSoup &body_soup,
+std::vector<int> brute_force_inside(const geometry::TriangleSoup &body_soup,
                                     const Eigen::Isometry3d &pose, const PointArray &points_m) {
   std::vector<Point> vertices;
   for (Eigen::Index v = 0; v < body_soup.vertices_m.rows(); ++v) {
@@ -47,7 +47,7 @@ std::vector<int> brute_force_inside(const structure::collision::TriangleSoup &bo
   return inside;
 }
 
-double enclosed_volume(const structure::collision::TriangleSoup &soup) {
+double enclosed_volume(const geometry::TriangleSoup &soup) {
   double six_volume = 0.0;
   for (Eigen::Index t = 0; t < soup.triangles.rows(); ++t) {
     const Vec3 a = soup.vertices_m.row(soup.triangles(t, 0)).transpose();

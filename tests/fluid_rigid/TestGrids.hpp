@@ -4,7 +4,7 @@
 // Side_of_triangle_mesh on the transformed vertices, independent of the library's path).
 
 #include "common/Types.hpp"
-#include "structure_solver/collision/TriangleSoup.hpp"
+#include "geometry/TriangleSoup.hpp"
 
 #include <Eigen/Geometry>
 
@@ -16,10 +16,10 @@ namespace fsi::fluid::rigid::testing {
 PointArray uniform_centres(double lo_m, double hi_m, int n);
 
 /// 1 for every point strictly inside the soup placed by `pose`, else 0 (every point tested).
-std::vector<int> brute_force_inside(const structure::collision::TriangleSoup &body_soup,
+std::vector<int> brute_force_inside(const geometry::TriangleSoup &body_soup,
                                     const Eigen::Isometry3d &pose, const PointArray &points_m);
 
 /// Volume enclosed by a closed, outward-oriented soup (divergence theorem).
-double enclosed_volume(const structure::collision::TriangleSoup &soup);
+double enclosed_volume(const geometry::TriangleSoup &soup);
 
 } // namespace fsi::fluid::rigid::testing

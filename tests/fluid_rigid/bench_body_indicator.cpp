@@ -5,9 +5,9 @@
 // on all threads.
 //   bench_body_indicator [n_steps]
 
-#include "common/AxisRotation.hpp"
+#include "motion/AxisRotation.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
-#include "structure_solver/collision/MeshGenerators.hpp"
+#include "geometry/MeshGenerators.hpp"
 #include "TestGrids.hpp"
 
 #include <chrono>
@@ -25,8 +25,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::shared_ptr<common::AxisRotation> spin_about_z(double rate_rad_per_s) {
-  return std::make_shared<common::AxisRotation>(
+std::shared_ptr<motion::AxisRotation> spin_about_z(double rate_rad_per_s) {
+  return std::make_shared<motion::AxisRotation>(
       Vec3::Zero(), Vec3::UnitZ(), [rate_rad_per_s](double t) { return rate_rad_per_s * t; },
       [rate_rad_per_s](double) { return rate_rad_per_s; });
 }
@@ -58,7 +58,7 @@ int main(int argc, char **argv) {
     const Vec3 centre_m = on_axis ? Vec3::Zero() : Vec3(0.2, 0.0, 0.0);
     auto start = std::chrono::steady_clock::now();
     const auto body = RigidBody::from_soup(
-        "torus", structure::collision::make_torus(centre_m, 0.22, 0.07, 320, 160), spin_about_z(150.0));
+        "torus", geometry::make_torus(centre_m, 0.22, 0.07, 320, 160), spin_about_z(150.0));
     std::printf("torus %s the rotation axis, %zu triangles: body built in %.2f s\n",
                 on_axis ? "about" : "off", body->surface().n_triangles(), seconds_since(start));
     for (const int n : {47, 67}) {

@@ -3,7 +3,8 @@
 // through the real parser, so tests exercise the same path as `fsi-structure CASE_DIR`; runs
 // the real executable.
 
-#include "structure_solver/CaseConfig.hpp"
+#include "case/CaseConfig.hpp"
+#include "case/ModuleSetups.hpp"
 #include "structure_solver/LagrangianSheet.hpp"
 #include "structure_solver/Scene.hpp"
 
@@ -25,7 +26,10 @@ inline std::filesystem::path make_case_dir(const std::string &yaml) {
   return dir;
 }
 
-inline CaseConfig load_case(const std::string &yaml) { return CaseConfig::load(make_case_dir(yaml)); }
+/// The structure solver's part of the case, through the real parser (case/ModuleSetups.hpp).
+inline StructureSetup load_case(const std::string &yaml) {
+  return case_config::structure_setup(case_config::CaseConfig::load(make_case_dir(yaml)));
+}
 
 /// Exit code and everything printed (stdout and stderr) of one run of the executable.
 struct SolverOutcome {

@@ -64,14 +64,14 @@ std::vector<std::string> split(const std::string &line, char separator) {
 }
 
 TEST(Probes, EveryKindLoadsAndIsEchoedWithItsOwnKeysOnly) {
-  CaseConfig config = testing::load_case(std::string(two_structures) + three_probes +
+  StructureSetup config = testing::load_case(std::string(two_structures) + three_probes +
                                          "  - {name: corner, structure: sheet, at: point, index: [10, 5]}\n"
                                          "  - {name: middle, structure: chain, at: point, index: [5]}\n");
   ASSERT_EQ(config.probes.size(), 5u);
   EXPECT_EQ(config.probes[1].at, ProbeLocation::edge_centre);
   EXPECT_EQ(config.probes[1].edge, "s1_max");
   EXPECT_EQ(config.probes[3].index, (std::vector<int>{10, 5}));
-  const YAML::Node echoed = YAML::Load(common::to_yaml(config))["probes"];
+  const YAML::Node echoed = YAML::Load(config.case_yaml)["probes"];
   EXPECT_EQ(echoed[0]["at"].as<std::string>(), "centroid");
   EXPECT_FALSE(echoed[0]["edge"]);
   EXPECT_FALSE(echoed[0]["index"]);

@@ -4,7 +4,7 @@
 // without running; the README's case reference is the one generated from the declarations.
 
 #include "CaseFixture.hpp"
-#include "structure_solver/SchemaDoc.hpp"
+#include "case/SchemaDoc.hpp"
 #include "structure_solver/output/ResultsReader.hpp"
 
 #include <gtest/gtest.h>
@@ -193,7 +193,7 @@ TEST(RunBehaviour, ReadmeHoldsTheGeneratedCaseReference) {
   std::ifstream readme(std::string(FSI_SOURCE_DIR) + "/README.md");
   std::stringstream text;
   text << readme.rdbuf();
-  EXPECT_NE(text.str().find(case_schema_markdown()), std::string::npos)
+  EXPECT_NE(text.str().find(case_config::case_schema_markdown()), std::string::npos)
       << "README.md's case reference is stale: regenerate it with ./fsi schema (see scripts/update_readme_schema.sh)";
 }
 

@@ -3,7 +3,7 @@
 // several structures advance together.
 
 #include "CaseFixture.hpp"
-#include "common/PendulumHistory.hpp"
+#include "motion/PendulumHistory.hpp"
 
 #include <gtest/gtest.h>
 
@@ -69,7 +69,7 @@ structures:
     clamp_motion:
       pendulum: {axis_point_m: [0, 0, 0], axis_direction: [0, 1, 0], length_m: 0.15, initial_angle_deg: 30}
 )"));
-  const common::PendulumHistory pendulum(9.81, 0.15, M_PI / 6.0);
+  const motion::PendulumHistory pendulum(9.81, 0.15, M_PI / 6.0);
   const auto &flag = *scene.structures().front();
   for (int k = 0; k < 3000; ++k)
     scene.advance();

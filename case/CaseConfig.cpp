@@ -1,0 +1,89 @@
+#include "CaseConfig.hpp"
+
+#include "common/ConfigEmitter.hpp"
+#include "common/DidYouMean.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <algorithm>
+#include <set>
+
+namespace fsi::case_config {
+
+void CaseConfig::validate(common::ConfigReader &v) const {
+  if (structures.empty())
+    v.fail_value("structures", "must list at least one structure.");
+  std::set<std::string> names;
+  for (const auto &s : structures)
+    if (!names.insert(s.name).second)
+      v.fail_value("structures", "has two structures named '" + s.name + "'; names must be unique.");
+  if (run.output_interval_s < run.time_step_s)
+    v.fail_value("run", "output_interval_s must be at least time_step_s.");
+  if (fluid && !coupling)
+    v.fail_value("fluid", "needs a `coupling` section (at least `coupling: {law: penalty}`).");
+  if (coupling && !fluid)
+    v.fail_value("coupling", "is given but there is no `fluid` section: remove it for a structure-only run, or add "
+                             "`fluid`.");
+  if (run.end_time_s < run.time_step_s)
+    v.fail_value("run", "end_time_s must be at least one time step.");
+  validate_probes(v);
+}
+
+void CaseConfig::validate_probes(const common::ConfigReader &v) const {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    const common::ConfigReader item = v.list_item("probes", i);
+    if (!names.insert(probes[i].name).second)
+      item.fail_value("name", "= '" + probes[i].name + "' is used by two probes; probe names must be unique.");
+    probes[i].check_against(structures, item);
+  }
+}
+
+std::vector<std::string> CaseConfig::presets(const std::filesystem::path &case_dir) {
+  std::vector<std::string> names;
+  if (std::filesystem::is_directory(case_dir / "presets"))
+    for (const auto &entry : std::filesystem::directory_iterator(case_dir / "presets"))
+      if (entry.path().extension() == ".yaml")
+        names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::string &preset) {
+  if (!std::filesystem::is_directory(case_dir))
+    throw common::ConfigError(case_dir.string() + ": not a case folder (expected a folder holding case.yaml).");
+  const auto overlay = case_dir / "presets" / (preset + ".yaml");
+  if (!preset.empty() && !std::filesystem::exists(overlay)) {
+    const auto available = presets(case_dir);
+    throw common::ConfigError(case_dir.string() + ": no preset '" + preset + "' (" + overlay.string() + ")." +
+                              common::did_you_mean(preset, available) +
+                              (available.empty() ? " This case has no presets."
+                                                 : " Presets of this case: " + common::join(available) + "."));
+  }
+  auto reader = preset.empty() ? common::ConfigReader::from_file(case_dir / "case.yaml")
+                               : common::ConfigReader::from_file_with_overlay(case_dir / "case.yaml", overlay);
+  CaseConfig config;
+  config.visit(reader);
+  reader.finish();
+  return config;
+}
+
+std::string CaseConfig::fingerprint() const {
+  // The emitter only reads; visit() is non-const because the reader shares it.
+  YAML::Node node = YAML::Load(common::to_yaml(const_cast<CaseConfig &>(*this)));
+  node["run"].remove("output_directory");
+  node["run"].remove("progress_interval_s");
+  if (node["coupling"])
+    node["coupling"].remove("endpoint");
+  const std::string text = YAML::Dump(node);
+  std::uint64_t hash = 14695981039346656037ull; // FNV-1a, 64 bit: stable across builds
+  for (const unsigned char c : text)
+    hash = (hash ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
+} // namespace fsi::case_config

@@ -1,0 +1,67 @@
+#pragma once
+// The command-line options every process of a run takes to find its case (fsi-structure,
+// fsi-coupler, fsi-prescribed-flow, fsi-openfoam-fluid): the case folder, the results folder,
+// the preset and an earlier end time. The launcher passes the same values to every process,
+// so all of them load the same configuration (and agree on its fingerprint). Header-only: only
+// the executables link CLI11.
+
+#include "CaseConfig.hpp"
+#include "common/ConfigError.hpp"
+#include "common/ExitCodes.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace fsi::case_config {
+
+struct CaseOptions {
+  std::string case_dir, output_dir, preset;
+  double end_time_s = 0.0; ///< 0: run.end_time_s of the case
+
+  void add_to(CLI::App &app, bool case_required = true) {
+    auto *option = app.add_option("case_dir", case_dir, "Case folder holding case.yaml");
+    if (case_required)
+      option->required();
+    app.add_option("-o,--output-dir", output_dir, "Results folder (default: run.output_directory of the case)");
+    app.add_option("--resolution,--preset", preset,
+                   "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
+    app.add_option("--end-time", end_time_s,
+                   "Stop at this simulated time (s) instead of run.end_time_s (a quick look, or a few steps in CI)")
+        ->check(CLI::Validator(
+            [](const std::string &text) {
+              double value = 0.0;
+              return CLI::detail::lexical_cast(text, value) && value > 0.0
+                         ? std::string()
+                         : "must be a time in seconds > 0, got '" + text + "'";
+            },
+            "SECONDS > 0"));
+  }
+
+  /// The case file with the preset merged over it and the end time applied.
+  CaseConfig load() const {
+    CaseConfig config = CaseConfig::load(case_dir, preset);
+    if (end_time_s > 0.0)
+      config.run.end_time_s = end_time_s;
+    return config;
+  }
+
+  std::filesystem::path output_directory(const CaseConfig &config) const {
+    return config.output_directory(case_dir, output_dir);
+  }
+};
+
+/// CLI11's parse with the project's exit codes: -1 to go on, else the code to exit with
+/// (0 after --help, exit_code_bad_input for a bad command line).
+inline int parse_command_line(CLI::App &app, int argc, char **argv) {
+  try {
+    app.parse(argc, argv);
+    return -1;
+  } catch (const CLI::ParseError &e) {
+    const int code = app.exit(e);
+    return e.get_exit_code() == 0 ? code : common::exit_code_bad_input;
+  }
+}
+
+} // namespace fsi::case_config

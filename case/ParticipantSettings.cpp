@@ -1,0 +1,27 @@
+#include "ParticipantSettings.hpp"
+
+#include "proto/TransportError.hpp"
+
+#include <chrono>
+
+namespace fsi::case_config {
+
+proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override) {
+  proto::SessionSettings settings;
+  settings.coupler = proto::Endpoint::parse(endpoint_override.empty() ? config.coupling->endpoint : endpoint_override);
+  try {
+    settings.coupler.check_connectable();
+  } catch (const proto::TransportError &e) {
+    if (!endpoint_override.empty())
+      throw;
+    throw proto::TransportError(std::string(e.what()) +
+                                " (coupling.endpoint of the case; port 0 means 'any free port', which only ./fsi run "
+                                "can hand over: give --endpoint or a fixed port)");
+  }
+  settings.case_fingerprint = config.fingerprint();
+  settings.handshake_timeout =
+      std::chrono::milliseconds(static_cast<long long>(1e3 * config.coupling->handshake_timeout_s));
+  return settings;
+}
+
+} // namespace fsi::case_config

@@ -1,0 +1,16 @@
+#pragma once
+// How a participant process (structure, fluid) of a case joins its coupler.
+
+#include "CaseConfig.hpp"
+#include "proto/ParticipantSession.hpp"
+
+#include <string>
+
+namespace fsi::case_config {
+
+/// The coupler endpoint (endpoint_override, else coupling.endpoint), the case fingerprint and
+/// the handshake timeout of a coupled case. Throws proto::TransportError for an endpoint that
+/// cannot be connected to; for one from the case file the message says what to do about port 0.
+proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override);
+
+} // namespace fsi::case_config

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""scripts/check_layering.py: the tree's includes all point down the layering, and the check
+names the offending line when one does not (a deliberately added upward include in a copy of
+the tree, and a sideways include between two physics modules)."""
+
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+CHECK = os.path.join(ROOT, "scripts", "check_layering.py")
+MODULES = ["case", "structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "proto", "geometry", "hdf5",
+           "motion", "common"]
+
+
+def check(root):
+    return subprocess.run(["/usr/bin/python3", CHECK, root], capture_output=True, text=True)
+
+
+def append_line(path, line):
+    with open(path) as f:
+        lines = f.read().splitlines()
+    lines.append(line)
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return len(lines)
+
+
+class Layering(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="fsi-layering-")
+        for module in MODULES:
+            shutil.copytree(os.path.join(ROOT, module), os.path.join(cls.tmp, module),
+                            ignore=shutil.ignore_patterns("*.txt", "*.md", "*.proto"))
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp)
+
+    def test_every_include_of_the_tree_points_down(self):
+        result = check(ROOT)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertEqual(result.stdout, "")
+
+    def test_an_upward_include_is_refused_with_its_file_and_line(self):
+        tree = os.path.join(self.tmp, "up")
+        shutil.copytree(self.tmp, tree, ignore=shutil.ignore_patterns("up", "side"))
+        line = append_line(os.path.join(tree, "common", "Types.hpp"), '#include "structure_solver/Scene.hpp"')
+        result = check(tree)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f'common/Types.hpp:{line}: #include "structure_solver/Scene.hpp"', result.stdout)
+        self.assertEqual(len(result.stdout.splitlines()), 1, result.stdout)
+
+    def test_a_sideways_include_between_physics_modules_is_refused(self):
+        tree = os.path.join(self.tmp, "side")
+        shutil.copytree(self.tmp, tree, ignore=shutil.ignore_patterns("up", "side"))
+        line = append_line(os.path.join(tree, "coupler", "CouplingRun.cpp"), '#include "case/CaseConfig.hpp"')
+        line2 = append_line(os.path.join(tree, "fluid_adapter", "Precursor.cpp"), '#include "coupler/CouplingRun.hpp"')
+        result = check(tree)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"coupler/CouplingRun.cpp:{line}:", result.stdout)
+        self.assertIn(f"fluid_adapter/Precursor.cpp:{line2}:", result.stdout)
+        self.assertIn("may not include physics module coupler", result.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

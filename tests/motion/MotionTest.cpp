@@ -1,0 +1,87 @@
+// Prescribed rigid motions: the free pendulum against the exact large-amplitude period
+// T = 4 sqrt(L/g) K(sin(theta0/2)) (complete elliptic integral of the first kind), the
+// axis rotation's pose and velocity against closed forms, and the angle-table reader.
+
+#include "motion/AxisRotation.hpp"
+#include "common/ConfigError.hpp"
+#include "motion/MotionFactory.hpp"
+#include "motion/PendulumHistory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+namespace fsi::motion {
+namespace {
+
+TEST(Pendulum, LargeAmplitudePeriodMatchesTheEllipticIntegral) {
+  const double g = 9.81, length = 0.15, theta0 = 30.0 * M_PI / 180.0;
+  const PendulumHistory pendulum(g, length, theta0);
+  // The angle returns to theta0 (a maximum) after one period: find it by bisection on the rate.
+  const double exact = 4.0 * std::sqrt(length / g) * std::comp_ellint_1(std::sin(theta0 / 2.0));
+  double lo = 0.9 * exact, hi = 1.1 * exact; // the rate is > 0 just before the period, < 0 after
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (pendulum.rate_rad_per_s(mid) > 0.0 ? lo : hi) = mid;
+  }
+  EXPECT_NEAR(0.5 * (lo + hi), exact, 1e-6 * exact); // RK4 with 4000 steps per period
+  EXPECT_NEAR(pendulum.angle_rad(exact), theta0, 1e-8);
+  EXPECT_NEAR(pendulum.angle_rad(exact / 2.0), -theta0, 1e-8);
+}
+
+TEST(AxisRotation, PoseAndVelocityMatchTheClosedForm) {
+  const Vec3 point(1.0, 2.0, 0.0), axis(0.0, 0.0, 2.0);
+  const double rate = 3.0;
+  AxisRotation rotation(point, axis, [=](double t) { return rate * t; }, [=](double) { return rate; });
+  const double t = 0.25;
+  const Vec3 body(2.0, 2.0, 5.0); // 1 m from the axis along x, at height 5
+  const Vec3 world = rotation.pose_at(t) * body;
+  EXPECT_NEAR((world - Vec3(1.0 + std::cos(rate * t), 2.0 + std::sin(rate * t), 5.0)).norm(), 0.0, 1e-14);
+  const Vec3 velocity = rotation.velocity_at(world, t);
+  EXPECT_NEAR((velocity - rate * Vec3(-std::sin(rate * t), std::cos(rate * t), 0.0)).norm(), 0.0, 1e-13);
+  // The generic finite-difference velocity of the base class agrees.
+  EXPECT_NEAR((rotation.RigidMotion::velocity_at(world, t) - velocity).norm(), 0.0, 1e-6);
+}
+
+std::filesystem::path write_table(const std::string &text) {
+  // Unique per process and call: ctest runs the tests of this file in parallel processes
+  // (an unseeded std::rand() gave them all the same name, and they overwrote each other).
+  static int calls = 0;
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("fsi-motion-" + std::to_string(::getpid()) + "-" + std::to_string(++calls) + ".csv");
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(AngleTable, InterpolatesLinearlyAndHoldsOutside) {
+  MotionConfig config;
+  config.table.emplace();
+  config.table->file = write_table("time_s,angle_rad\n0,0\n1,0.5\n2,0.5\n");
+  config.table->axis_direction = Vec3::UnitZ();
+  const auto motion = make_motion(config, 9.81);
+  const Vec3 x = motion->pose_at(0.5) * Vec3::UnitX();
+  EXPECT_NEAR(std::atan2(x.y(), x.x()), 0.25, 1e-14);
+  const Vec3 after = motion->pose_at(5.0) * Vec3::UnitX();
+  EXPECT_NEAR(std::atan2(after.y(), after.x()), 0.5, 1e-14);
+}
+
+TEST(AngleTable, MalformedFilesNameTheFileAndLine) {
+  const auto header = write_table("t,angle\n0,0\n");
+  EXPECT_THROW(read_angle_table(header), common::ConfigError);
+  const auto bad_row = write_table("time_s,angle_rad\n0,0\n1;2\n");
+  try {
+    read_angle_table(bad_row);
+    FAIL() << "expected a common::ConfigError";
+  } catch (const common::ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find(bad_row.string() + ":3"), std::string::npos) << e.what();
+  }
+  const auto not_increasing = write_table("time_s,angle_rad\n0,0\n0,1\n");
+  EXPECT_THROW(read_angle_table(not_increasing), common::ConfigError);
+}
+
+} // namespace
+} // namespace fsi::motion
