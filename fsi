@@ -74,13 +74,24 @@ build() {
 # cached in build-deps/ (scripts/ensure_openfoam.sh; quiet when done).
 ensure_openfoam() { "$ROOT/scripts/ensure_openfoam.sh" || die "OpenFOAM provisioning failed (see above)"; }
 
-prepare() { ensure_packages; ensure_openfoam; build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON; }
+# prepare [TARGET...]: packages, OpenFOAM, then a build of the given targets (default: everything,
+# tests and benchmarks included). A run needs only the four process executables.
+RUN_TARGETS=(fsi-structure fsi-coupler fsi-prescribed-flow fsi-openfoam-fluid)
+prepare() {
+  ensure_packages
+  ensure_openfoam
+  if [ $# -gt 0 ]; then
+    build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON -- "$@"
+  else
+    build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON
+  fi
+}
 
 # The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
 # and starts them; the picture is drawn where the structure ran.
 cmd_run() {
   [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--resolution NAME] [--end-time S] [--participant NAME] CASE_DIR"
-  prepare
+  prepare "${RUN_TARGETS[@]}"
   local launch=(/usr/bin/python3 "$ROOT/scripts/fsi_launch.py" --bin-dir "$BUILD/bin")
   local status=0 out="" participant="" prev=""
   for a in "$@"; do
@@ -124,7 +135,7 @@ cmd_run() {
 
 cmd_check() {
   [ $# -ge 1 ] || die "usage: ./fsi check CASE_DIR"
-  prepare
+  prepare fsi-structure
   "$BUILD/bin/fsi-structure" --check "$@"
 }
 
@@ -167,7 +178,7 @@ case "${1:-help}" in
   check) shift; cmd_check "$@" ;;
   test) shift; cmd_test "$@" ;;
   bench) shift; cmd_bench "$@" ;;
-  schema) prepare; "$BUILD/bin/fsi-structure" --schema ;;
+  schema) prepare fsi-structure; "$BUILD/bin/fsi-structure" --schema ;;
   build) prepare ;;
   report) shift; prepare; /usr/bin/python3 "$ROOT/scripts/report.py" --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
   help|-h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//' ;;
