@@ -7,7 +7,7 @@
 #                             structure solver alone, or the coupler and its participants
 #                             (after the fluid's precursor run, if the case has one)
 #   ./fsi run --participant coupler|structure|fluid CASE_DIR
-#                             start only that process (several machines; see README)
+#                             start only that process (several machines; see docs/cluster.md)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)

@@ -1,7 +1,7 @@
 #pragma once
 // The case-file reference (Markdown) generated from the configuration declarations: the
 // top-level keys, then one table per structure model. `fsi-structure --schema` prints it and
-// a test checks that README.md holds exactly this text.
+// a test checks that docs/case-reference.md holds exactly this text.
 
 #include <string>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Fills a typed configuration struct from a YAML mapping. Configuration structs declare their
 // keys once, in a `template <class V> void visit(V&)` member; the same declaration drives this
-// reader, the ConfigEmitter (effective configuration echo) and the ConfigDocWriter (README
+// reader, the ConfigEmitter (effective configuration echo) and the ConfigDocWriter (reference
 // tables). Unknown keys are errors with a spelling suggestion; every message names the file,
 // the line and the full key path.
 

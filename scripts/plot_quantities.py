@@ -6,8 +6,8 @@ Usage: plot_quantities.py OUTPUT_DIR
 Writes OUTPUT_DIR/quantities.png (a row per probe: x, y, z and u, v, w; a row of forces; a row
 per rigid body: force and torque) and, when coupling.h5 is there, OUTPUT_DIR/forces.csv. A
 run with neither probes nor coupling.h5 gets neither file (one left by an earlier run is
-removed) and the script exits 0 without a word. Reads only the documented HDF5 layout (README,
-"Results"). Needs Debian's python3-h5py, python3-matplotlib and python3-yaml (the
+removed) and the script exits 0 without a word. Reads only the documented HDF5 layout
+(docs/results.md). Needs Debian's python3-h5py, python3-matplotlib and python3-yaml (the
 /usr/bin/python3 interpreter); runs without a display."""
 import csv
 import os

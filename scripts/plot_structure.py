@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Summary picture of a structure run: snapshots of every structure in 3D at a few times,
 and the energies against time. Usage: plot_structure.py RESULTS.h5 OUTPUT.png
-Reads only the documented HDF5 layout (see README, "Results"). Needs Debian's python3-h5py
+Reads only the documented HDF5 layout (see docs/results.md). Needs Debian's python3-h5py
 and python3-matplotlib (the /usr/bin/python3 interpreter); runs without a display."""
 import sys
 

@@ -3,7 +3,9 @@
 names the offending line when one does not (a deliberately added upward include in a copy of
 the tree, and a sideways include between two physics modules)."""
 
+import glob
 import os
+import re
 import shutil
 import subprocess
 import tempfile
@@ -27,6 +29,32 @@ def append_line(path, line):
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return len(lines)
+
+
+DOCUMENTED_FOLDERS = set(MODULES) | {"tests", "bench", "scripts", "cases", "docs", "cmake"}
+
+
+def documented_paths(text):
+    """Backticked repository paths (`folder/...`) whose first folder is one of the tree's."""
+    for match in re.finditer(r"`([A-Za-z0-9_.-]+(?:/[A-Za-z0-9_.-]+)+)`", text):
+        path = match.group(1)
+        if path.split("/")[0] in DOCUMENTED_FOLDERS:
+            yield path
+
+
+class DocumentedPaths(unittest.TestCase):
+    def test_the_docs_name_files_that_exist(self):
+        """docs/model.md maps each equation to its file and test; a moved file must not leave
+        the docs pointing at nothing (nor the README, docs/layout.md, the case READMEs)."""
+        docs = [os.path.join(ROOT, "README.md")] + glob.glob(os.path.join(ROOT, "docs", "*.md")) + \
+            glob.glob(os.path.join(ROOT, "cases", "*", "README.md"))
+        missing = []
+        for doc in docs:
+            with open(doc) as f:
+                for path in documented_paths(f.read()):
+                    if not os.path.exists(os.path.join(ROOT, path)):
+                        missing.append(f"{os.path.relpath(doc, ROOT)}: `{path}`")
+        self.assertEqual(missing, [], "paths in the docs that do not exist:\n" + "\n".join(missing))
 
 
 class Layering(unittest.TestCase):

@@ -1,7 +1,7 @@
 // Behaviour a user relies on, through the real executable: bad input gives one clear error,
 // exit code 2 and no results; a diverging run stops with exit code 1, a message naming the
 // step, the point and the likely cause, and the last good state on disk; `--check` validates
-// without running; the README's case reference is the one generated from the declarations.
+// without running; docs/case-reference.md holds the reference generated from the declarations.
 
 #include "CaseFixture.hpp"
 #include "case/SchemaDoc.hpp"
@@ -189,12 +189,12 @@ TEST(RunBehaviour, InterruptKeepsTheResultsSoFarAndSaysSo) {
   EXPECT_TRUE(results.position_m("sheet", results.n_saved() - 1).allFinite());
 }
 
-TEST(RunBehaviour, ReadmeHoldsTheGeneratedCaseReference) {
-  std::ifstream readme(std::string(FSI_SOURCE_DIR) + "/README.md");
+TEST(RunBehaviour, CaseReferenceDocHoldsTheGeneratedSchema) {
+  std::ifstream doc(std::string(FSI_SOURCE_DIR) + "/docs/case-reference.md");
   std::stringstream text;
-  text << readme.rdbuf();
+  text << doc.rdbuf();
   EXPECT_NE(text.str().find(case_config::case_schema_markdown()), std::string::npos)
-      << "README.md's case reference is stale: regenerate it with ./fsi schema (see scripts/update_readme_schema.sh)";
+      << "docs/case-reference.md is stale: regenerate it with scripts/update_case_reference.sh (after a build)";
 }
 
 } // namespace
