@@ -3,6 +3,7 @@
 #include "CouplingErrors.hpp"
 #include "common/Logging.hpp"
 #include "motion/MotionFactory.hpp"
+#include "proto/BodyPose.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/TransportError.hpp"
 #include "common/ExitCodes.hpp"
@@ -34,21 +35,18 @@ std::string format_duration(double seconds) {
 }
 
 void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v1::RigidBodyPose &out) {
-  const Eigen::Isometry3d pose = motion.pose_at(t);
-  out.set_name(name);
-  proto::write_matrix3(pose.linear(), *out.mutable_rotation());
-  proto::write_vector3(pose.translation(), *out.mutable_translation_m());
+  proto::BodyPose pose;
+  pose.name = name;
+  pose.pose = motion.pose_at(t);
   // Rigid velocity field v(x) = v_o + omega x (x - o): recovered from three points.
-  const Vec3 o = pose.translation();
-  const Vec3 v_o = motion.velocity_at(o, t);
-  Vec3 omega = Vec3::Zero();
+  const Vec3 o = pose.pose.translation();
+  pose.origin_velocity_m_per_s = motion.velocity_at(o, t);
   for (int k = 0; k < 3; ++k) {
-    const Vec3 e = pose.linear().col(k);
+    const Vec3 e = pose.pose.linear().col(k);
     // (v(o + e) - v_o) = omega x e; sum over an orthonormal basis: omega = 1/2 sum e x (omega x e).
-    omega += 0.5 * e.cross(motion.velocity_at(o + e, t) - v_o);
+    pose.angular_velocity_rad_per_s += 0.5 * e.cross(motion.velocity_at(o + e, t) - pose.origin_velocity_m_per_s);
   }
-  proto::write_vector3(omega, *out.mutable_angular_velocity_rad_per_s());
-  proto::write_vector3(v_o, *out.mutable_linear_velocity_m_per_s());
+  proto::write_body_pose(pose, out);
 }
 } // namespace
 
@@ -299,6 +297,13 @@ void CouplingRun::advance_fluid_and_structure(long n) {
   // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
   // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
   proto::resize_points(*structure->mutable_load_density_n_per_m2(), force.rows()) = -force;
+  // Section 2.3: the rigid surfaces move; both participants use them at the end of the step.
+  fluid->mutable_rigid_bodies()->Clear();
+  structure->mutable_rigid_bodies()->Clear();
+  for (const auto &[name, motion] : moving_bodies_) {
+    write_pose(name, *motion, t + dt_, *fluid->add_rigid_bodies());
+    *structure->add_rigid_bodies() = fluid->rigid_bodies(fluid->rigid_bodies_size() - 1);
+  }
   participants_->send(structure_id_, structure_advance_, static_cast<std::uint64_t>(n));
   participants_->send(fluid_id_, fluid_advance_, static_cast<std::uint64_t>(n));
 

@@ -1,7 +1,9 @@
 #include "OpenFoamFluidModel.hpp"
 
 #include "fluid_adapter/ibm/ClosestCellLinear.hpp"
+#include "proto/BodyPose.hpp"
 #include "proto/PackedPoints.hpp"
+#include "proto/TransportError.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -66,10 +68,14 @@ void OpenFoamFluidModel::interpolate(const proto::v1::InterpolateRequest &, prot
 
 void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_m2,
                                  proto::v1::AdvanceReply &reply) {
+  // Payload for the other ranks: t, dt, the moving bodies' poses at t + dt, then F_fsi^n.
   message_.assign({request.time_s(), request.dt_s()});
+  pack_rigid_poses(request, message_);
+  const std::size_t poses_end = message_.size();
   message_.insert(message_.end(), force_density_n_per_m2.data(),
                   force_density_n_per_m2.data() + force_density_n_per_m2.size());
   broadcast(Command::advance, message_);
+  unpack_rigid_poses(request.time_s() + request.dt_s(), message_.data() + 2, message_.data() + poses_end);
   force_density_ = force_density_n_per_m2;
   std::vector<rigid::BodyLoad> loads;
   do_advance(request.time_s(), request.dt_s(), loads);
@@ -79,6 +85,45 @@ void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::
     proto::write_vector3(loads[b].force_n, *out->mutable_force_n());
     proto::write_vector3(loads[b].torque_n_m, *out->mutable_torque_n_m());
   }
+}
+
+void OpenFoamFluidModel::pack_rigid_poses(const proto::v1::FluidAdvance &request, std::vector<double> &out) const {
+  // Section 2.3: the coupler moved the rigid surfaces; Eqs. (9-10) penalize them at t + dt.
+  std::size_t expected = 0;
+  for (const auto &body : bodies_)
+    expected += body->coupled_motion() != nullptr;
+  if (static_cast<std::size_t>(request.rigid_bodies_size()) != expected)
+    throw proto::MalformedMessageError("FluidAdvance carries " + std::to_string(request.rigid_bodies_size()) +
+                                       " rigid-body poses; this case has " + std::to_string(expected) +
+                                       " moving bodies");
+  out.push_back(static_cast<double>(expected));
+  for (const auto &message : request.rigid_bodies()) {
+    const proto::BodyPose pose = proto::read_body_pose(message);
+    std::size_t b = 0;
+    while (b < bodies_.size() && !(bodies_[b]->name() == pose.name && bodies_[b]->coupled_motion()))
+      ++b;
+    if (b == bodies_.size())
+      throw proto::MalformedMessageError("FluidAdvance carries the pose of '" + pose.name +
+                                         "', which is not a moving body of this case");
+    out.push_back(static_cast<double>(b));
+    const Eigen::Matrix3d r = pose.pose.linear();
+    out.insert(out.end(), r.data(), r.data() + 9);
+    const Vec3 origin = pose.pose.translation();
+    for (const Vec3 &v : {origin, pose.origin_velocity_m_per_s, pose.angular_velocity_rad_per_s})
+      out.insert(out.end(), v.data(), v.data() + 3);
+  }
+}
+
+const double *OpenFoamFluidModel::unpack_rigid_poses(double time_s, const double *begin, const double *end) {
+  const auto n_poses = static_cast<std::size_t>(*begin++);
+  for (std::size_t i = 0; i < n_poses && begin + 19 <= end; ++i, begin += 19) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::Map<const Eigen::Matrix3d>(begin + 1);
+    pose.translation() = Eigen::Map<const Vec3>(begin + 10);
+    bodies_[static_cast<std::size_t>(begin[0])]->coupled_motion()->set(time_s, pose, Eigen::Map<const Vec3>(begin + 13),
+                                                                      Eigen::Map<const Vec3>(begin + 16));
+  }
+  return begin;
 }
 
 void OpenFoamFluidModel::finish(bool success) {
@@ -116,7 +161,8 @@ void OpenFoamFluidModel::follow() {
       break;
     }
     case Command::advance: {
-      force_density_ = Eigen::Map<const PointArray>(payload + 2, static_cast<Eigen::Index>((n - 2) / 3), 3);
+      const double *forces = unpack_rigid_poses(payload[0] + payload[1], payload + 2, payload + n);
+      force_density_ = Eigen::Map<const PointArray>(forces, static_cast<Eigen::Index>((payload + n - forces) / 3), 3);
       std::vector<rigid::BodyLoad> loads;
       do_advance(payload[0], payload[1], loads);
       break;

@@ -51,6 +51,11 @@ public:
 private:
   enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
   void broadcast(Command command, std::vector<double> &payload) const;
+  /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
+  /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).
+  void pack_rigid_poses(const proto::v1::FluidAdvance &request, std::vector<double> &out) const;
+  /// Sets the bodies' coupled motions from such a block; returns the end of the block.
+  const double *unpack_rigid_poses(double time_s, const double *begin, const double *end);
   void do_start(const std::vector<double> &point_measures);
   void do_interpolate(PointArray &u_m_per_s);
   void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);

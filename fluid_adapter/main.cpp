@@ -290,7 +290,12 @@ int main(int argc, char **argv) {
     const double dt = precursor_only ? precursor.time_step_s() : config.run.time_step_s;
     const double end_time = precursor_only ? precursor.end_time_s() : config.run.end_time_s;
     auto flow = fsi::fluid::FoamFlow::create({std::filesystem::absolute(foam_case), dt, end_time, mpi_rank});
-    fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, rigid_bodies(config));
+    auto bodies = rigid_bodies(config);
+    if (!precursor_only) // coupled: the coupler moves the bodies (section 2.3), the precursor moves its own
+      for (auto &body : bodies)
+        if (!body->motion().is_static())
+          body->take_poses_from_coupler();
+    fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, std::move(bodies));
     if (precursor_only) {
       if (flow->rank() != 0)
         spdlog::set_level(spdlog::level::warn);

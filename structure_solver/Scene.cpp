@@ -37,17 +37,23 @@ Scene::Scene(const StructureSetup &config) {
     zero_loads_.push_back(PointArray::Zero(structures_.back()->n_points(), 3));
   }
   if (config.collisions)
-    build_collisions(*config.collisions, config.gravity_m_per_s2.norm());
+    build_collisions(*config.collisions, config.gravity_m_per_s2.norm(), config.rigid_motions_from_coupler);
   else
     spdlog::info("collisions: none (no rigid surfaces, no collision search)");
 }
 
-void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per_s2) {
+void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per_s2, bool motions_from_coupler) {
   if (!config.surfaces.empty()) {
     collisions_ = std::make_unique<collision::CollisionSet>(config.threshold_m, config.target_distance_m);
-    for (const auto &surface : config.surfaces) {
-      auto motion = surface.motion ? motion::make_motion(*surface.motion, gravity_m_per_s2)
-                                   : std::make_shared<const motion::StaticPose>();
+    for (std::size_t i = 0; i < config.surfaces.size(); ++i) {
+      const auto &surface = config.surfaces[i];
+      std::shared_ptr<const motion::RigidMotion> motion = std::make_shared<const motion::StaticPose>();
+      if (surface.motion && motions_from_coupler) {
+        coupled_motions_.push_back(std::make_shared<motion::CoupledMotion>("surface" + std::to_string(i)));
+        motion = coupled_motions_.back();
+      } else if (surface.motion) {
+        motion = motion::make_motion(*surface.motion, gravity_m_per_s2);
+      }
       collisions_->add_surface(make_surface(surface), std::move(motion));
     }
     spdlog::info("collisions: {}", collisions_->describe());
@@ -57,6 +63,13 @@ void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per
     for (std::size_t i = 0; i < structures_.size(); ++i)
       self_collisions_[i] = std::make_unique<collision::SelfCollision>(
           structures_[i]->positions_m(), config.threshold_m, config.target_distance_m);
+}
+
+motion::CoupledMotion *Scene::coupled_motion(const std::string &name) const {
+  for (const auto &motion : coupled_motions_)
+    if (motion->name() == name)
+      return motion.get();
+  return nullptr;
 }
 
 void Scene::advance() { advance(zero_loads_); } // gravity only, no fluid

@@ -6,6 +6,7 @@
 #include "StructureSetup.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
 #include "structure_solver/collision/SelfCollision.hpp"
+#include "motion/CoupledMotion.hpp"
 
 #include <memory>
 #include <vector>
@@ -28,15 +29,20 @@ public:
   std::size_t last_corrections() const { return last_corrections_; }
   /// Linear-solver (CG) iterations of the last step, summed over structures (0: direct).
   int last_solver_iterations() const { return last_iterations_; }
+  /// In a coupled run, the moving rigid surface named `name` (surface<i>, i its index in
+  /// collisions.surfaces), whose pose the coupler sends; nullptr for another name.
+  motion::CoupledMotion *coupled_motion(const std::string &name) const;
+  std::size_t n_coupled_motions() const { return coupled_motions_.size(); }
 
 private:
-  void build_collisions(const CollisionConfig &config, double gravity_m_per_s2);
+  void build_collisions(const CollisionConfig &config, double gravity_m_per_s2, bool motions_from_coupler);
   void correct_collisions(StructureModel &structure, std::size_t index);
 
   std::vector<std::unique_ptr<StructureModel>> structures_;
   std::unique_ptr<collision::CollisionSet> collisions_;
   std::vector<std::unique_ptr<collision::SelfCollision>> self_collisions_;
   std::vector<PointArray> zero_loads_;
+  std::vector<std::shared_ptr<motion::CoupledMotion>> coupled_motions_;
   std::size_t last_corrections_ = 0;
   int last_iterations_ = 0;
 };

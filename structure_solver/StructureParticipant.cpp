@@ -1,5 +1,7 @@
 #include "StructureParticipant.hpp"
 
+#include "proto/BodyPose.hpp"
+
 #include "common/ConfigError.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/TransportError.hpp"
@@ -59,23 +61,24 @@ int StructureParticipant::run() {
                               std::to_string(run_.config().run.time_step_s) + " s");
     spdlog::info("joined: {} steps of {} s", welcome.n_steps(), welcome.time_step_s());
     send_state(0, 0.0, true); // the initial state X^0, V^0
-    for (step = 1; step <= run_.n_steps(); ++step) {
+    for (step = 0; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
       const proto::Envelope &request = session_->next_request();
       check_request(request, step);
       unpack_loads(request.structure_advance().load_density_n_per_m2());
+      take_rigid_poses(request.structure_advance());
       const auto start = std::chrono::steady_clock::now();
       const StepOutcome outcome = run_.advance_step(step, &loads_);
       const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (outcome.kind == StepOutcome::Kind::diverged) {
-        session_->report_error("structure diverged at " + outcome.message, static_cast<std::uint64_t>(step - 1));
+        session_->report_error("structure diverged at " + outcome.message, static_cast<std::uint64_t>(step));
         return common::exit_code_run_failed;
       }
       if (outcome.kind == StepOutcome::Kind::interrupted) {
         session_->report_error("participant " + session_->routing_id() + " " + outcome.message,
-                               static_cast<std::uint64_t>(step - 1));
+                               static_cast<std::uint64_t>(step));
         return common::exit_code_interrupted;
       }
-      send_state(static_cast<std::uint64_t>(step - 1), solve_s, false);
+      send_state(static_cast<std::uint64_t>(step), solve_s, false);
     }
     const proto::Envelope &last = session_->next_request();
     if (!last.has_shutdown())
@@ -84,30 +87,47 @@ int StructureParticipant::run() {
     spdlog::info("completed: the coupler ended the run ({})", last.shutdown().reason());
     return 0;
   } catch (const proto::Interrupted &e) {
-    run_.finish("interrupted", step - 1);
+    run_.finish("interrupted", step);
     if (session_)
       session_->report_error("participant " + session_->routing_id() + " " + e.what(),
-                             static_cast<std::uint64_t>(std::max(0L, step - 1)));
+                             static_cast<std::uint64_t>(step));
     spdlog::warn("{} while waiting for the coupler at step {}", e.what(), step);
     return common::exit_code_interrupted;
   } catch (const proto::RunStopped &e) {
     spdlog::error("the coupler stopped the run at step {}: {}", step, e.what());
-    run_.finish(std::string("stopped: ") + e.what(), step - 1);
+    run_.finish(std::string("stopped: ") + e.what(), step);
   } catch (const proto::CouplerLost &e) {
     spdlog::error("{}", e.what());
-    run_.finish(std::string("coupler lost: ") + e.what(), step - 1);
+    run_.finish(std::string("coupler lost: ") + e.what(), step);
   } catch (const ProtocolViolation &e) {
     const std::string message = "participant structure at step " + std::to_string(step) + ": " + e.what();
     spdlog::error("{}", message);
     if (session_)
-      session_->report_error(message, static_cast<std::uint64_t>(std::max(0L, step - 1)));
-    run_.finish("failed: " + message, step - 1);
+      session_->report_error(message, static_cast<std::uint64_t>(step));
+    run_.finish("failed: " + message, step);
   } catch (const proto::TransportError &e) {
     spdlog::error("transport failed at step {}: {}", step, e.what());
-    run_.finish(std::string("failed: ") + e.what(), step - 1);
+    run_.finish(std::string("failed: ") + e.what(), step);
   }
-  spdlog::error("results up to step {} are kept", std::max(0L, step - 1));
+  spdlog::error("results up to step {} are kept", step);
   return common::exit_code_run_failed;
+}
+
+void StructureParticipant::take_rigid_poses(const proto::v1::StructureAdvance &advance) {
+  // Eq. (11) corrects against the surfaces at the end of the step, where the coupler put them.
+  const double end_time_s = advance.time_s() + advance.dt_s();
+  for (const auto &message : advance.rigid_bodies()) {
+    const proto::BodyPose pose = proto::read_body_pose(message);
+    motion::CoupledMotion *motion = run_.scene().coupled_motion(pose.name);
+    if (!motion)
+      throw ProtocolViolation("the coupler sent the pose of '" + pose.name +
+                              "', which is not a moving surface of this case");
+    motion->set(end_time_s, pose.pose, pose.origin_velocity_m_per_s, pose.angular_velocity_rad_per_s);
+  }
+  if (advance.rigid_bodies_size() != static_cast<int>(run_.scene().n_coupled_motions()))
+    throw ProtocolViolation("the coupler sent " + std::to_string(advance.rigid_bodies_size()) +
+                            " rigid-body poses; this case has " + std::to_string(run_.scene().n_coupled_motions()) +
+                            " moving surfaces");
 }
 
 void StructureParticipant::check_request(const proto::Envelope &request, long step) const {
@@ -115,12 +135,12 @@ void StructureParticipant::check_request(const proto::Envelope &request, long st
     throw ProtocolViolation("the coupler ended the run early (" + request.shutdown().reason() + ")");
   if (!request.has_structure_advance())
     throw ProtocolViolation("expected StructureAdvance, got " + std::string(proto::body_name(request)));
-  const double expected_t = static_cast<double>(step - 1) * run_.config().run.time_step_s;
-  if (request.step() != static_cast<std::uint64_t>(step - 1) ||
+  const double expected_t = static_cast<double>(step) * run_.config().run.time_step_s;
+  if (request.step() != static_cast<std::uint64_t>(step) ||
       std::abs(request.structure_advance().time_s() - expected_t) > 1e-9 * std::max(1.0, expected_t))
     throw ProtocolViolation("StructureAdvance for step " + std::to_string(request.step()) + " (t = " +
                             std::to_string(request.structure_advance().time_s()) + " s), expected step " +
-                            std::to_string(step - 1));
+                            std::to_string(step));
 }
 
 void StructureParticipant::unpack_loads(const proto::PackedDoubles &field) {

@@ -23,6 +23,8 @@ private:
   void send_state(std::uint64_t step, double solve_wall_s, bool with_velocity);
   void check_request(const proto::Envelope &request, long step) const;
   void unpack_loads(const proto::PackedDoubles &field);
+  /// The moving rigid surfaces at the end of the step, from the coupler (section 2.3).
+  void take_rigid_poses(const proto::v1::StructureAdvance &advance);
 
   StructureRun &run_;
   proto::SessionSettings settings_;

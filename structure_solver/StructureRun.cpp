@@ -177,7 +177,8 @@ void StructureRun::start() {
   last_good_v_.resize(scene_->structures().size());
 }
 
-StepOutcome StructureRun::advance_step(long step, const std::vector<PointArray> *load_densities) {
+StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *load_densities) {
+  const long step = n + 1; // the state X^{n+1} this step reaches (saved states are numbered from X^0)
   for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
     last_good_x_[i] = scene_->structures()[i]->positions_m();
     last_good_v_[i] = scene_->structures()[i]->velocities_m_per_s();
@@ -199,24 +200,24 @@ StepOutcome StructureRun::advance_step(long step, const std::vector<PointArray> 
                  results_->h5_path().string());
     return {StepOutcome::Kind::interrupted, "interrupted by signal " + std::to_string(int(received_stop_signal))};
   }
-  const long n = n_steps();
+  const long n_total = n_steps();
   const long output_every = std::max(1L, std::lround(config_.run.output_interval_s / config_.run.time_step_s));
-  if (step % output_every == 0 || step == n)
+  if (step % output_every == 0 || step == n_total)
     write_state(step);
-  report_progress(step, n, step == n);
+  report_progress(step, n_total, step == n_total);
   return {};
 }
 
-void StructureRun::finish(const std::string &status, long step) {
-  if (last_written_step_ != step)
-    write_state(step);
+void StructureRun::finish(const std::string &status, long n_completed) {
+  if (last_written_step_ != n_completed)
+    write_state(n_completed);
   results_->set_status(status);
 }
 
 int StructureRun::run() {
   start();
   const long n = n_steps();
-  for (long step = 1; step <= n; ++step) {
+  for (long step = 0; step < n; ++step) {
     const StepOutcome outcome = advance_step(step, nullptr);
     if (outcome.kind == StepOutcome::Kind::diverged)
       return common::exit_code_run_failed;

@@ -41,11 +41,13 @@ public:
   // The pieces of run(), for drivers that take the loads from elsewhere (a coupled run):
   /// Builds the scene, opens the results, writes step 0, installs the stop-signal handler.
   void start();
-  /// Advances one step under the given load densities (nullptr: none), checks for divergence
-  /// (then the last good state is on disk), writes results at the output interval.
-  StepOutcome advance_step(long step, const std::vector<PointArray> *load_densities);
-  /// Writes the current state if not written yet and sets the results status.
-  void finish(const std::string &status, long step);
+  /// Advances step n, from t^n to t^{n+1} (0-based, as Envelope.step of the protocol), under
+  /// the given load densities (nullptr: none), checks for divergence (then the last good state
+  /// is on disk), writes results at the output interval. Saved states are numbered as the
+  /// positions they hold: step n writes X^{n+1}.
+  StepOutcome advance_step(long n, const std::vector<PointArray> *load_densities);
+  /// After n_completed steps: writes X^{n_completed} if not written yet and sets the status.
+  void finish(const std::string &status, long n_completed);
   Scene &scene() { return *scene_; }
   long n_steps() const;
   const StructureSetup &config() const { return config_; }

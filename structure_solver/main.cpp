@@ -93,7 +93,9 @@ int main(int argc, char **argv) {
       return fsi::common::exit_code_bad_input;
     }
     auto settings = fsi::case_config::participant_settings(config, endpoint);
-    fsi::structure::StructureRun run(fsi::case_config::structure_setup(std::move(config)), case_dir, out);
+    auto setup = fsi::case_config::structure_setup(std::move(config));
+    setup.rigid_motions_from_coupler = true; // the coupler evaluates the prescribed motions
+    fsi::structure::StructureRun run(std::move(setup), case_dir, out);
     fsi::structure::StructureParticipant participant(run, std::move(settings));
     return participant.run();
   });

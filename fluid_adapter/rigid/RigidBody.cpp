@@ -26,6 +26,17 @@ RigidBody::RigidBody(std::string name, Soup soup, std::unique_ptr<Surface> surfa
   surface_->prepare_culling(kCullingFraction * body_box_m_.diagonal().norm());
 }
 
+motion::CoupledMotion &RigidBody::take_poses_from_coupler() {
+  if (motion_->is_static())
+    throw std::logic_error("rigid body '" + name_ + "' is static: the coupler sends no pose for it");
+  if (!coupled_motion_) {
+    coupled_motion_ = std::make_shared<motion::CoupledMotion>(name_);
+    declared_motion_ = motion_;
+    motion_ = coupled_motion_;
+  }
+  return *coupled_motion_;
+}
+
 std::unique_ptr<RigidBody> RigidBody::from_stl(const std::string &name, const std::string &stl_path,
                                                std::shared_ptr<const motion::RigidMotion> motion) {
   Soup soup = geometry::read_stl(stl_path);

@@ -5,6 +5,7 @@
 // TriangleMeshSurface, so the body-frame AABB tree, the exact CGAL inside test and the voxel
 // classification that spares most points that test are built once, here.
 
+#include "motion/CoupledMotion.hpp"
 #include "motion/RigidMotion.hpp"
 #include "common/Types.hpp"
 #include "geometry/TriangleMeshSurface.hpp"
@@ -31,7 +32,16 @@ public:
                                               std::shared_ptr<const motion::RigidMotion> motion);
 
   const std::string &name() const { return name_; }
+  /// Where the body is: its declared motion, or in a coupled run the poses the coupler sends.
   const motion::RigidMotion &motion() const { return *motion_; }
+  /// The motion the case declares: what kind of motion it is (an axis rotation sweeps a body
+  /// of revolution: SweptRegion), never evaluated for a pose in a coupled run.
+  const motion::RigidMotion &declared_motion() const { return declared_motion_ ? *declared_motion_ : *motion_; }
+  /// A coupled run: from now on the body is where the coupler says (section 2.3). Moving
+  /// bodies only (a static body needs no pose). Returns the motion to feed.
+  motion::CoupledMotion &take_poses_from_coupler();
+  /// Its coupled motion, or nullptr when the body evaluates its own (static, precursor).
+  motion::CoupledMotion *coupled_motion() const { return coupled_motion_.get(); }
   const Surface &surface() const { return *surface_; }
   /// Vertices and triangles in the body frame (for the swept-region bounds).
   const Soup &soup() const { return soup_; }
@@ -51,6 +61,8 @@ private:
   Soup soup_;
   std::unique_ptr<Surface> surface_;
   std::shared_ptr<const motion::RigidMotion> motion_;
+  std::shared_ptr<const motion::RigidMotion> declared_motion_; ///< set once the coupler moves the body
+  std::shared_ptr<motion::CoupledMotion> coupled_motion_;
   Eigen::AlignedBox3d body_box_m_;
 };
 

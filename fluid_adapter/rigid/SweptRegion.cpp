@@ -37,16 +37,16 @@ double origin_to_triangle(const Vec2 &a, const Vec2 &b, const Vec2 &c) {
 SweptRegion SweptRegion::of(const RigidBody &body, double margin_m) {
   SweptRegion region;
   const PointArray &vertices = body.soup().vertices_m;
-  if (body.motion().is_static()) {
+  if (body.declared_motion().is_static()) {
     region.kind_ = Kind::static_box;
-    const Eigen::Isometry3d pose = body.motion().pose_at(0.0);
+    const Eigen::Isometry3d pose = body.declared_motion().pose_at(0.0);
     for (Eigen::Index v = 0; v < vertices.rows(); ++v)
       region.box_m_.extend(pose * Vec3(vertices.row(v).transpose()));
     region.box_m_.min().array() -= margin_m;
     region.box_m_.max().array() += margin_m;
     return region;
   }
-  const auto *rotation = dynamic_cast<const motion::AxisRotation *>(&body.motion());
+  const auto *rotation = dynamic_cast<const motion::AxisRotation *>(&body.declared_motion());
   if (!rotation)
     return region; // unbounded
   region.kind_ = Kind::revolution;

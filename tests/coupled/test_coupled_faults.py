@@ -77,10 +77,31 @@ class KilledParticipant(TempDirTest):
         print("coupler exited %.2f s after kill -9 of the fluid; structure.h5 status: %s" % (elapsed, status))
 
 
+def with_rotating_pole(folder, rate_rad_per_s):
+    """long_case with a collision surface the coupler turns (its motion is part of the case)."""
+    c = load_case(long_case(folder))
+    c["collisions"] = {"threshold_m": 0.004, "target_distance_m": 0.004, "surfaces": [
+        {"cylinder": {"axis_start_m": [0.5, 0.5, -0.1], "axis_end_m": [0.5, 0.5, 0.1], "radius_m": 0.01},
+         "motion": {"rotation": {"axis_point_m": [0.0, 0.0, 0.0], "axis_direction": [0.0, 0.0, 1.0],
+                                 "rate_rad_per_s": rate_rad_per_s}}}]}
+    return write_case(folder, c)
+
+
 class CaseMismatch(TempDirTest):
     def test_structure_with_another_case_is_refused(self):
         case = long_case(os.path.join(self.tmp, "case"))
         other = long_case(os.path.join(self.tmp, "other"), end_time_s=4.0)
+        self.assert_structure_refused(case, other)
+
+    def test_structure_whose_case_moves_a_surface_otherwise_is_refused(self):
+        """The coupler is the only process that evaluates a prescribed motion, and participants
+        take the poses it sends; a participant whose case declares another motion is refused
+        at the handshake (the motion is part of the case fingerprint), before any step."""
+        case = with_rotating_pole(os.path.join(self.tmp, "case"), 1.0)
+        other = with_rotating_pole(os.path.join(self.tmp, "other"), 2.0)
+        self.assert_structure_refused(case, other)
+
+    def assert_structure_refused(self, case, other):
         # The other case's fingerprint, as a coupler started on it reports it.
         probe_out = os.path.join(self.tmp, "probe")
         probe, _ = self.start_coupler(other, probe_out)

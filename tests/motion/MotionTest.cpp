@@ -3,6 +3,7 @@
 // axis rotation's pose and velocity against closed forms, and the angle-table reader.
 
 #include "motion/AxisRotation.hpp"
+#include "motion/CoupledMotion.hpp"
 #include "common/ConfigError.hpp"
 #include "motion/MotionFactory.hpp"
 #include "motion/PendulumHistory.hpp"
@@ -81,6 +82,41 @@ TEST(AngleTable, MalformedFilesNameTheFileAndLine) {
   }
   const auto not_increasing = write_table("time_s,angle_rad\n0,0\n0,1\n");
   EXPECT_THROW(read_angle_table(not_increasing), common::ConfigError);
+}
+
+TEST(CoupledMotion, ReproducesTheRigidVelocityFieldOfTheMotionItWasSentFrom) {
+  // The coupler sends the pose and (v_o, omega) of an axis rotation; the participant's
+  // CoupledMotion gives back the same pose and the same velocity at any point.
+  AxisRotation rotation(Vec3(0.1, -0.2, 0.0), Vec3(0.0, 0.3, 1.0), [](double t) { return 150.8 * t; },
+                        [](double) { return 150.8; });
+  const double t = 0.0123;
+  const Eigen::Isometry3d pose = rotation.pose_at(t);
+  const Vec3 o = pose.translation();
+  const Vec3 v_o = rotation.velocity_at(o, t);
+  Vec3 omega = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+    omega += 0.5 * pose.linear().col(k).cross(rotation.velocity_at(o + pose.linear().col(k), t) - v_o);
+  CoupledMotion coupled("impeller");
+  coupled.set(t, pose, v_o, omega);
+  EXPECT_TRUE(coupled.pose_at(t).isApprox(pose, 1e-15));
+  for (const Vec3 &x : {Vec3(0.3, 0.1, -0.2), Vec3(-1.0, 2.0, 0.5), Vec3(0.0, 0.0, 0.0)})
+    EXPECT_LT((coupled.velocity_at(x, t) - rotation.velocity_at(x, t)).norm(), 1e-12 * 150.8) << x.transpose();
+}
+
+TEST(CoupledMotion, RefusesATimeTheCouplerDidNotSendNamingBoth) {
+  CoupledMotion coupled("surface0");
+  EXPECT_THROW(coupled.pose_at(0.0), std::logic_error); // nothing sent yet
+  coupled.set(0.5, Eigen::Isometry3d::Identity(), Vec3::Zero(), Vec3::Zero());
+  EXPECT_NO_THROW(coupled.pose_at(0.5 * (1.0 + 1e-14))); // the same step, computed another way
+  try {
+    coupled.velocity_at(Vec3::Zero(), 0.5001);
+    FAIL() << "expected a std::logic_error";
+  } catch (const std::logic_error &e) {
+    EXPECT_NE(std::string(e.what()).find("'surface0' is used at t = 0.500100 s, but the coupler sent its pose for "
+                                         "t = 0.500000 s"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 } // namespace
