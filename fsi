@@ -11,7 +11,8 @@
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
-#   ./fsi bench [structure|transport|coupling|fluid]  run a benchmark (fluid: vs stock pimpleFoam)
+#   ./fsi bench [structure|transport|coupling|fluid]  run a benchmark (fluid: vs stock pimpleFoam;
+#                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
 #   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
 #
@@ -169,7 +170,8 @@ cmd_bench() {
     transport) "$BUILD/bin/bench_transport" --benchmark_counters_tabular=true ;;
     coupling) shift || true; "$BUILD/bin/bench_coupling" "$@" ;;
     fluid) shift || true; /usr/bin/python3 "$ROOT/bench/fluid/bench_fluid.py" --bin-dir "$BUILD/bin" "$@" ;;
-    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid)" ;;
+    mesh_surface|kernel_stencil|body_indicator) shift || true; "$BUILD/bin/bench_$which" "$@" ;;
+    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, mesh_surface, kernel_stencil, body_indicator)" ;;
   esac
 }
 
@@ -181,6 +183,6 @@ case "${1:-help}" in
   schema) prepare fsi-structure; "$BUILD/bin/fsi-structure" --schema ;;
   build) prepare ;;
   report) shift; prepare; /usr/bin/python3 "$ROOT/scripts/report.py" --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
-  help|-h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//' ;;
+  help|-h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//' ;;
   *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, build, help)" ;;
 esac

@@ -124,7 +124,7 @@ void write_case(const fs::path &dir, const Size &size) {
       << "    uniform: {velocity_m_per_s: [0.2, 0.0, 0.1]}\n"
       << "coupling:\n"
       << "  law: penalty\n"
-      << "  stiffness_n_per_m3: 3.2e4\n"
+      << "  stiffness_n_per_m_per_measure: 3.2e4\n"
       << "  endpoint: tcp://127.0.0.1:0\n";
 }
 
@@ -178,7 +178,7 @@ void run_structure(const std::string &endpoint, const std::string &fingerprint, 
       return;
     if (!request.has_structure_advance())
       throw std::runtime_error("bench structure: unexpected " + std::string(proto::body_name(request)));
-    proto::view_points(request.structure_advance().load_density_n_per_m2(), n, "load_density_n_per_m2");
+    proto::view_points(request.structure_advance().load_density_n_per_measure(), n, "load_density_n_per_measure");
     body->set_time_s(request.structure_advance().time_s() + request.structure_advance().dt_s());
     proto::resize_points(*body->mutable_position_m(), n) = x;
     reply.set_step(request.step());
@@ -206,7 +206,7 @@ void run_fluid(const std::string &endpoint, const std::string &fingerprint, long
       interpolated.set_step(request.step());
       session.send(interpolated);
     } else if (request.has_fluid_advance()) {
-      proto::view_points(request.fluid_advance().force_density_n_per_m2(), n, "force_density_n_per_m2");
+      proto::view_points(request.fluid_advance().force_density_n_per_measure(), n, "force_density_n_per_measure");
       done->set_time_s(request.fluid_advance().time_s() + request.fluid_advance().dt_s());
       advanced.set_step(request.step());
       session.send(advanced);

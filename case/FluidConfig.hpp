@@ -19,8 +19,7 @@ struct FluidConfig {
                        "Navier-Stokes (OpenFOAM PIMPLE) with the diffuse immersed boundary of Eqs. (6-8): two-way "
                        "coupling.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
-      if (prescribed.has_value() + openfoam.has_value() != 1)
-        v.fail("must hold exactly one fluid model: prescribed or openfoam.");
+      v.require_exactly_one({{"prescribed", prescribed.has_value()}, {"openfoam", openfoam.has_value()}});
   }
 
   /// Name of the fluid model ("prescribed", "openfoam").

@@ -80,6 +80,17 @@ void ConfigReader::fail(const std::string &message) const {
   throw ConfigError(location(node_) + ": " + (path_.empty() ? std::string("case") : path_) + " " + message);
 }
 
+void ConfigReader::require_exactly_one(std::initializer_list<std::pair<const char *, bool>> sections) const {
+  std::vector<std::string> names;
+  int given = 0;
+  for (const auto &[name, present] : sections) {
+    names.emplace_back(name);
+    given += present;
+  }
+  if (given != 1)
+    fail("must hold exactly one of: " + join(names) + " (found " + std::to_string(given) + ").");
+}
+
 void ConfigReader::fail_value(const std::string &key, const std::string &message) const {
   fail_at(node_[key] ? node_[key] : node_, key, message);
 }

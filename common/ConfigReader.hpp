@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <string>
@@ -107,6 +108,9 @@ public:
   [[noreturn]] void fail(const std::string &message) const;
   /// A user error about one key of this mapping.
   [[noreturn]] void fail_value(const std::string &key, const std::string &message) const;
+  /// The sections of one choice (a surface kind, a motion, a flow): refuses a mapping holding
+  /// none or several of them, "must hold exactly one of: a, b, c (found n)."
+  void require_exactly_one(std::initializer_list<std::pair<const char *, bool>> sections) const;
 
   bool has(const std::string &key) const { return static_cast<bool>(node_[key]); }
   /// A reader of item `index` of the list `key` (its messages name `key[index]` and its line).

@@ -20,7 +20,7 @@ struct CouplingInputs {
 
 struct CouplingOutputs {
   PointArray x_ib_next_m;              ///< X_ib^{n+1}
-  PointArray force_density_n_per_m2;   ///< F_fsi^n: +f_fsi on the fluid (Eq. 1), -F_fsi on the structure (Eq. 3)
+  PointArray force_density_n_per_measure;   ///< F_fsi^n: +f_fsi on the fluid (Eq. 1), -F_fsi on the structure (Eq. 3)
 };
 
 class CouplingLaw {

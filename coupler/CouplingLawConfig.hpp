@@ -21,7 +21,7 @@ public:
   virtual std::unique_ptr<CouplingLaw> build() const = 0;
   /// Largest time step (s) for which the law is stable on a structure of areal (or linear)
   /// density rho_1 (kg/m^2 or kg/m); infinity when the law sets no limit.
-  virtual double stable_time_step_s(double density_kg_per_m2) const = 0;
+  virtual double stable_time_step_s(double mass_per_measure) const = 0;
 };
 
 template <class Derived> class CouplingLawConfigBase : public CouplingLawConfig {

@@ -4,31 +4,17 @@
 // CouplingLawRegistry::builtin().
 
 #include "CouplingLawConfig.hpp"
-
-#include <functional>
-#include <string>
-#include <vector>
+#include "common/Registry.hpp"
 
 namespace fsi::coupler {
 
-struct CouplingLawEntry {
-  std::string name;
-  std::string summary;
-  std::function<std::unique_ptr<CouplingLawConfig>()> make_config;
-};
-
-class CouplingLawRegistry {
+class CouplingLawRegistry : public common::Registry<CouplingLawConfig> {
 public:
+  CouplingLawRegistry() : Registry("coupling law", "laws") {}
+  /// The laws this build knows, registered explicitly.
   static const CouplingLawRegistry &builtin();
-
-  void add(CouplingLawEntry entry);
-  /// Default configuration of law `name`; throws ConfigError listing the valid names.
-  std::unique_ptr<CouplingLawConfig> make_config(const std::string &name) const;
-  std::vector<std::string> names() const;
-  const std::vector<CouplingLawEntry> &entries() const { return entries_; }
-
-private:
-  std::vector<CouplingLawEntry> entries_;
 };
+
+using CouplingLawEntry = CouplingLawRegistry::Entry;
 
 } // namespace fsi::coupler

@@ -1,6 +1,7 @@
 #include "CouplingRun.hpp"
 
 #include "CouplingErrors.hpp"
+#include "common/FormatDuration.hpp"
 #include "common/Logging.hpp"
 #include "motion/MotionFactory.hpp"
 #include "proto/BodyPose.hpp"
@@ -24,15 +25,6 @@ using proto::v1::Envelope;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
-
-std::string format_duration(double seconds) {
-  char text[32];
-  if (seconds < 120)
-    std::snprintf(text, sizeof text, "%.1f s", seconds);
-  else
-    std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(seconds) / 60, static_cast<int>(seconds) % 60);
-  return text;
-}
 
 void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v1::RigidBodyPose &out) {
   proto::BodyPose pose;
@@ -273,9 +265,9 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
 void CouplingRun::apply_coupling_law() {
   const auto start = Clock::now();
   law_->compute({&x_now_, &x_prev_, &x_now_, &u_ib_, dt_}, coupled_); // X_ib^n = X^n
-  if (!coupled_.force_density_n_per_m2.allFinite()) {
+  if (!coupled_.force_density_n_per_measure.allFinite()) {
     Eigen::Index worst = 0;
-    (coupled_.force_density_n_per_m2.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
+    (coupled_.force_density_n_per_measure.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
     throw ParticipantFailed(fluid_id_, "the FSI force is not finite at Lagrangian point " + std::to_string(worst) +
                                            ": the fluid velocity there is " +
                                            std::to_string(u_ib_.row(worst).norm()) + " m/s (NaN?)");
@@ -289,14 +281,14 @@ void CouplingRun::advance_fluid_and_structure(long n) {
   fluid->set_time_s(t);
   fluid->set_dt_s(dt_);
   // The fluid has X^n (= X_ib^n) from this step's InterpolateRequest: not sent again.
-  const PointArray &force = coupled_.force_density_n_per_m2;
-  proto::write_points(force, *fluid->mutable_force_density_n_per_m2());
+  const PointArray &force = coupled_.force_density_n_per_measure;
+  proto::write_points(force, *fluid->mutable_force_density_n_per_measure());
   auto *structure = structure_advance_.mutable_structure_advance();
   structure->set_time_s(t);
   structure->set_dt_s(dt_);
   // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
   // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
-  proto::resize_points(*structure->mutable_load_density_n_per_m2(), force.rows()) = -force;
+  proto::resize_points(*structure->mutable_load_density_n_per_measure(), force.rows()) = -force;
   // Section 2.3: the rigid surfaces move; both participants use them at the end of the step.
   fluid->mutable_rigid_bodies()->Clear();
   structure->mutable_rigid_bodies()->Clear();
@@ -375,7 +367,7 @@ void CouplingRun::check_stability() const {
 
 void CouplingRun::record_step(long n) {
   double force[3] = {0.0, 0.0, 0.0};
-  const Vec3 total = (coupled_.force_density_n_per_m2.array().colwise() * measures_.array()).colwise().sum();
+  const Vec3 total = (coupled_.force_density_n_per_measure.array().colwise() * measures_.array()).colwise().sum();
   for (int k = 0; k < 3; ++k)
     force[k] = total[k];
   results_->write_step(n, static_cast<double>(n) * dt_, timings_, force);
@@ -407,7 +399,7 @@ void CouplingRun::report_progress(long n, bool force) {
   spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step: fluid {:.3g}, structure {:.3g}, "
                "coupling overhead {:.3g}",
                n, n_steps_, static_cast<double>(n) * dt_, 100.0 * static_cast<double>(n) / static_cast<double>(n_steps_),
-               format_duration(wall), format_duration(eta), per_step_ms * sum.step_wall_s,
+               common::format_duration(wall), common::format_duration(eta), per_step_ms * sum.step_wall_s,
                per_step_ms * (sum.interpolation_s + sum.fluid_solve_s), per_step_ms * sum.structure_solve_s,
                per_step_ms * sum.overhead_s());
   timings_sum_ = StepTimings{};

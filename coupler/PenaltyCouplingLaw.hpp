@@ -20,9 +20,9 @@ namespace fsi::coupler {
 
 class PenaltyCouplingLaw final : public CouplingLaw {
 public:
-  explicit PenaltyCouplingLaw(double penalty_n_per_m3);
+  explicit PenaltyCouplingLaw(double penalty_n_per_m_per_measure);
   std::string name() const override { return "penalty"; }
-  double penalty_n_per_m3() const { return penalty_; }
+  double penalty_n_per_m_per_measure() const { return penalty_; }
 
 protected:
   void compute_force(const CouplingInputs &in, CouplingOutputs &out) override;

@@ -66,17 +66,17 @@ void OpenFoamFluidModel::interpolate(const proto::v1::InterpolateRequest &, prot
   u_m_per_s = u;
 }
 
-void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_m2,
+void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
                                  proto::v1::AdvanceReply &reply) {
   // Payload for the other ranks: t, dt, the moving bodies' poses at t + dt, then F_fsi^n.
   message_.assign({request.time_s(), request.dt_s()});
   pack_rigid_poses(request, message_);
   const std::size_t poses_end = message_.size();
-  message_.insert(message_.end(), force_density_n_per_m2.data(),
-                  force_density_n_per_m2.data() + force_density_n_per_m2.size());
+  message_.insert(message_.end(), force_density_n_per_measure.data(),
+                  force_density_n_per_measure.data() + force_density_n_per_measure.size());
   broadcast(Command::advance, message_);
   unpack_rigid_poses(request.time_s() + request.dt_s(), message_.data() + 2, message_.data() + poses_end);
-  force_density_ = force_density_n_per_m2;
+  force_density_ = force_density_n_per_measure;
   std::vector<rigid::BodyLoad> loads;
   do_advance(request.time_s(), request.dt_s(), loads);
   for (std::size_t b = 0; b < loads.size(); ++b) {

@@ -37,7 +37,7 @@ public:
   void start(const proto::v1::Welcome &welcome) override;
   void interpolate(const proto::v1::InterpolateRequest &request, proto::PointsView x_m,
                    proto::MutablePointsView u_m_per_s) override;
-  void advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_m2,
+  void advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
                proto::v1::AdvanceReply &reply) override;
   void finish(bool success) override;
 

@@ -69,11 +69,11 @@ struct SurfaceConfig {
     v.optional_section("cylinder", cylinder, "A finite solid cylinder.");
     v.optional_section("mesh", mesh, "A closed STL surface.");
     v.optional_section("motion", motion, "Prescribed rigid motion of this surface (absent: static).");
-    if constexpr (std::is_same_v<V, common::ConfigReader>) {
-      const int given = plane.has_value() + box.has_value() + cylinder.has_value() + mesh.has_value();
-      if (given != 1)
-        v.fail("must hold exactly one of: plane, box, cylinder, mesh (found " + std::to_string(given) + ").");
-    }
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      v.require_exactly_one({{"plane", plane.has_value()},
+                             {"box", box.has_value()},
+                             {"cylinder", cylinder.has_value()},
+                             {"mesh", mesh.has_value()}});
   }
 };
 

@@ -69,11 +69,11 @@ struct MotionConfig {
     v.optional_section("oscillation", oscillation, "Harmonic angular oscillation.");
     v.optional_section("pendulum", pendulum, "Free pendulum swinging in vacuum (nonlinear, RK4).");
     v.optional_section("table", table, "Angle history read from a CSV file (measured motion).");
-    if constexpr (std::is_same_v<V, common::ConfigReader>) {
-      const int given = rotation.has_value() + oscillation.has_value() + pendulum.has_value() + table.has_value();
-      if (given != 1)
-        v.fail("must hold exactly one of: rotation, oscillation, pendulum, table (found " + std::to_string(given) + ").");
-    }
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      v.require_exactly_one({{"rotation", rotation.has_value()},
+                             {"oscillation", oscillation.has_value()},
+                             {"pendulum", pendulum.has_value()},
+                             {"table", table.has_value()}});
   }
 };
 

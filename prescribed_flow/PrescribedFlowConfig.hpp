@@ -70,13 +70,12 @@ struct PrescribedFlowConfig {
     v.optional_section("shear", shear, "Linear shear flow.");
     v.optional_section("rotation", rotation, "Solid-body rotation about an axis.");
     v.optional_section("table", table, "Steady field tabulated on a grid (e.g. exported from a CFD run).");
-    if constexpr (std::is_same_v<V, common::ConfigReader>) {
-      const int given = quiescent.has_value() + uniform.has_value() + shear.has_value() + rotation.has_value() +
-                        table.has_value();
-      if (given != 1)
-        v.fail("must hold exactly one of: quiescent, uniform, shear, rotation, table (found " +
-               std::to_string(given) + ").");
-    }
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      v.require_exactly_one({{"quiescent", quiescent.has_value()},
+                             {"uniform", uniform.has_value()},
+                             {"shear", shear.has_value()},
+                             {"rotation", rotation.has_value()},
+                             {"table", table.has_value()}});
   }
 };
 

@@ -24,7 +24,7 @@ public:
 
   /// Spreads F_fsi^n (Eq. 8) at the points of the last interpolate() and advances the flow
   /// from t to t + dt; may fill rigid_body_loads of the reply.
-  virtual void advance(const v1::FluidAdvance &request, PointsView force_density_n_per_m2, v1::AdvanceReply &reply) = 0;
+  virtual void advance(const v1::FluidAdvance &request, PointsView force_density_n_per_measure, v1::AdvanceReply &reply) = 0;
 
   /// The run is over (success: completed): write what is worth keeping.
   virtual void finish(bool success) = 0;

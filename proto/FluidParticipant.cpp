@@ -86,7 +86,7 @@ void FluidParticipant::interpolate(const Envelope &request) {
 void FluidParticipant::advance(const Envelope &request) {
   const auto start = std::chrono::steady_clock::now();
   const auto &body = request.fluid_advance();
-  const PointsView force = view_points(body.force_density_n_per_m2(), n_points_, "FluidAdvance.force_density_n_per_m2");
+  const PointsView force = view_points(body.force_density_n_per_measure(), n_points_, "FluidAdvance.force_density_n_per_measure");
   auto *reply = advance_reply_.mutable_advance_reply();
   reply->mutable_rigid_body_loads()->Clear();
   model_.advance(body, force, *reply);

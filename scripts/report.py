@@ -69,7 +69,7 @@ def relaxation_error(out, config):
     t = f["time_s"][:]
     v = f["structures/sheet/velocity_m_per_s"][:].mean(axis=1)
     rho = config["structures"][0]["material"]["mass_per_area_kg_per_m2"]
-    k = config["coupling"]["stiffness_n_per_m3"]
+    k = config["coupling"]["stiffness_n_per_m_per_measure"]
     dt = config["run"]["time_step_s"]
     u = np.array(config["fluid"]["prescribed"]["uniform"]["velocity_m_per_s"])
     tau = rho / (k * dt)
@@ -132,7 +132,7 @@ def studies(quick):
         Study("sheet relaxing in a uniform flow (3 processes)", "sheet-in-uniform-flow",
               "V(t) = U (1 - exp(-t / tau)), tau = rho_1 / (K dt), from Eqs. (4)-(5); K dt kept constant",
               [({"run": {"time_step_s": dt, "output_interval_s": 0.005},
-                 "coupling": {"stiffness_n_per_m3": 3.2e4 * 5e-5 / dt}}, "dt = %g s" % dt, dt)
+                 "coupling": {"stiffness_n_per_m_per_measure": 3.2e4 * 5e-5 / dt}}, "dt = %g s" % dt, dt)
                for dt in relax_ladder],
               relaxation_error, cores=3),
         # No analytic reference for the flag on the swinging bar: the finest run is the reference

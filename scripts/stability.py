@@ -114,7 +114,7 @@ def case(structures, end_time_s, dt, output_interval_s=None, gravity=(0, 0, -9.8
     c["structures"] = structures
     if flow is not None:
         c["fluid"] = {"prescribed": flow}
-        c["coupling"] = {"law": "penalty", "stiffness_n_per_m3": float(stiffness)}
+        c["coupling"] = {"law": "penalty", "stiffness_n_per_m_per_measure": float(stiffness)}
     return c
 
 

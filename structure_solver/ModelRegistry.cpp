@@ -2,7 +2,6 @@
 
 #include "FilamentConfig.hpp"
 #include "MembraneConfig.hpp"
-#include "common/DidYouMean.hpp"
 
 namespace fsi::structure {
 
@@ -16,23 +15,6 @@ const ModelRegistry &ModelRegistry::builtin() {
     return r;
   }();
   return registry;
-}
-
-void ModelRegistry::add(ModelEntry entry) { entries_.push_back(std::move(entry)); }
-
-std::vector<std::string> ModelRegistry::names() const {
-  std::vector<std::string> out;
-  for (const auto &e : entries_)
-    out.push_back(e.name);
-  return out;
-}
-
-std::unique_ptr<ModelConfig> ModelRegistry::make_config(const std::string &name) const {
-  for (const auto &e : entries_)
-    if (e.name == name)
-      return e.make_config();
-  throw common::ConfigError("unknown structure model '" + name + "'." + common::did_you_mean(name, names()) +
-                            " Valid models: " + common::join(names()) + ".");
 }
 
 } // namespace fsi::structure

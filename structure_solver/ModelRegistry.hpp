@@ -3,31 +3,17 @@
 // class (keys + build) and adding one line to ModelRegistry::builtin().
 
 #include "ModelConfig.hpp"
-
-#include <functional>
-#include <vector>
+#include "common/Registry.hpp"
 
 namespace fsi::structure {
 
-struct ModelEntry {
-  std::string name;
-  std::string summary;
-  std::function<std::unique_ptr<ModelConfig>()> make_config;
-};
-
-class ModelRegistry {
+class ModelRegistry : public common::Registry<ModelConfig> {
 public:
-  /// The models this build knows, registered explicitly (no static self-registration).
+  ModelRegistry() : Registry("structure model", "models") {}
+  /// The models this build knows, registered explicitly.
   static const ModelRegistry &builtin();
-
-  void add(ModelEntry entry);
-  /// Default configuration of model `name`; throws ConfigError listing the valid names.
-  std::unique_ptr<ModelConfig> make_config(const std::string &name) const;
-  std::vector<std::string> names() const;
-  const std::vector<ModelEntry> &entries() const { return entries_; }
-
-private:
-  std::vector<ModelEntry> entries_;
 };
+
+using ModelEntry = ModelRegistry::Entry;
 
 } // namespace fsi::structure

@@ -64,7 +64,7 @@ int StructureParticipant::run() {
     for (step = 0; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
       const proto::Envelope &request = session_->next_request();
       check_request(request, step);
-      unpack_loads(request.structure_advance().load_density_n_per_m2());
+      unpack_loads(request.structure_advance().load_density_n_per_measure());
       take_rigid_poses(request.structure_advance());
       const auto start = std::chrono::steady_clock::now();
       const StepOutcome outcome = run_.advance_step(step, &loads_);
@@ -149,7 +149,7 @@ void StructureParticipant::unpack_loads(const proto::PackedDoubles &field) {
     total += l.rows();
   proto::PointsView all = [&] {
     try {
-      return proto::view_points(field, total, "StructureAdvance.load_density_n_per_m2");
+      return proto::view_points(field, total, "StructureAdvance.load_density_n_per_measure");
     } catch (const proto::MalformedMessageError &e) {
       throw ProtocolViolation(e.what());
     }

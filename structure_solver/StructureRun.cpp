@@ -1,6 +1,7 @@
 #include "StructureRun.hpp"
 
 #include "common/ConfigError.hpp"
+#include "common/FormatDuration.hpp"
 #include "common/Logging.hpp"
 #include "common/ExitCodes.hpp"
 
@@ -17,14 +18,6 @@ namespace {
 std::atomic<int> received_stop_signal{0};
 extern "C" void on_stop_signal(int signal) { received_stop_signal = signal; }
 
-std::string format_duration(double seconds) {
-  char text[32];
-  if (seconds < 120)
-    std::snprintf(text, sizeof text, "%.1f s", seconds);
-  else
-    std::snprintf(text, sizeof text, "%dm%02ds", static_cast<int>(seconds) / 60, static_cast<int>(seconds) % 60);
-  return text;
-}
 } // namespace
 
 StructureRun::StructureRun(StructureSetup config, std::filesystem::path case_dir, std::filesystem::path output_dir)
@@ -127,7 +120,7 @@ std::optional<Divergence> StructureRun::find_divergence(long step) const {
       message += "stretch ratio " + std::to_string(stretch) + " exceeds solver.max_stretch_ratio = " +
                  std::to_string(s->stretch_limit());
     message += too_fast ? ". Likely cause: a coupling too stiff for the time step (penalty law: K dt^2 / rho_1 must "
-                          "stay below 2; lower coupling.stiffness_n_per_m3 or run.time_step_s)"
+                          "stay below 2; lower coupling.stiffness_n_per_m_per_measure or run.time_step_s)"
                         : ". Likely cause: the time step is too large for the stiffness (tension coefficient) or the "
                           "Lagrangian spacing; reduce run.time_step_s (Delta s / Delta t above the stretching-wave "
                           "speed sqrt(2 phi / rho_1), rule of thumb 100 m/s) or the tension coefficient";
@@ -144,8 +137,8 @@ void StructureRun::report_progress(long step, long n_steps, bool force) {
   const double wall = std::chrono::duration<double>(now - start_).count();
   const double eta = step > 0 ? wall * static_cast<double>(n_steps - step) / static_cast<double>(step) : 0.0;
   spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step", step, n_steps, scene_->time_s(),
-               100.0 * static_cast<double>(step) / static_cast<double>(n_steps), format_duration(wall),
-               format_duration(eta), step > 0 ? 1e3 * wall / static_cast<double>(step) : 0.0);
+               100.0 * static_cast<double>(step) / static_cast<double>(n_steps), common::format_duration(wall),
+               common::format_duration(eta), step > 0 ? 1e3 * wall / static_cast<double>(step) : 0.0);
 }
 
 void StructureRun::stop_with(const std::string &status, long last_good_step) {

@@ -192,7 +192,7 @@ def write_our_case(folder, variant, template, stl, dt, n_steps):
         "structures": [big_sheet() if variant in ("b", "b0") else small_sheet(0.38)],
         "fluid": {"openfoam": {"case_directory": os.path.relpath(template, folder), "density_kg_per_m3": 1000.0,
                                "penalization_time_s": 1.0e3 if variant == "c0" else 1.0e-6}},
-        "coupling": {"law": "penalty", "stiffness_n_per_m3": {"b": 3.2e4, "b0": 3.2e-5}.get(variant, 10.0)},
+        "coupling": {"law": "penalty", "stiffness_n_per_m_per_measure": {"b": 3.2e4, "b0": 3.2e-5}.get(variant, 10.0)},
     }
     if variant in ("c", "c0"):
         case["collisions"] = {"threshold_m": 5.0e-4, "target_distance_m": 5.0e-4, "surfaces": [

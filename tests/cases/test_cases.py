@@ -25,7 +25,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "coupled"))
 
 from coupled_support import (BIN_DIR, LAUNCHER, PYTHON, STRUCTURE, TempDirTest,  # noqa: E402
-                             case_dir, load_case, np, write_case)
+                             case_dir, load_case, np, reference, write_case)
 
 import h5py  # noqa: E402  (coupled_support has checked that it is installed)
 
@@ -113,7 +113,7 @@ class RagSettling(CaseTest):
         rag = case["structures"][0]
         rho = float(rag["material"]["mass_per_area_kg_per_m2"])
         dt = float(case["run"]["time_step_s"])
-        K = float(case["coupling"]["stiffness_n_per_m3"])
+        K = float(case["coupling"]["stiffness_n_per_m_per_measure"])
         g = -float(case["gravity_m_per_s2"][2])
         a = K * dt * dt / rho
         v_t = rho * g / (K * dt)
@@ -155,7 +155,7 @@ class RagInPrescribedFlow(CaseTest):
         rag = case["structures"][0]
         rho = float(rag["material"]["mass_per_area_kg_per_m2"])
         dt = float(case["run"]["time_step_s"])
-        K = float(case["coupling"]["stiffness_n_per_m3"])
+        K = float(case["coupling"]["stiffness_n_per_m_per_measure"])
         omega = float(case["fluid"]["prescribed"]["rotation"]["rate_rad_per_s"])
         a = K * dt * dt / rho
         tau = rho / (K * dt)
@@ -202,13 +202,14 @@ class PendulumInAir(CaseTest):
     values measured on the full coarse run (README.md). The free-edge centre's deflection from
     the rigid bar position along the swing ("normal"):
       vacuum: at most 0.47 mm (the flag rings at 8 Hz, undamped);
-      air: the drag bends the flag back against its motion, at most 10.47 mm at t = 0.12 s
-      (bar angular velocity -3.4 rad/s, deflection positive: trailing).
+      air: the drag bends the flag back against its motion, with the first peak of
+      cases/pendulum-in-air/reference.yaml (coarse: 10.47 mm at t = 0.12 s; bar angular velocity
+      -3.4 rad/s, deflection positive: trailing).
     Asserted: the run completes, positions finite, stretch < 1 %; vacuum deflection < 1 mm;
-    air peak deflection 10.47 mm within 15 % (a tolerance for solver and platform changes that
-    still tells drag from no drag: 20 times the vacuum's), of opposite sign to the bar's
-    angular velocity, at t = 0.12 s within 0.02 s. (Not mesh-converged: the medium preset gives
-    6.71 mm at t = 0.10 s; the reference is the coarse preset's own value.)"""
+    air peak deflection within 15 % of the reference (a tolerance for solver and platform
+    changes that still tells drag from no drag: 20 times the vacuum's), of opposite sign to the
+    bar's angular velocity, at the reference time within 0.02 s. (Not mesh-converged: the medium
+    preset's reference differs; each preset is its own reference.)"""
 
     def test_air_bends_the_flag_back(self):
         need_openfoam(self)
@@ -237,17 +238,19 @@ class PendulumInAir(CaseTest):
         vac_max = np.abs(r_vac["normal"]).max()
         print("\npendulum: free-edge deflection from the rigid bar, vacuum at most %.3g mm; air %.4g mm "
               "at t = %.3g s (bar angular velocity %.3g rad/s)" % (1e3 * vac_max, 1e3 * peak, t_peak, omega))
+        ref = reference("pendulum-in-air", "coarse")
+        ref_peak_m = 1e-3 * float(ref["peak_deflection_mm"])
         self.assertLess(vac_max, 1e-3)
-        self.assertAlmostEqual(abs(peak), 0.01047, delta=0.15 * 0.01047)
+        self.assertAlmostEqual(abs(peak), ref_peak_m, delta=0.15 * ref_peak_m)
         self.assertLess(peak * omega, 0.0, "the flag should trail the bar's motion")
-        self.assertAlmostEqual(t_peak, 0.12, delta=0.02)
+        self.assertAlmostEqual(t_peak, float(ref["peak_time_s"]), delta=0.02)
 
 
 class FlagInCrossflow(CaseTest):
     """cases/flag-in-crossflow, coarse (the whole 0.05 s run, 2000 steps): the flag flaps at
-    St_L = f L / U = 0.323 with a peak-to-peak trailing-edge amplitude A = 0.854 L over the
-    second half (measured; medium 0.322 and 0.892 L, README.md). Asserted: St_L within 5 % and
-    A / L within 10 % of the measured coarse values (the literature values of README.md,
+    the St_L = f L / U and peak-to-peak trailing-edge amplitude A / L (second half) of
+    cases/flag-in-crossflow/reference.yaml (coarse: 0.323 and 0.854). Asserted: St_L within 5 %
+    and A / L within 10 % of the measured coarse values (the literature values of README.md,
     St_L about 0.3, are for an unconfined flag and not a tight reference for this channel)."""
 
     def test_strouhal_and_amplitude(self):
@@ -257,8 +260,9 @@ class FlagInCrossflow(CaseTest):
         r = flapping.analyse(out)
         print("\nflag: St_L = %.4g, A / L = %.4g, St_A = %.4g over %d periods"
               % (r["St_L"], r["A_over_L"], r["St_A"], r["periods"]))
-        self.assertAlmostEqual(r["St_L"], 0.323, delta=0.05 * 0.323)
-        self.assertAlmostEqual(r["A_over_L"], 0.854, delta=0.10 * 0.854)
+        ref = reference("flag-in-crossflow", "coarse")
+        self.assertAlmostEqual(r["St_L"], float(ref["St_L"]), delta=0.05 * float(ref["St_L"]))
+        self.assertAlmostEqual(r["A_over_L"], float(ref["A_over_L"]), delta=0.10 * float(ref["A_over_L"]))
 
 
 if __name__ == "__main__":

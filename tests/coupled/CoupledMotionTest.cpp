@@ -58,7 +58,7 @@ fluid:
     uniform: {velocity_m_per_s: [0.0, 0.0, 0.0]}
 coupling:
   law: penalty
-  stiffness_n_per_m3: 3.2e4
+  stiffness_n_per_m_per_measure: 3.2e4
   heartbeat_interval_s: 0.1
   timeout_s: 2.0
   handshake_timeout_s: 10.0
@@ -174,7 +174,7 @@ protected:
     advance->set_time_s(0.0);
     advance->set_dt_s(dt_s);
     for (int i = 0; i < 3 * n_points; ++i)
-      advance->add_load_density_n_per_m2(0.0);
+      advance->add_load_density_n_per_measure(0.0);
     for (const auto &pose : poses)
       fsi::proto::write_body_pose(pose, *advance->add_rigid_bodies());
     send(request);

@@ -53,7 +53,7 @@ fluid:
     uniform: {velocity_m_per_s: [0.2, 0.0, 0.1]}
 coupling:
   law: penalty
-  stiffness_n_per_m3: 3.2e4
+  stiffness_n_per_m_per_measure: 3.2e4
   heartbeat_interval_s: 0.1
   timeout_s: 1.0
   handshake_timeout_s: 10.0

@@ -60,6 +60,12 @@ def load_case(path):
         return yaml.load(f, Loader=_Loader)
 
 
+def reference(name, preset):
+    """The self-measured reference values of a case's preset (cases/<name>/reference.yaml, with
+    their provenance): what the tests assert against and the docs quote."""
+    return load_case(os.path.join(case_dir(name), "reference.yaml"))[preset]
+
+
 def write_case(folder, case):
     os.makedirs(folder, exist_ok=True)
     with open(os.path.join(folder, "case.yaml"), "w") as f:

@@ -35,7 +35,7 @@ class Relaxation(TempDirTest):
     def test_sheet_velocity_follows_the_discrete_relaxation(self):
         case = case_dir("sheet-in-uniform-flow")
         c = load_case(case)
-        K = float(c["coupling"]["stiffness_n_per_m3"])
+        K = float(c["coupling"]["stiffness_n_per_m_per_measure"])
         dt = float(c["run"]["time_step_s"])
         sheet = c["structures"][0]
         rho = float(sheet["material"]["mass_per_area_kg_per_m2"])
@@ -118,13 +118,13 @@ class HangingFilament(TempDirTest):
         name = chain["name"]
         rho = float(chain["linear_density_kg_per_m"])
         dt = float(case["run"]["time_step_s"])
-        K = float(case["coupling"]["stiffness_n_per_m3"])
+        K = float(case["coupling"]["stiffness_n_per_m_per_measure"])
         gamma = K * dt / rho
 
         alone = self.run_variant("alone", standalone(case))
         tiny_case = load_case(case_dir("hanging-filament-in-still-fluid"))
         tiny_a = 1e-9
-        tiny_case["coupling"]["stiffness_n_per_m3"] = tiny_a * rho / dt ** 2
+        tiny_case["coupling"]["stiffness_n_per_m_per_measure"] = tiny_a * rho / dt ** 2
         tiny = self.run_variant("tiny", tiny_case)
         moderate = self.run_variant("moderate", case)
         t = alone.time_s
@@ -178,7 +178,7 @@ class TwoSheets(TempDirTest):
     def test_each_sheet_gets_its_own_flow(self):
         case = case_dir("two-sheets-in-shear-flow")
         c = load_case(case)
-        K = float(c["coupling"]["stiffness_n_per_m3"])
+        K = float(c["coupling"]["stiffness_n_per_m_per_measure"])
         dt = float(c["run"]["time_step_s"])
         shear = c["fluid"]["prescribed"]["shear"]
         e = np.array(shear["flow_direction"], float)

@@ -14,7 +14,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 # Re-exported for the tests: EPS, StructureResults, TempDirTest, write_case.
 from coupled_support import (BIN_DIR, EPS, StructureResults, TempDirTest, case_dir,  # noqa: E402,F401
-                             load_case, np, write_case)
+                             load_case, np, reference, write_case)
 
 import h5py  # noqa: E402  (coupled_support has checked that it is installed)
 

@@ -4,6 +4,7 @@
 #include "coupler/CouplingLawRegistry.hpp"
 #include "coupler/PenaltyCouplingLaw.hpp"
 #include "coupler/PenaltyLawConfig.hpp"
+#include "common/ConfigReader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -36,7 +37,7 @@ double relaxation_after(double dt, double rho, double k, int steps) {
   for (int n = 0; n < steps; ++n) {
     const CouplingOutputs out = law.compute({&x, &x_prev, &x, &u, dt});
     // rho (X^{n+1} - 2 X^n + X^{n-1}) / dt^2 = -F (Eq. 3 without elastic terms)
-    const PointArray x_next = 2.0 * x - x_prev - dt * dt / rho * out.force_density_n_per_m2;
+    const PointArray x_next = 2.0 * x - x_prev - dt * dt / rho * out.force_density_n_per_measure;
     x_prev = x;
     x = x_next;
   }
@@ -45,11 +46,25 @@ double relaxation_after(double dt, double rho, double k, int steps) {
 
 TEST(PenaltyLawConfig, StabilityLimitMatchesTheRelaxationMap) {
   PenaltyLawConfig config;
-  config.stiffness_n_per_m3 = 1.0e5;
+  config.stiffness_n_per_m_per_measure = 1.0e5;
   const double rho = 0.08, limit = config.stable_time_step_s(rho);
   EXPECT_NEAR(limit, std::sqrt(2.0 * rho / 1.0e5), 1e-15);
   EXPECT_LT(relaxation_after(0.99 * limit, rho, 1.0e5, 2000), 1.0);
   EXPECT_GT(relaxation_after(1.01 * limit, rho, 1.0e5, 2000), 1.0e3);
+}
+
+TEST(PenaltyLawConfig, TheFormerKeyOfKIsAnsweredWithItsNewName) {
+  // K_fsi is N/m^3 for a sheet and N/m^2 for a filament: the key no longer says m^3.
+  common::ConfigReader reader(YAML::Load("stiffness_n_per_m3: 2.5e5"), "case.yaml", "coupling");
+  PenaltyLawConfig config;
+  try {
+    config.visit(reader);
+    FAIL() << "the former key was accepted";
+  } catch (const common::ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find("coupling.stiffness_n_per_m3 was renamed stiffness_n_per_m_per_measure"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 } // namespace

@@ -24,8 +24,8 @@ TEST(PenaltyCouplingLaw, MatchesEquationFiveAndPullsTheStructureTowardTheFluid) 
   const CouplingOutputs out = law.compute({&x_now, &x_prev, &x_now, &u, dt});
   EXPECT_DOUBLE_EQ(out.x_ib_next_m(0, 0), 1.0 + 0.5 * dt);
   // F_fsi = -K (X_ib^{n+1} - 2 X^n + X^{n-1}) = -K dt u; the structure feels -F_fsi = +K dt u.
-  EXPECT_NEAR(out.force_density_n_per_m2(0, 0), -2e5 * dt * 0.5, 1e-9);
-  EXPECT_NEAR(out.force_density_n_per_m2(0, 2), +2e5 * dt * 0.25, 1e-9);
+  EXPECT_NEAR(out.force_density_n_per_measure(0, 0), -2e5 * dt * 0.5, 1e-9);
+  EXPECT_NEAR(out.force_density_n_per_measure(0, 2), +2e5 * dt * 0.25, 1e-9);
   EXPECT_THROW(PenaltyCouplingLaw(0.0), std::invalid_argument);
 }
 
@@ -48,7 +48,7 @@ TEST(PenaltyCouplingLaw, FreeSheetRelaxesToAUniformFlowWithTauRhoOverKDt) {
     const PointArray x_now = sheet.positions_m();
     const CouplingOutputs out = law.compute({&x_now, &x_prev, &x_now, &u, dt});
     x_prev = x_now;
-    sheet.advance(-out.force_density_n_per_m2); // Eq. (3): the structure feels -F_fsi
+    sheet.advance(-out.force_density_n_per_measure); // Eq. (3): the structure feels -F_fsi
   }
   const double v = sheet.velocities_m_per_s().col(0).mean();
   const double discrete = flow * (1.0 - std::pow(1.0 - a, n_steps));

@@ -289,7 +289,7 @@ def write_case(folder, dt, end_time, sheet, surfaces, penalization_time_s, densi
         "structures": [sheet],
         "fluid": {"openfoam": {"case_directory": "openfoam", "density_kg_per_m3": float(density),
                                "penalization_time_s": float(penalization_time_s)}},
-        "coupling": {"law": "penalty", "stiffness_n_per_m3": 10.0},
+        "coupling": {"law": "penalty", "stiffness_n_per_m_per_measure": 10.0},
     }
     with open(os.path.join(folder, "case.yaml"), "w") as f:
         yaml.safe_dump(case, f, default_flow_style=None, sort_keys=False)

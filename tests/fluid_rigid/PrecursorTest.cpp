@@ -22,7 +22,7 @@ std::string case_yaml(double precursor_time_s, double rag_mass) {
          "    material: {mass_per_area_kg_per_m2: " + std::to_string(rag_mass) + "}\n"
          "fluid:\n  openfoam: {case_directory: openfoam, precursor_time_s: " + std::to_string(precursor_time_s) +
          ", precursor_time_step_s: 2.0e-3}\n"
-         "coupling: {law: penalty, stiffness_n_per_m3: 2.5e5}\n";
+         "coupling: {law: penalty, stiffness_n_per_m_per_measure: 2.5e5}\n";
 }
 
 Precursor precursor_of(const std::string &yaml) {

@@ -57,6 +57,31 @@ class DocumentedPaths(unittest.TestCase):
         self.assertEqual(missing, [], "paths in the docs that do not exist:\n" + "\n".join(missing))
 
 
+class QuotedReferences(unittest.TestCase):
+    def test_the_docs_quote_each_self_measured_reference_as_written(self):
+        """cases/<case>/reference.yaml holds a case's self-measured values once, with their
+        provenance; every file in its quoted_in list must hold each value as written there."""
+        try:
+            import yaml
+        except ImportError:
+            self.skipTest("python3-yaml is not installed")
+        files = glob.glob(os.path.join(ROOT, "cases", "*", "reference.yaml"))
+        self.assertGreaterEqual(len(files), 2)
+        missing = []
+        for path in files:
+            with open(path) as f:
+                ref = yaml.load(f, Loader=yaml.BaseLoader)  # every value as the text written
+            for doc in ref["quoted_in"]:
+                with open(os.path.join(ROOT, doc)) as f:
+                    text = f.read()
+                for preset, values in ref.items():
+                    if preset in ("provenance", "quoted_in"):
+                        continue
+                    missing += [f"{doc}: {preset} {key} = {value} ({os.path.relpath(path, ROOT)})"
+                                for key, value in values.items() if value not in text]
+        self.assertEqual(missing, [], "values of reference.yaml the docs do not quote:\n" + "\n".join(missing))
+
+
 class Layering(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

@@ -81,7 +81,7 @@ Envelope fluid_advance() {
   auto *body = e.mutable_fluid_advance();
   body->set_time_s(0.125);
   body->set_dt_s(1e-5);
-  fill(body->mutable_force_density_n_per_m2(), 30, 3.0);
+  fill(body->mutable_force_density_n_per_measure(), 30, 3.0);
   return e;
 }
 
@@ -90,7 +90,7 @@ Envelope structure_advance() {
   auto *body = e.mutable_structure_advance();
   body->set_time_s(0.125);
   body->set_dt_s(1e-5);
-  fill(body->mutable_load_density_n_per_m2(), 30, -3.0);
+  fill(body->mutable_load_density_n_per_measure(), 30, -3.0);
   fill_pose(body->add_rigid_bodies());
   return e;
 }

@@ -98,10 +98,10 @@ TEST_P(TransportContract, HundredThousandPointArraysArriveIntact) {
 
   Envelope advance = make_envelope(v1::ROLE_COUPLER, 3);
   write_points(velocities_m_per_s,
-               *advance.mutable_structure_advance()->mutable_load_density_n_per_m2());
+               *advance.mutable_structure_advance()->mutable_load_density_n_per_measure());
   coupler().send(incoming.peer(), advance);
   const Envelope back = receive_at(participant);
-  EXPECT_TRUE(identical(view_points(back.structure_advance().load_density_n_per_m2(), "load"),
+  EXPECT_TRUE(identical(view_points(back.structure_advance().load_density_n_per_measure(), "load"),
                         velocities_m_per_s));
   Envelope request = make_envelope(v1::ROLE_COUPLER, 4);
   write_points(positions_m, *request.mutable_interpolate_request()->mutable_position_m());

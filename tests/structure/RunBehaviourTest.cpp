@@ -78,13 +78,13 @@ TEST(RunBehaviour, MalformedYamlAndWrongTypesAreRejected) {
 
 TEST(RunBehaviour, CouplingSectionsAreCheckedLikeEveryOther) {
   const std::string flow = "fluid:\n  prescribed:\n    uniform: {velocity_m_per_s: [1, 0, 0]}\n";
-  const std::string coupling = "coupling:\n  law: penalty\n  stiffness_n_per_m3: 1.0e5\n";
+  const std::string coupling = "coupling:\n  law: penalty\n  stiffness_n_per_m_per_measure: 1.0e5\n";
   expect_bad_input(std::string(valid_case) + coupling, "there is no `fluid` section");
   expect_bad_input(std::string(valid_case) + flow, "needs a `coupling` section");
   expect_bad_input(std::string(valid_case) + flow + "coupling: {law: penalti}\n",
                    "unknown coupling law 'penalti'. Did you mean 'penalty'? Valid laws: penalty");
-  expect_bad_input(std::string(valid_case) + flow + "coupling: {stifness_n_per_m3: 1.0}\n",
-                   "Did you mean 'stiffness_n_per_m3'?");
+  expect_bad_input(std::string(valid_case) + flow + "coupling: {stifness_n_per_m_per_measure: 1.0}\n",
+                   "Did you mean 'stiffness_n_per_m_per_measure'?");
   expect_bad_input(std::string(valid_case) + "fluid:\n  prescribed:\n    uniform: {velocity_m_per_s: [1, 0, 0]}\n"
                                              "    quiescent: {}\n" + coupling,
                    "must hold exactly one of: quiescent, uniform, shear, rotation, table (found 2)");

@@ -1,5 +1,5 @@
 // Hand-run timing of the per-step work of the immersed boundary on a ~300k-cell mesh
-// (67^3 cells), not a test:  build/bin/bench_kernel_stencil
+// (67^3 cells), not a test:  ./fsi bench kernel_stencil
 //   StencilBuild/<n>        nearest cells + KernelStencil for n random points: the cost per
 //                           step must grow linearly with n (compare the times per point);
 //   Spread/Interpolate      the transfers with a built stencil;

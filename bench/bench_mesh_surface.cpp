@@ -5,7 +5,7 @@
 // 2 mm into it to 3.5 mm above it, off the mesh's planes of symmetry, where two triangles
 // would tie); the other points are far above. The checksums let two versions be compared.
 // Uses only the public API, so the same file times any version of the module. Not a test:
-// run it by hand, `build-collision/bin/bench_mesh_surface [repeats]`; BENCH_ONLY=near times
+// run it with `./fsi bench mesh_surface [repeats]`; BENCH_ONLY=near times
 // only the distance() cases whose name holds "near".
 
 #include "structure_solver/collision/CollisionSet.hpp"

@@ -3,7 +3,7 @@
 // cube of 10^5 and 3 x 10^5 uniform cells; then the same torus off-axis. Prints the one-off
 // costs (body, candidates) and the mean per-step update, sharp and cell fraction, on 1 and
 // on all threads.
-//   bench_body_indicator [n_steps]
+//   ./fsi bench body_indicator [n_steps]
 
 #include "motion/AxisRotation.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
