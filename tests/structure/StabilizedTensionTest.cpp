@@ -1,4 +1,4 @@
-// solver.tension: stabilized (SemiImplicitSystem.hpp) on a stiff, large-amplitude motion: a flap
+// solver.tension: stabilized (StabilizedTension.hpp) on a stiff, large-amplitude motion: a flap
 // (0.2 m x 0.1 m, Delta s = 0.01 m, rho_1 = 0.08 kg/m^2, phi = 1000 N/m) pinned along one edge,
 // released horizontally, swinging down under gravity. The stretching-wave speed
 // sqrt(2 phi / rho_1) = 158 m/s limits the paper's frozen tension to dt of about
