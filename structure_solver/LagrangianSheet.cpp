@@ -1,5 +1,7 @@
 #include "LagrangianSheet.hpp"
 
+#include "TensionSchemeRegistry.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,9 +12,14 @@ LagrangianSheet::LagrangianSheet(SheetSetup setup)
       has_prescribed_(std::find(prescribed_.begin(), prescribed_.end(), true) != prescribed_.end()) {
   terms_ = std::make_unique<ElasticTerms>(setup_.grid, setup_.edges, setup_.shape_body_m, setup_.tension_coefficient,
                                           setup_.bending_rigidity, setup_.curved_rest_state);
-  system_ = std::make_unique<SemiImplicitSystem>(*terms_, measure_, setup_.mass_per_measure,
-                                                 setup_.damping_per_measure, prescribed_, setup_.linear_solver,
-                                                 setup_.time_scheme, setup_.tension_scheme);
+  const StepSettings step{*terms_,
+                          measure_,
+                          setup_.mass_per_measure,
+                          setup_.damping_per_measure,
+                          prescribed_,
+                          setup_.linear_solver,
+                          setup_.time_scheme};
+  system_ = TensionSchemeRegistry::builtin().make(setup_.tension_scheme, step);
   x_ = prescribed_positions(0.0);
   const double dt = setup_.time_step_s;
   x_prev_ = x_ - dt * Eigen::VectorXd::Ones(x_.rows()) * setup_.initial_velocity_m_per_s.transpose();

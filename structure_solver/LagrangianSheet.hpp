@@ -4,7 +4,8 @@
 // that follow an optional rigid clamp motion, and the state (X^n, X^{n-1}, V^n).
 
 #include "ElasticTerms.hpp"
-#include "SemiImplicitSystem.hpp"
+#include "StepSettings.hpp"
+#include "StepSystem.hpp"
 #include "StructureModel.hpp"
 #include "motion/RigidMotion.hpp"
 
@@ -33,7 +34,7 @@ struct SheetSetup {
   double time_step_s = 1e-4;
   LinearSolver linear_solver = LinearSolver::automatic;
   TimeScheme time_scheme = TimeScheme::paper;
-  TensionScheme tension_scheme = TensionScheme::frozen;
+  std::string tension_scheme = "frozen"; ///< a TensionSchemeRegistry name
   double max_stretch_ratio = 1.5;
   double max_speed_m_per_s = 1000.0;
 };
@@ -54,7 +55,7 @@ public:
   double tension_wave_speed_m_per_s() const override {
     return std::sqrt(2.0 * setup_.tension_coefficient / setup_.mass_per_measure);
   }
-  bool explicit_stretching() const override { return setup_.tension_scheme == TensionScheme::frozen; }
+  bool explicit_stretching() const override { return system_->explicit_stretching(); }
 
   int advance(const PointArray &load_density) override;
   void correct_positions(const std::function<void(PointArray &)> &correction) override;
@@ -83,7 +84,7 @@ private:
   std::vector<bool> prescribed_;
   bool has_prescribed_;
   std::unique_ptr<ElasticTerms> terms_;
-  std::unique_ptr<SemiImplicitSystem> system_;
+  std::unique_ptr<StepSystem> system_;
   PointArray x_, x_prev_, v_, load_;
   double time_s_ = 0.0;
 };

@@ -3,8 +3,9 @@
 // `template <class V> void visit_keys(V&)` and derives from ModelConfigBase<Self>, which
 // forwards the three configuration visitors (reader, emitter, documentation) to it.
 
-#include "SemiImplicitSystem.hpp"
+#include "StepSettings.hpp"
 #include "StructureModel.hpp"
+#include "TensionSchemeRegistry.hpp"
 #include "common/ConfigDocWriter.hpp"
 #include "common/ConfigEmitter.hpp"
 #include "common/ConfigReader.hpp"
@@ -46,7 +47,7 @@ private:
 struct SolverConfig {
   LinearSolver linear_solver = LinearSolver::automatic;
   TimeScheme time_scheme = TimeScheme::paper;
-  TensionScheme tension = TensionScheme::frozen;
+  std::string tension = "frozen"; ///< a TensionSchemeRegistry name
   double max_stretch_ratio = 1.5;
   double max_speed_m_per_s = 1000.0;
 
@@ -58,10 +59,7 @@ struct SolverConfig {
     v.choice("time_scheme", time_scheme, {{"paper", TimeScheme::paper}, {"energy_conserving", TimeScheme::energy_conserving}},
              "'paper': Eq. (4) as printed (slightly dissipative); 'energy_conserving': elastic force on the mean "
              "of X^{n+1} and X^{n-1}.");
-    v.choice("tension", tension,
-             {{"frozen", TensionScheme::frozen},
-              {"stabilized", TensionScheme::stabilized},
-              {"linearized", TensionScheme::linearized}},
+    v.choice("tension", tension, TensionSchemeRegistry::builtin().choices(),
              "'frozen': tension coefficients at X^n (Eq. 4 as printed; stable for about Delta s / Delta t >= "
              "sqrt(2 phi / rho_1)); 'stabilized': above Delta s / (1.5 c) the part of the stretching stiffness the "
              "explicit step cannot carry is taken implicitly (no stretching-wave limit; robust, but less accurate at "
@@ -69,7 +67,8 @@ struct SolverConfig {
              "its direction (a 3n x 3n system: no stretching-wave limit, accurate at large steps; see "
              "docs/verification.md). Both with time_scheme paper.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
-      if (tension != TensionScheme::frozen && time_scheme != TimeScheme::paper)
+      if (TensionSchemeRegistry::builtin().entry(tension).paper_time_scheme_only &&
+          time_scheme != TimeScheme::paper)
         v.fail("tension: stabilized and linearized work with time_scheme: paper only.");
     v.number("max_stretch_ratio", max_stretch_ratio, common::Range{.min = 1.0, .min_exclusive = true, .unit = "1"},
              "Stop the run (diverged) when an edge stretches beyond this ratio of its rest length.");
