@@ -8,13 +8,13 @@
 
 namespace fsi::coupler {
 
-class CouplingLawRegistry : public common::Registry<CouplingLawConfig> {
+class CouplingLawRegistry : public common::ConfigRegistry<CouplingLawConfig> {
 public:
-  CouplingLawRegistry() : Registry("coupling law", "laws") {}
+  CouplingLawRegistry() : ConfigRegistry("coupling law", "laws") {}
   /// The laws this build knows, registered explicitly.
   static const CouplingLawRegistry &builtin();
 };
 
-using CouplingLawEntry = CouplingLawRegistry::Entry;
+using CouplingLawEntry = common::ConfigEntry<CouplingLawConfig>;
 
 } // namespace fsi::coupler

@@ -7,13 +7,13 @@
 
 namespace fsi::structure {
 
-class ModelRegistry : public common::Registry<ModelConfig> {
+class ModelRegistry : public common::ConfigRegistry<ModelConfig> {
 public:
-  ModelRegistry() : Registry("structure model", "models") {}
+  ModelRegistry() : ConfigRegistry("structure model", "models") {}
   /// The models this build knows, registered explicitly.
   static const ModelRegistry &builtin();
 };
 
-using ModelEntry = ModelRegistry::Entry;
+using ModelEntry = common::ConfigEntry<ModelConfig>;
 
 } // namespace fsi::structure

@@ -3,8 +3,6 @@
 #include "FrozenTension.hpp"
 #include "LinearizedTension.hpp"
 #include "StabilizedTension.hpp"
-#include "common/ConfigError.hpp"
-#include "common/DidYouMean.hpp"
 
 namespace fsi::structure {
 
@@ -22,32 +20,11 @@ const TensionSchemeRegistry &TensionSchemeRegistry::builtin() {
   return registry;
 }
 
-void TensionSchemeRegistry::add(TensionSchemeEntry entry) { entries_.push_back(std::move(entry)); }
-
-std::vector<std::string> TensionSchemeRegistry::names() const {
-  std::vector<std::string> out;
-  for (const auto &e : entries_)
-    out.push_back(e.name);
-  return out;
-}
-
 std::vector<std::pair<std::string, std::string>> TensionSchemeRegistry::choices() const {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const auto &e : entries_)
+  for (const auto &e : entries())
     out.emplace_back(e.name, e.name);
   return out;
-}
-
-const TensionSchemeEntry &TensionSchemeRegistry::entry(const std::string &name) const {
-  for (const auto &e : entries_)
-    if (e.name == name)
-      return e;
-  throw common::ConfigError("unknown tension scheme '" + name + "'." + common::did_you_mean(name, names()) +
-                            " Valid schemes: " + common::join(names()) + ".");
-}
-
-std::unique_ptr<StepSystem> TensionSchemeRegistry::make(const std::string &name, const StepSettings &settings) const {
-  return entry(name).make(settings);
 }
 
 } // namespace fsi::structure

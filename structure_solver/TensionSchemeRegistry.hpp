@@ -5,6 +5,7 @@
 
 #include "StepSettings.hpp"
 #include "StepSystem.hpp"
+#include "common/Registry.hpp"
 
 #include <functional>
 #include <memory>
@@ -21,23 +22,18 @@ struct TensionSchemeEntry {
   std::function<std::unique_ptr<StepSystem>(const StepSettings &)> make;
 };
 
-class TensionSchemeRegistry {
+class TensionSchemeRegistry : public common::Registry<TensionSchemeEntry> {
 public:
-  /// The schemes this build knows, registered explicitly (no static self-registration).
+  TensionSchemeRegistry() : Registry("tension scheme", "schemes") {}
+  /// The schemes this build knows, registered explicitly.
   static const TensionSchemeRegistry &builtin();
 
-  void add(TensionSchemeEntry entry);
-  /// Entry `name`; throws ConfigError listing the valid names.
-  const TensionSchemeEntry &entry(const std::string &name) const;
   /// The step system of scheme `name`; throws ConfigError listing the valid names.
-  std::unique_ptr<StepSystem> make(const std::string &name, const StepSettings &settings) const;
-  std::vector<std::string> names() const;
+  std::unique_ptr<StepSystem> make(const std::string &name, const StepSettings &settings) const {
+    return entry(name).make(settings);
+  }
   /// (name, name) pairs, in registration order, for a configuration choice.
   std::vector<std::pair<std::string, std::string>> choices() const;
-  const std::vector<TensionSchemeEntry> &entries() const { return entries_; }
-
-private:
-  std::vector<TensionSchemeEntry> entries_;
 };
 
 } // namespace fsi::structure
