@@ -14,20 +14,19 @@ std::string case_schema_markdown() {
   CaseConfig defaults;
   common::ConfigDocWriter top(out);
   defaults.visit(top);
-  for (const auto &entry : structure::ModelRegistry::builtin().entries()) {
-    out << "\n#### `structures[]` with `model: " << entry.name << "`: " << entry.summary << "\n\n";
-    common::ConfigDocWriter::header(out);
-    auto config = entry.make_config();
-    common::ConfigDocWriter writer(out, "structures[].");
-    config->visit(writer);
-  }
-  for (const auto &entry : coupler::CouplingLawRegistry::builtin().entries()) {
-    out << "\n#### `coupling` with `law: " << entry.name << "`: " << entry.summary << "\n\n";
-    common::ConfigDocWriter::header(out);
-    auto config = entry.make_config();
-    common::ConfigDocWriter writer(out, "coupling.");
-    config->visit(writer);
-  }
+  // One table per entry of a family chosen by a key: `section` with `key: name`.
+  const auto tables = [&out](const auto &registry, const std::string &section, const std::string &key,
+                             const std::string &prefix) {
+    for (const auto &entry : registry.entries()) {
+      out << "\n#### `" << section << "` with `" << key << ": " << entry.name << "`: " << entry.summary << "\n\n";
+      common::ConfigDocWriter::header(out);
+      auto config = entry.make_config();
+      common::ConfigDocWriter writer(out, prefix);
+      config->visit(writer);
+    }
+  };
+  tables(structure::ModelRegistry::builtin(), "structures[]", "model", "structures[].");
+  tables(coupler::CouplingLawRegistry::builtin(), "coupling", "law", "coupling.");
   return out.str();
 }
 

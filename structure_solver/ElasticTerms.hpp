@@ -39,6 +39,15 @@ struct ShearTerm {
   std::array<double, 4> coef_b;
   double rest_value;
   double measure;
+
+  /// a = dX/ds1 and b = dX/ds2 at the cell centre, for positions x.
+  void tangents(const PointArray &x, Vec3 &a, Vec3 &b) const {
+    a = Vec3::Zero(), b = Vec3::Zero();
+    for (int p = 0; p < 4; ++p) {
+      a += coef_a[p] * x.row(points[p]).transpose();
+      b += coef_b[p] * x.row(points[p]).transpose();
+    }
+  }
 };
 
 /// Bending or twisting: D = sum coef[k] X_k + R(t) ghost_body - rest, energy zeta/2 w |D|^2.

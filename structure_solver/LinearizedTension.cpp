@@ -56,11 +56,8 @@ void LinearizedTension::fill_material_blocks(const PointArray &x, double *values
   }
   for (std::size_t k = 0; k < s.shear.size(); ++k) {
     const auto &t = terms.shear()[k];
-    Vec3 a = Vec3::Zero(), b = Vec3::Zero();
-    for (int p = 0; p < 4; ++p) {
-      a += t.coef_a[p] * x.row(t.points[p]).transpose();
-      b += t.coef_b[p] * x.row(t.points[p]).transpose();
-    }
+    Vec3 a, b;
+    t.tangents(x, a, b);
     std::array<Vec3, 4> v;
     for (int r = 0; r < 4; ++r)
       v[static_cast<std::size_t>(r)] = t.coef_a[r] * b + t.coef_b[r] * a;

@@ -57,11 +57,8 @@ void StabilizedTension::add_stretching_bound(const PointArray &x, double scale, 
   }
   for (std::size_t k = 0; k < s.shear.size(); ++k) {
     const auto &t = terms.shear()[k];
-    Vec3 a = Vec3::Zero(), b = Vec3::Zero();
-    for (int p = 0; p < 4; ++p) {
-      a += t.coef_a[p] * x.row(t.points[p]).transpose();
-      b += t.coef_b[p] * x.row(t.points[p]).transpose();
-    }
+    Vec3 a, b;
+    t.tangents(x, a, b);
     const double wa = scale * 2.0 * phi * t.measure * b.squaredNorm(), wb = scale * 2.0 * phi * t.measure * a.squaredNorm();
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)

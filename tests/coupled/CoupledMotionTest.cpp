@@ -3,22 +3,18 @@
 // socket, corrects its points against the surface where the coupler says it is, not where the
 // case file's motion would put it, and refuses a step whose poses do not match the case.
 
+#include "ChildProcess.hpp"
 #include "proto/BodyPose.hpp"
 #include "proto/Protocol.hpp"
 
 #include <gtest/gtest.h>
 #include <zmq_addon.hpp>
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -67,44 +63,13 @@ constexpr double raised_floor_m = 0.05;
 constexpr double target_distance_m = 0.004;
 constexpr double dt_s = 1.0e-4;
 
-std::string read_text(const fs::path &path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+/// fsi-structure --coupled against the fake coupler.
+std::unique_ptr<fsi::testing::ChildProcess> start_structure(const fs::path &case_dir, const std::string &endpoint) {
+  return std::make_unique<fsi::testing::ChildProcess>(
+      std::vector<std::string>{FSI_STRUCTURE_EXE, case_dir.string(), "--coupled", "--endpoint", endpoint, "-o",
+                               (case_dir / "out").string()},
+      case_dir / "structure.console");
 }
-
-/// fsi-structure --coupled against the fake coupler, its output in a file.
-class StructureProcess {
-public:
-  StructureProcess(const fs::path &case_dir, const std::string &endpoint, const fs::path &log) : log_(log) {
-    const std::vector<std::string> argv = {FSI_STRUCTURE_EXE, case_dir.string(), "--coupled", "--endpoint", endpoint,
-                                           "-o", (case_dir / "out").string()};
-    pid_ = fork();
-    if (pid_ == 0) {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(fd, 1);
-      dup2(fd, 2);
-      std::vector<char *> args;
-      for (const auto &a : argv)
-        args.push_back(const_cast<char *>(a.c_str()));
-      args.push_back(nullptr);
-      execv(args[0], args.data());
-      _exit(127);
-    }
-  }
-  ~StructureProcess() {
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-  }
-  StructureProcess(const StructureProcess &) = delete;
-  StructureProcess &operator=(const StructureProcess &) = delete;
-  std::string output() const { return read_text(log_); }
-
-private:
-  pid_t pid_ = -1;
-  fs::path log_;
-};
 
 class FakeCoupler : public ::testing::Test {
 protected:
@@ -115,8 +80,7 @@ protected:
     std::ofstream(dir_ / "case.yaml") << case_yaml;
     router_.set(zmq::sockopt::linger, 0);
     router_.bind("tcp://127.0.0.1:*");
-    structure_ = std::make_unique<StructureProcess>(dir_, router_.get(zmq::sockopt::last_endpoint),
-                                                    dir_ / "structure.console");
+    structure_ = start_structure(dir_, router_.get(zmq::sockopt::last_endpoint));
   }
   void TearDown() override {
     structure_.reset();
@@ -191,7 +155,7 @@ protected:
   fs::path dir_;
   zmq::context_t context_;
   zmq::socket_t router_{context_, zmq::socket_type::router};
-  std::unique_ptr<StructureProcess> structure_;
+  std::unique_ptr<fsi::testing::ChildProcess> structure_;
   std::string peer_;
 };
 

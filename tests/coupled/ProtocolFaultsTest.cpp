@@ -3,6 +3,7 @@
 // DEALER socket sending what no participant would: a Hello of another protocol version,
 // random bytes, frames that are not Envelopes.
 
+#include "ChildProcess.hpp"
 #include "proto/Protocol.hpp"
 
 #include <gtest/gtest.h>
@@ -59,60 +60,8 @@ coupling:
   handshake_timeout_s: 10.0
 )";
 
-std::string read_text(const fs::path &path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// A child process, its output in a file; killed (by its pid) if still running at the end.
-class Child {
-public:
-  Child(const std::vector<std::string> &argv, const fs::path &log) : log_(log) {
-    pid_ = fork();
-    if (pid_ == 0) {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(fd, 1);
-      dup2(fd, 2);
-      std::vector<char *> args;
-      for (const auto &a : argv)
-        args.push_back(const_cast<char *>(a.c_str()));
-      args.push_back(nullptr);
-      execv(args[0], args.data());
-      _exit(127);
-    }
-  }
-  ~Child() {
-    if (pid_ > 0 && !code_) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  Child(const Child &) = delete;
-  Child &operator=(const Child &) = delete;
-
-  /// Exit code (128 + n for signal n), or nullopt if still running after timeout.
-  std::optional<int> wait(std::chrono::milliseconds timeout) {
-    const auto deadline = Clock::now() + timeout;
-    while (!code_) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_)
-        code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      else if (Clock::now() >= deadline)
-        break;
-      else
-        std::this_thread::sleep_for(10ms);
-    }
-    return code_;
-  }
-  std::string output() const { return read_text(log_); }
-
-private:
-  pid_t pid_ = -1;
-  fs::path log_;
-  std::optional<int> code_;
-};
+using fsi::testing::read_text;
+using Child = fsi::testing::ChildProcess;
 
 class ProtocolFaults : public ::testing::Test {
 protected:
