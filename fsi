@@ -15,6 +15,7 @@
 #                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
 #   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
+#   ./fsi pump-design FILE    check a pump design file; the duty and volute its design rules give
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
 # FSI_SANITIZE=0 skips the sanitizer pass of './fsi test'.
@@ -183,6 +184,9 @@ case "${1:-help}" in
   schema) prepare fsi-structure; "$BUILD/bin/fsi-structure" --schema ;;
   build) prepare ;;
   report) shift; prepare; /usr/bin/python3 "$ROOT/scripts/report.py" --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
-  help|-h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, build, help)" ;;
+  pump-design)
+    shift; [ $# -eq 1 ] || die "usage: ./fsi pump-design DESIGN.yaml (e.g. pump/designs/single-blade.yaml)"
+    prepare fsi-pump-design; "$BUILD/bin/fsi-pump-design" "$1" ;;
+  help|-h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, pump-design, build, help)" ;;
 esac

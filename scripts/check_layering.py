@@ -4,7 +4,7 @@
 
   executables   */main.cpp, fluid_adapter/foam_smoke/, tests/, bench/   (may include anything)
   case          the whole case.yaml, its options and schema
-  physics       structure_solver, coupler, prescribed_flow, fluid_adapter (never each other)
+  physics       structure_solver, coupler, prescribed_flow, fluid_adapter, pump (never each other)
   foundations   proto, geometry, hdf5, motion (geometry may use motion)
   common        configuration framework, logging, types, exit codes
 
@@ -19,7 +19,7 @@ import os
 import re
 import sys
 
-PHYSICS = {"structure_solver", "coupler", "prescribed_flow", "fluid_adapter"}
+PHYSICS = {"structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump"}
 FOUNDATIONS = {"proto", "geometry", "hdf5", "motion"}
 # What each module may include besides itself.
 ALLOWED = {

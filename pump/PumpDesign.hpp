@@ -1,0 +1,134 @@
+#pragma once
+// The design file of a generated centrifugal pump (pump.yaml): the impeller, the spiral volute,
+// the inlet and the operating point, typed and strict like case.yaml (units in the names,
+// ranges, one line of documentation per key, unknown keys refused with a spelling hint). The
+// defaults are the single-blade waste-water pump sized to the paper's duty (section 4.1:
+// 1440 rpm, n_s = 56.4, cell size 0.002 m = D2 / 100).
+
+#include "common/ConfigReader.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace fsi::pump {
+
+struct ImpellerDesign {
+  double outer_diameter_m = 0.2;
+  double outlet_width_m = 0.05;
+  double eye_diameter_m = 0.1;
+  double hub_diameter_m = 0.03;
+  int n_blades = 1;
+  double wrap_angle_deg = 360.0;
+  double inlet_blade_angle_deg = 15.0;
+  double outlet_blade_angle_deg = 25.0;
+  double blade_thickness_m = 0.008;
+  double leading_edge_radius_m = 0.004;
+  bool closed = true;
+
+  template <class V> void visit(V &v) {
+    v.number("outer_diameter_m", outer_diameter_m, common::Range::positive("m"), "Impeller outer diameter D2.");
+    v.number("outlet_width_m", outlet_width_m, common::Range::positive("m"), "Blade height at the outlet b2.");
+    v.number("eye_diameter_m", eye_diameter_m, common::Range::positive("m"), "Impeller eye (inlet) diameter D1.");
+    v.number("hub_diameter_m", hub_diameter_m, common::Range::non_negative("m"), "Hub diameter at the eye.");
+    v.integer("n_blades", n_blades, common::Range::between(1, 12, "1"),
+              "Number of blades (1: the paper's single-blade pump; 2: its two-blade pump).");
+    v.number("wrap_angle_deg", wrap_angle_deg, common::Range::between(30.0, 720.0, "deg"),
+             "Blade wrap angle from leading to trailing edge, about the axis.");
+    v.number("inlet_blade_angle_deg", inlet_blade_angle_deg, common::Range::between(5.0, 60.0, "deg"),
+             "Blade angle beta_1B at the leading edge, from the circumferential direction.");
+    v.number("outlet_blade_angle_deg", outlet_blade_angle_deg, common::Range::between(5.0, 90.0, "deg"),
+             "Blade angle beta_2B at the trailing edge, from the circumferential direction.");
+    v.number("blade_thickness_m", blade_thickness_m, common::Range::positive("m"), "Blade thickness.");
+    v.number("leading_edge_radius_m", leading_edge_radius_m, common::Range::positive("m"),
+             "Radius of the rounded leading edge (the high-curvature surface a rag wraps around).");
+    v.flag("closed", closed, "Closed impeller: hub and shroud discs (false: open, hub disc only).");
+  }
+};
+
+enum class VoluteSection { rectangular, trapezoidal };
+
+struct VoluteDesign {
+  VoluteSection section = VoluteSection::rectangular;
+  double base_radius_m = 0.105;
+  double base_width_m = 0.08;
+  double flank_angle_deg = 0.0;
+  double cut_water_nose_radius_m = 0.005;
+  double discharge_diameter_m = 0.1;
+  double discharge_length_m = 0.3;
+
+  template <class V> void visit(V &v) {
+    v.choice("section", section,
+             {{"rectangular", VoluteSection::rectangular}, {"trapezoidal", VoluteSection::trapezoidal}},
+             "Cross-section of the spiral: rectangular, or trapezoidal (flanks opening outwards).");
+    v.number("base_radius_m", base_radius_m, common::Range::positive("m"),
+             "Base circle of the spiral r3 (the cut-water radius); above D2 / 2.");
+    v.number("base_width_m", base_width_m, common::Range::positive("m"), "Axial width of the section at r3.");
+    v.number("flank_angle_deg", flank_angle_deg, common::Range::between(0.0, 45.0, "deg"),
+             "Trapezoidal section: angle of each flank from the radial direction (0: rectangular).");
+    v.number("cut_water_nose_radius_m", cut_water_nose_radius_m, common::Range::positive("m"),
+             "Radius of the cut-water (volute tongue) nose.");
+    v.number("discharge_diameter_m", discharge_diameter_m, common::Range::positive("m"),
+             "Diameter of the discharge pipe.");
+    v.number("discharge_length_m", discharge_length_m, common::Range::positive("m"),
+             "Length of the straight discharge pipe after the volute.");
+  }
+};
+
+struct InletDesign {
+  double suction_pipe_diameter_m = 0.15;
+  double suction_pipe_length_m = 0.3;
+
+  template <class V> void visit(V &v) {
+    v.number("suction_pipe_diameter_m", suction_pipe_diameter_m, common::Range::positive("m"),
+             "Diameter of the suction pipe below the eye.");
+    v.number("suction_pipe_length_m", suction_pipe_length_m, common::Range::positive("m"),
+             "Length of the suction pipe (the rag is released at its bottom).");
+  }
+};
+
+enum class RotationDirection { counterclockwise, clockwise };
+
+struct OperationDesign {
+  double rotation_rate_rad_per_s = 150.8;
+  RotationDirection direction = RotationDirection::counterclockwise;
+  double design_flow_rate_m3_per_s = 0.045;
+  double hydraulic_efficiency = 0.85;
+
+  template <class V> void visit(V &v) {
+    v.number("rotation_rate_rad_per_s", rotation_rate_rad_per_s, common::Range::positive("rad/s"),
+             "Rotation rate omega (150.8 rad/s = 1440 rpm, the paper's).");
+    v.choice("direction", direction,
+             {{"counterclockwise", RotationDirection::counterclockwise}, {"clockwise", RotationDirection::clockwise}},
+             "Sense of rotation seen from the inlet, looking downstream into the eye.");
+    v.number("design_flow_rate_m3_per_s", design_flow_rate_m3_per_s, common::Range::positive("m^3/s"),
+             "Flow rate the volute is sized for (the best efficiency point).");
+    v.number("hydraulic_efficiency", hydraulic_efficiency, common::Range::between(0.3, 1.0, "1"),
+             "eta_h of the Euler equation gH = eta_h u2 c_u2, for the swirl the volute is sized to carry.");
+  }
+};
+
+struct PumpDesign {
+  ImpellerDesign impeller;
+  VoluteDesign volute;
+  InletDesign inlet;
+  OperationDesign operation;
+
+  template <class V> void visit(V &v) {
+    v.section("impeller", impeller, "The rotating part: blades between hub and shroud.");
+    v.section("volute", volute, "The spiral casing around the impeller and its discharge.");
+    v.section("inlet", inlet, "The suction pipe below the eye.");
+    v.section("operation", operation, "Rotation and design flow rate.");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      validate(v);
+  }
+
+  /// Reads and validates a design file; throws common::ConfigError naming the file and key.
+  static PumpDesign load(const std::filesystem::path &file);
+  /// The reference of the design file (Markdown, one table; docs/pump-design.md holds it).
+  static std::string schema_markdown();
+
+private:
+  void validate(common::ConfigReader &v) const;
+};
+
+} // namespace fsi::pump

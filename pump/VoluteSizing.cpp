@@ -1,0 +1,50 @@
+#include "VoluteSizing.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fsi::pump {
+namespace {
+constexpr double g_m_per_s2 = 9.81;
+constexpr double pi = 3.14159265358979323846;
+} // namespace
+
+VoluteSizing::VoluteSizing(double flow_rate_m3_per_s, double head_m, double hydraulic_efficiency,
+                           double tip_speed_m_per_s, double impeller_radius_m, double base_radius_m,
+                           double base_width_m, double flank_angle_rad)
+    : q_(flow_rate_m3_per_s),
+      k_(g_m_per_s2 * head_m / (hydraulic_efficiency * tip_speed_m_per_s) * impeller_radius_m),
+      r3_(base_radius_m), b3_(base_width_m), tan_alpha_(std::tan(flank_angle_rad)) {
+  if (!(q_ > 0.0 && k_ > 0.0 && r3_ > 0.0 && b3_ > 0.0 && tan_alpha_ >= 0.0))
+    throw std::invalid_argument("VoluteSizing: flow rate, head, speeds and the section must be positive");
+}
+
+double VoluteSizing::section_flow_m3_per_s(double outer_radius_m) const {
+  // k int_{r3}^{ro} (b3 + 2 (r - r3) t) / r dr = k [(b3 - 2 r3 t) ln(ro / r3) + 2 t (ro - r3)]
+  return k_ * ((b3_ - 2.0 * r3_ * tan_alpha_) * std::log(outer_radius_m / r3_) + 2.0 * tan_alpha_ * (outer_radius_m - r3_));
+}
+
+double VoluteSizing::outer_radius_m(double theta_rad) const {
+  const double wanted = q_ * theta_rad / (2.0 * pi);
+  double ro = r3_ * std::exp(wanted / (k_ * b3_)); // the rectangular answer: exact when alpha = 0
+  if (tan_alpha_ == 0.0)
+    return ro;
+  for (int i = 0; i < 50; ++i) { // Newton on a convex, increasing function of ro
+    const double f = section_flow_m3_per_s(ro) - wanted;
+    const double df = k_ * width_m(ro) / ro;
+    const double step = f / df;
+    ro -= step;
+    if (std::abs(step) < 1e-15 * ro)
+      break;
+  }
+  return ro;
+}
+
+double VoluteSizing::section_area_m2(double theta_rad) const {
+  const double h = outer_radius_m(theta_rad) - r3_; // int_{r3}^{ro} b(r) dr
+  return b3_ * h + tan_alpha_ * h * h;
+}
+
+double VoluteSizing::throat_area_m2() const { return section_area_m2(2.0 * pi); }
+
+} // namespace fsi::pump

@@ -1,0 +1,79 @@
+// fsi-pump-design: checks a pump design file and prints what the design rules expect of it:
+// the duty at its design flow rate (specific speed, head, head and flow coefficients, power,
+// torque) and the volute its constant-angular-momentum rule gives (outer radius of the spiral
+// every 45 degrees, throat area), each against the plausibility bands of the design rules.
+//   fsi-pump-design DESIGN.yaml
+//   fsi-pump-design --schema          the design-file reference (docs/pump-design.md)
+// Exit codes: 0 valid, 2 bad input.
+
+#include "pump/DutyEstimate.hpp"
+#include "pump/PumpDesign.hpp"
+#include "pump/VoluteSizing.hpp"
+#include "common/ExitCodes.hpp"
+#include "common/GuardedMain.hpp"
+#include "common/Logging.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <iostream>
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+std::string band(double value, double lo, double hi) {
+  return value >= lo && value <= hi ? "within " + fmt::format("{:g}-{:g}", lo, hi)
+                                    : "OUTSIDE " + fmt::format("{:g}-{:g}", lo, hi);
+}
+
+int report(const fsi::pump::PumpDesign &design) {
+  const auto &op = design.operation;
+  const auto &imp = design.impeller;
+  const auto duty = fsi::pump::estimate_duty_for_flow(op.rotation_rate_rad_per_s, imp.outer_diameter_m,
+                                                      op.design_flow_rate_m3_per_s);
+  spdlog::info("duty at Q = {:.4g} m^3/s, omega = {:.4g} rad/s ({:.0f} rpm), D2 = {:.4g} m (Gülich's psi_opt):",
+               op.design_flow_rate_m3_per_s, op.rotation_rate_rad_per_s, op.rotation_rate_rad_per_s * 30.0 / pi,
+               imp.outer_diameter_m);
+  spdlog::info("  specific speed n_q = {:.3g}; tip speed u2 = {:.4g} m/s", duty.specific_speed, duty.tip_speed_m_per_s);
+  spdlog::info("  head H = {:.3g} m; psi = gH/u2^2 = {:.3g} ({}); phi = Q/(omega R2^3) = {:.3g}", duty.head_m,
+               duty.head_coefficient, band(duty.head_coefficient, 0.3, 0.5), duty.flow_coefficient);
+  spdlog::info("  hydraulic power {:.4g} W; shaft torque {:.3g} N m at eta = 0.8, {:.3g} N m at eta = 0.6",
+               duty.hydraulic_power_w, duty.torque_n_m(0.8, op.rotation_rate_rad_per_s),
+               duty.torque_n_m(0.6, op.rotation_rate_rad_per_s));
+  const auto &vol = design.volute;
+  const fsi::pump::VoluteSizing volute(op.design_flow_rate_m3_per_s, duty.head_m, op.hydraulic_efficiency,
+                                       duty.tip_speed_m_per_s, 0.5 * imp.outer_diameter_m, vol.base_radius_m,
+                                       vol.base_width_m, vol.flank_angle_deg * pi / 180.0);
+  std::string radii;
+  for (int deg = 45; deg <= 360; deg += 45)
+    radii += fmt::format("{}{:.4g}", radii.empty() ? "" : ", ", volute.outer_radius_m(deg * pi / 180.0));
+  spdlog::info("volute (constant angular momentum, c_u2 r2 = {:.4g} m^2/s): outer radius every 45 deg {} m",
+               volute.angular_momentum_m2_per_s(), radii);
+  spdlog::info("  throat area {:.4g} cm^2 ({} cm^2 for this duty)", 1e4 * volute.throat_area_m2(),
+               band(1e4 * volute.throat_area_m2(), 80.0, 115.0));
+  return fsi::common::exit_code_success;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  CLI::App app{"fsi-pump-design: check a pump design file and print what the design rules expect of it"};
+  std::string file;
+  bool schema = false;
+  app.add_option("design", file, "Pump design file (YAML)");
+  app.add_flag("--schema", schema, "Print the design-file reference (Markdown) and exit");
+  CLI11_PARSE(app, argc, argv);
+  if (schema) {
+    std::cout << fsi::pump::PumpDesign::schema_markdown();
+    return fsi::common::exit_code_success;
+  }
+  if (file.empty()) {
+    std::cerr << "fsi-pump-design: missing DESIGN (a pump design file, e.g. pump/designs/single-blade.yaml); see "
+                 "--help\n";
+    return fsi::common::exit_code_bad_input;
+  }
+  fsi::common::setup_logging("pump", false);
+  return fsi::common::guarded_main("pump design", [&] { return report(fsi::pump::PumpDesign::load(file)); });
+}
