@@ -82,11 +82,7 @@ RUN_TARGETS=(fsi-structure fsi-coupler fsi-prescribed-flow fsi-openfoam-fluid)
 prepare() {
   ensure_packages
   ensure_openfoam
-  if [ $# -gt 0 ]; then
-    build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON -- "$@"
-  else
-    build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON
-  fi
+  build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON -- "$@" # no target: all
 }
 
 # The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs

@@ -1,17 +1,12 @@
 #include "DutyEstimate.hpp"
 
+#include "PhysicalConstants.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace fsi::pump {
-namespace {
-constexpr double g_m_per_s2 = 9.81;
-constexpr double water_kg_per_m3 = 1000.0;
-constexpr double pi = 3.14159265358979323846;
-double rpm(double omega_rad_per_s) { return omega_rad_per_s * 60.0 / (2.0 * pi); }
-} // namespace
-
 double gulich_head_coefficient(double specific_speed) { return 1.21 * std::exp(-0.77 * specific_speed / 100.0); }
 
 double specific_speed(double omega_rad_per_s, double flow_rate_m3_per_s, double head_m) {

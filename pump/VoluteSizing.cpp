@@ -1,14 +1,11 @@
 #include "VoluteSizing.hpp"
 
+#include "PhysicalConstants.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
 namespace fsi::pump {
-namespace {
-constexpr double g_m_per_s2 = 9.81;
-constexpr double pi = 3.14159265358979323846;
-} // namespace
-
 VoluteSizing::VoluteSizing(double flow_rate_m3_per_s, double head_m, double hydraulic_efficiency,
                            double tip_speed_m_per_s, double impeller_radius_m, double base_radius_m,
                            double base_width_m, double flank_angle_rad)
@@ -25,7 +22,7 @@ double VoluteSizing::section_flow_m3_per_s(double outer_radius_m) const {
 }
 
 double VoluteSizing::outer_radius_m(double theta_rad) const {
-  const double wanted = q_ * theta_rad / (2.0 * pi);
+  const double wanted = q_ * theta_rad / (2.0 * M_PI);
   double ro = r3_ * std::exp(wanted / (k_ * b3_)); // the rectangular answer: exact when alpha = 0
   if (tan_alpha_ == 0.0)
     return ro;
@@ -45,6 +42,6 @@ double VoluteSizing::section_area_m2(double theta_rad) const {
   return b3_ * h + tan_alpha_ * h * h;
 }
 
-double VoluteSizing::throat_area_m2() const { return section_area_m2(2.0 * pi); }
+double VoluteSizing::throat_area_m2() const { return section_area_m2(2.0 * M_PI); }
 
 } // namespace fsi::pump

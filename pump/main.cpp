@@ -7,6 +7,7 @@
 // Exit codes: 0 valid, 2 bad input.
 
 #include "pump/DutyEstimate.hpp"
+#include "pump/PhysicalConstants.hpp"
 #include "pump/PumpDesign.hpp"
 #include "pump/VoluteSizing.hpp"
 #include "common/ExitCodes.hpp"
@@ -21,8 +22,6 @@
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
 std::string band(double value, double lo, double hi) {
   return value >= lo && value <= hi ? "within " + fmt::format("{:g}-{:g}", lo, hi)
                                     : "OUTSIDE " + fmt::format("{:g}-{:g}", lo, hi);
@@ -34,7 +33,7 @@ int report(const fsi::pump::PumpDesign &design) {
   const auto duty = fsi::pump::estimate_duty_for_flow(op.rotation_rate_rad_per_s, imp.outer_diameter_m,
                                                       op.design_flow_rate_m3_per_s);
   spdlog::info("duty at Q = {:.4g} m^3/s, omega = {:.4g} rad/s ({:.0f} rpm), D2 = {:.4g} m (Gülich's psi_opt):",
-               op.design_flow_rate_m3_per_s, op.rotation_rate_rad_per_s, op.rotation_rate_rad_per_s * 30.0 / pi,
+               op.design_flow_rate_m3_per_s, op.rotation_rate_rad_per_s, fsi::pump::rpm(op.rotation_rate_rad_per_s),
                imp.outer_diameter_m);
   spdlog::info("  specific speed n_q = {:.3g}; tip speed u2 = {:.4g} m/s", duty.specific_speed, duty.tip_speed_m_per_s);
   spdlog::info("  head H = {:.3g} m; psi = gH/u2^2 = {:.3g} ({}); phi = Q/(omega R2^3) = {:.3g}", duty.head_m,
@@ -45,10 +44,10 @@ int report(const fsi::pump::PumpDesign &design) {
   const auto &vol = design.volute;
   const fsi::pump::VoluteSizing volute(op.design_flow_rate_m3_per_s, duty.head_m, op.hydraulic_efficiency,
                                        duty.tip_speed_m_per_s, 0.5 * imp.outer_diameter_m, vol.base_radius_m,
-                                       vol.base_width_m, vol.flank_angle_deg * pi / 180.0);
+                                       vol.base_width_m, vol.flank_angle_deg * M_PI / 180.0);
   std::string radii;
   for (int deg = 45; deg <= 360; deg += 45)
-    radii += fmt::format("{}{:.4g}", radii.empty() ? "" : ", ", volute.outer_radius_m(deg * pi / 180.0));
+    radii += fmt::format("{}{:.4g}", radii.empty() ? "" : ", ", volute.outer_radius_m(deg * M_PI / 180.0));
   spdlog::info("volute (constant angular momentum, c_u2 r2 = {:.4g} m^2/s): outer radius every 45 deg {} m",
                volute.angular_momentum_m2_per_s(), radii);
   spdlog::info("  throat area {:.4g} cm^2 ({} cm^2 for this duty)", 1e4 * volute.throat_area_m2(),
