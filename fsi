@@ -117,15 +117,16 @@ cmd_run() {
     if [ -d "$out/openfoam" ] && /usr/bin/python3 "$ROOT/scripts/plot_flow.py" "$out" >/dev/null 2>&1; then
       say "flow pictures: $(ls "$out"/flow_t*.png | tr '\n' ' ')"
     fi
-    # A case's own quantities (its README names them): cases/<case>/postprocess.py OUT CASE_DIR.
-    local case_dir=${!#}
-    if [ -f "$case_dir/postprocess.py" ]; then
-      local made
-      if made=$(/usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
-        say "case quantities: $made (in $out)"
-      else
-        say "warning: $case_dir/postprocess.py failed: $(echo "$made" | tail -1)"
-      fi
+  fi
+  # A case's own quantities (its README names them): cases/<case>/postprocess.py OUT CASE_DIR,
+  # after the structure's pictures (it may redraw them), or after the flow alone (a pump's operating point).
+  local case_dir=${!#}
+  if [ -n "$out" ] && { [ -f "$results" ] || [ -f "$out/forces.csv" ]; } && [ -f "$case_dir/postprocess.py" ]; then
+    local made
+    if made=$(/usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
+      say "case quantities: $made (in $out)"
+    else
+      say "warning: $case_dir/postprocess.py failed: $(echo "$made" | tail -1)"
     fi
   fi
   return "$status"

@@ -2,6 +2,7 @@
 
 #include "common/ConfigEmitter.hpp"
 #include "common/DidYouMean.hpp"
+#include "common/Fnv1a.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,15 +14,16 @@
 namespace fsi::case_config {
 
 void CaseConfig::validate(common::ConfigReader &v) const {
-  if (structures.empty())
-    v.fail_value("structures", "must list at least one structure.");
+  if (structures.empty() && !(fluid && fluid->openfoam))
+    v.fail_value("structures", "must list at least one structure (none only with `fluid.openfoam`: the flow alone with "
+                               "its rigid bodies, as in cases/centrifugal-pump).");
   std::set<std::string> names;
   for (const auto &s : structures)
     if (!names.insert(s.name).second)
       v.fail_value("structures", "has two structures named '" + s.name + "'; names must be unique.");
   if (run.output_interval_s < run.time_step_s)
     v.fail_value("run", "output_interval_s must be at least time_step_s.");
-  if (fluid && !coupling)
+  if (fluid && !coupling && !structures.empty())
     v.fail_value("fluid", "needs a `coupling` section (at least `coupling: {law: penalty}`).");
   if (coupling && !fluid)
     v.fail_value("coupling", "is given but there is no `fluid` section: remove it for a structure-only run, or add "
@@ -57,10 +59,10 @@ CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::st
   const auto overlay = case_dir / "presets" / (preset + ".yaml");
   if (!preset.empty() && !std::filesystem::exists(overlay)) {
     const auto available = presets(case_dir);
-    throw common::ConfigError(case_dir.string() + ": no preset '" + preset + "' (" + overlay.string() + ")." +
-                              common::did_you_mean(preset, available) +
-                              (available.empty() ? " This case has no presets."
-                                                 : " Presets of this case: " + common::join(available) + "."));
+    throw common::ConfigError(
+        case_dir.string() + ": no preset '" + preset + "' (" + overlay.string() + ")." +
+        common::did_you_mean(preset, available) +
+        (available.empty() ? " This case has no presets." : " Presets of this case: " + common::join(available) + "."));
   }
   auto reader = preset.empty() ? common::ConfigReader::from_file(case_dir / "case.yaml")
                                : common::ConfigReader::from_file_with_overlay(case_dir / "case.yaml", overlay);
@@ -78,12 +80,9 @@ std::string CaseConfig::fingerprint() const {
   if (node["coupling"])
     node["coupling"].remove("endpoint");
   const std::string text = YAML::Dump(node);
-  std::uint64_t hash = 14695981039346656037ull; // FNV-1a, 64 bit: stable across builds
-  for (const unsigned char c : text)
-    hash = (hash ^ c) * 1099511628211ull;
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
-  return hex;
+  common::Fnv1a hash;
+  hash.add_bytes(text);
+  return hash.hex();
 }
 
 } // namespace fsi::case_config

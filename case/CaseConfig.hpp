@@ -29,7 +29,9 @@ struct CaseConfig {
     v.section("run", run, "Time stepping and output.");
     v.vec3("gravity_m_per_s2", gravity_m_per_s2, "m/s^2", "Gravitational acceleration g.");
     v.optional_section("collisions", collisions, "Rigid surfaces and the collision model of Eq. (11).");
-    v.list("structures", structures, "Flexible structures of the scene (at least one).");
+    v.list("structures", structures,
+           "Flexible structures of the scene (at least one; none with fluid.openfoam: the flow alone with its "
+           "rigid bodies, e.g. a pump's performance).");
     v.list("probes", probes,
            "Places on the structures (centroid, edge centre, grid point) whose position and velocity are saved "
            "at every saved step: structure.h5 /probes/<name> and probes.csv. Optional.");
@@ -52,8 +54,11 @@ struct CaseConfig {
     return override_dir.empty() ? case_dir / run.output_directory : std::filesystem::path(override_dir);
   }
 
-  /// True when the scene has a fluid: then a coupler and a fluid participant run too.
-  bool is_coupled() const { return fluid.has_value(); }
+  /// True when the scene has a fluid and a structure: then a coupler and a fluid participant run too.
+  bool is_coupled() const { return fluid.has_value() && !structures.empty(); }
+  /// True when the scene is the OpenFOAM flow alone with its rigid bodies (no structure): only
+  /// the fluid process runs (a pump's single-phase performance).
+  bool is_flow_alone() const { return structures.empty() && fluid && fluid->openfoam; }
   /// Hash (16 hex digits) of the effective configuration without what may differ between
   /// the processes of one run (output folder, endpoint): participants must agree on it.
   std::string fingerprint() const;

@@ -35,6 +35,8 @@ int print_plan(const fsi::case_config::CaseConfig &config, const std::filesystem
     std::cout << "process fluid " << config.fluid->executable() << "\n";
     if (config.fluid->openfoam && config.fluid->openfoam->precursor_time_s > 0.0)
       std::cout << "precursor fluid\n"; // fsi-openfoam-fluid --precursor, before the others start
+  } else if (config.is_flow_alone()) {
+    std::cout << "process fluid " << config.fluid->executable() << "\n"; // the flow alone with its rigid bodies
   } else {
     std::cout << "process structure fsi-structure\n";
   }
@@ -63,9 +65,8 @@ int main(int argc, char **argv) {
     if (plan)
       return print_plan(config, out);
     if (!config.is_coupled()) {
-      spdlog::error("case {} has no `fluid` section: it is a structure-only scene and needs no coupler; run it with "
-                    "./fsi run {}",
-                    case_dir, case_dir);
+      spdlog::error("case {} is {}: it needs no coupler; run it with ./fsi run {}", case_dir,
+                    config.is_flow_alone() ? "the flow alone (no structure)" : "a structure-only scene", case_dir);
       return fsi::common::exit_code_bad_input;
     }
     std::signal(SIGINT, on_stop_signal);

@@ -1,33 +1,115 @@
 #include "OpenFoamCase.hpp"
 
 #include "common/ConfigError.hpp"
+#include "common/Fnv1a.hpp"
 
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 
 namespace fsi::fluid {
 
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Runs an OpenFOAM utility on the case, its output in case/log.<tool>.
+void run_tool(const std::string &tool, const fs::path &foam_case, const std::string &options = "") {
+  const fs::path log = foam_case / ("log." + tool);
+  const std::string command = tool + " -case '" + foam_case.string() + "'" + options + " > '" + log.string() + "' 2>&1";
+  spdlog::info("meshing: {}", command);
+  if (std::system(command.c_str()) != 0)
+    throw std::runtime_error(tool + " failed: see " + log.string());
+}
+
+fs::path mesh_cache_root() {
+  if (const char *dir = std::getenv("FSI_MESH_CACHE"); dir && *dir)
+    return dir;
+  if (const char *dir = std::getenv("XDG_CACHE_HOME"); dir && *dir)
+    return fs::path(dir) / "fsi" / "meshes";
+  if (const char *home = std::getenv("HOME"); home && *home)
+    return fs::path(home) / ".cache" / "fsi" / "meshes";
+  return {};
+}
+
+/// The hash of what a snappyHexMesh mesh is made from.
+std::string mesh_inputs_hash(const fs::path &foam_case) {
+  common::Fnv1a hash;
+  for (const char *dict : {"blockMeshDict", "snappyHexMeshDict", "surfaceFeatureExtractDict", "meshQualityDict"})
+    hash.add_file(foam_case / "system" / dict);
+  std::vector<fs::path> surfaces;
+  if (fs::is_directory(foam_case / "constant" / "triSurface"))
+    for (const auto &entry : fs::directory_iterator(foam_case / "constant" / "triSurface"))
+      if (entry.is_regular_file())
+        surfaces.push_back(entry.path());
+  std::sort(surfaces.begin(), surfaces.end());
+  for (const auto &file : surfaces) {
+    hash.add(file.filename().string());
+    hash.add_file(file);
+  }
+  return hash.hex();
+}
+
+/// blockMesh, snappyHexMesh and checkMesh, or the same mesh from the cache.
+void snappy_mesh(const fs::path &foam_case) {
+  const fs::path root = mesh_cache_root();
+  const fs::path cached = root.empty() ? fs::path() : root / mesh_inputs_hash(foam_case);
+  const fs::path mesh = foam_case / "constant" / "polyMesh";
+  if (!cached.empty() && fs::exists(cached / "polyMesh" / "owner")) {
+    fs::remove_all(mesh);
+    fs::copy(cached / "polyMesh", mesh, fs::copy_options::recursive);
+    spdlog::info("meshing: the snappyHexMesh mesh of these inputs is cached: {}", cached.string());
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  run_tool("blockMesh", foam_case);
+  if (fs::exists(foam_case / "system" / "surfaceFeatureExtractDict"))
+    run_tool("surfaceFeatureExtract", foam_case);
+  run_tool("snappyHexMesh", foam_case, " -overwrite");
+  run_tool("checkMesh", foam_case, " -constant");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  spdlog::info("meshing: snappyHexMesh done in {:.0f} s (checkMesh: {})", seconds,
+               (foam_case / "log.checkMesh").string());
+  if (cached.empty())
+    return;
+  // Into a private folder first, then renamed: runs meshing the same inputs at once (the points
+  // of a pump curve) never see a half-written cache entry.
+  std::error_code error;
+  const fs::path partial = root / (cached.filename().string() + ".partial." + std::to_string(::getpid()));
+  fs::create_directories(partial, error);
+  fs::copy(mesh, partial / "polyMesh", fs::copy_options::recursive, error);
+  if (!error)
+    fs::rename(partial, cached, error);
+  if (error) {
+    fs::remove_all(partial, error);
+    spdlog::debug("meshing: mesh not cached in {}", cached.string());
+  }
+}
+
+} // namespace
+
 std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const std::string &template_dir,
                                             const std::filesystem::path &out) {
-  namespace fs = std::filesystem;
   const fs::path source = case_dir / template_dir, target = out / "openfoam";
   if (!fs::is_directory(source / "system") || !fs::is_directory(source / "constant"))
     throw common::ConfigError((source).string() + ": fluid.openfoam.case_directory must be an OpenFOAM case "
-                                                       "(folders system/, constant/ and 0/).");
+                                                  "(folders system/, constant/ and 0/).");
   fs::remove_all(target);
   fs::create_directories(target);
   fs::copy(source, target, fs::copy_options::recursive);
   if (!fs::exists(target / "constant" / "polyMesh" / "owner")) {
     if (!fs::exists(target / "system" / "blockMeshDict"))
       throw common::ConfigError(source.string() + ": no mesh (constant/polyMesh) and no system/blockMeshDict.");
-    const std::string command = "blockMesh -case '" + target.string() + "' > '" + (target / "log.blockMesh").string() +
-                                "' 2>&1";
-    spdlog::info("meshing: {}", command);
-    if (std::system(command.c_str()) != 0)
-      throw std::runtime_error("blockMesh failed: see " + (target / "log.blockMesh").string());
+    if (fs::exists(target / "system" / "snappyHexMeshDict"))
+      snappy_mesh(target);
+    else
+      run_tool("blockMesh", target);
   }
   return target;
 }

@@ -1,15 +1,21 @@
 #pragma once
 // The OpenFOAM case a fluid run works in: the case's fluid.openfoam.case_directory copied into
-// the output folder and meshed with blockMesh when it has no mesh; decomposed for MPI.
+// the output folder and meshed when it has no mesh (blockMesh; then snappyHexMesh when the
+// case has a system/snappyHexMeshDict, e.g. a pump casing); decomposed for MPI.
 
 #include <filesystem>
 #include <string>
 
 namespace fsi::fluid {
 
-/// Copies case_dir/template_dir to out/openfoam (replacing an earlier copy) and runs blockMesh
-/// there when it has no mesh; returns the copy. Throws common::ConfigError for a folder that
-/// is not an OpenFOAM case, std::runtime_error when blockMesh fails (naming its log).
+/// Copies case_dir/template_dir to out/openfoam (replacing an earlier copy) and meshes it when
+/// it has no constant/polyMesh: blockMesh, then (with system/snappyHexMeshDict)
+/// surfaceFeatureExtract when the case has its dictionary, snappyHexMesh -overwrite and
+/// checkMesh. A snappyHexMesh mesh is kept in the mesh cache ($FSI_MESH_CACHE, default
+/// ~/.cache/fsi/meshes) under a hash of the files it is made from (system/ dictionaries of the
+/// meshing tools, constant/triSurface): the next run with the same inputs reuses it. Returns the
+/// copy. Throws common::ConfigError for a folder that is not an OpenFOAM case,
+/// std::runtime_error when a meshing tool fails (naming its log).
 std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const std::string &template_dir,
                                             const std::filesystem::path &out);
 

@@ -1,6 +1,7 @@
 #include "Precursor.hpp"
 
 #include "common/ConfigEmitter.hpp"
+#include "common/Fnv1a.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -17,30 +18,6 @@ namespace fsi::fluid {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// FNV-1a, 64 bit: stable across builds and machines (unlike std::hash).
-class Fnv1a {
-public:
-  void add(const std::string &text) {
-    for (const unsigned char c : text)
-      hash_ = (hash_ ^ c) * 1099511628211ull;
-    hash_ = (hash_ ^ 0xffu) * 1099511628211ull; // separator: "ab"+"c" differs from "a"+"bc"
-  }
-  void add_file(const fs::path &file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream contents;
-    contents << in.rdbuf();
-    add(contents.str());
-  }
-  std::string hex() const {
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash_));
-    return text;
-  }
-
-private:
-  std::uint64_t hash_ = 14695981039346656037ull;
-};
 
 bool is_number(const std::string &name, double &value) {
   try {
@@ -74,7 +51,7 @@ Precursor::Precursor(const PrecursorInputs &inputs, fs::path case_dir, fs::path 
 }
 
 std::string Precursor::compute_fingerprint(const PrecursorInputs &inputs, const fs::path &case_dir) const {
-  Fnv1a hash;
+  common::Fnv1a hash;
   hash.add(inputs.fluid_yaml);
   if (!inputs.collisions_yaml.empty())
     hash.add(inputs.collisions_yaml);

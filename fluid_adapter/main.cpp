@@ -9,14 +9,16 @@
 // With fluid.openfoam.mpi_ranks = N > 1 it prepares and decomposes the case, then replaces
 // itself by `mpirun -np N fsi-openfoam-fluid ... --mpi-rank` (same process id, so signals and
 // the exit code reach the launcher); rank 0 talks to the coupler, the others follow it.
+// A case without structures is the flow alone with its rigid bodies (a pump's single-phase
+// performance): no coupler, run.time_step_s to run.end_time_s, forces.csv in <output>.
 // Exit codes: 0 success, 1 the run stopped (coupler lost, another participant failed, OpenFOAM
 // failed), 2 bad input, 130 interrupted.
 
+#include "FlowAloneRun.hpp"
 #include "FoamFlow.hpp"
 #include "OpenFoamCase.hpp"
 #include "OpenFoamFluidModel.hpp"
 #include "Precursor.hpp"
-#include "PrecursorRun.hpp"
 #include "RigidBodies.hpp"
 #include "SelfLaunch.hpp"
 #include "case/CaseOptions.hpp"
@@ -43,10 +45,11 @@ using fsi::fluid::Precursor;
 
 extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_signal() = signal; }
 
-/// What this process runs: the coupled participant, or the precursor (the flow with its rigid
-/// bodies alone, section 3.2). Either prepares the OpenFOAM case itself, or is one rank under
-/// mpirun on a case already prepared (--mpi-rank).
-enum class Role { coupled, precursor };
+/// What this process runs: the coupled participant, the precursor (the flow with its rigid
+/// bodies alone, section 3.2), or a case without structures (the flow alone, to its end).
+/// Each prepares the OpenFOAM case itself, or is one rank under mpirun on a case already
+/// prepared (--mpi-rank).
+enum class Role { coupled, precursor, alone };
 
 struct Process {
   Role role = Role::coupled;
@@ -89,15 +92,27 @@ int run_precursor(const Process &process, fsi::fluid::OpenFoamFluidModel &model,
     spdlog::set_level(spdlog::level::warn);
   else if (process.under_mpirun)
     fsi::common::add_log_file(precursor.folder() / "fluid.log");
-  spdlog::info("precursor: {} to t = {} s, dt = {} s (the last {} steps at the coupled run's {} s)",
-               flow.describe(), precursor.end_time_s(), precursor.time_step_s(), Precursor::handover_steps,
-               coupled_time_step_s);
-  const int code = fsi::fluid::run_precursor_steps(model, flow, precursor);
+  spdlog::info("precursor: {} to t = {} s, dt = {} s (the last {} steps at the coupled run's {} s)", flow.describe(),
+               precursor.end_time_s(), precursor.time_step_s(), Precursor::handover_steps, coupled_time_step_s);
+  const int code = fsi::fluid::run_flow_alone(model, flow, {"precursor", precursor.folder(), precursor.step_sizes()});
   if (code == 0 && flow.rank() == 0) {
     precursor.mark_complete();
     spdlog::info("precursor: fields of t = {} s written in {}", flow.time_s(), precursor.foam_case().string());
   }
   return code;
+}
+
+/// A case without structures: the flow with its rigid bodies to run.end_time_s, every rank.
+int run_alone(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamFlow &flow,
+              const CaseConfig &config, const fs::path &out) {
+  if (flow.rank() != 0)
+    spdlog::set_level(spdlog::level::warn);
+  else if (process.under_mpirun)
+    fsi::common::add_log_file(out / "fluid.log");
+  spdlog::info("flow alone (no structure): {} to t = {} s, dt = {} s", flow.describe(), config.run.end_time_s,
+               config.run.time_step_s);
+  return fsi::fluid::run_flow_alone(
+      model, flow, {"flow", out, fsi::fluid::uniform_steps(config.run.time_step_s, config.run.end_time_s)});
 }
 
 /// The coupled participant: rank 0 talks to the coupler, the other ranks follow it.
@@ -117,9 +132,9 @@ int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, f
 /// The bodies to penalize; in the coupled run the coupler moves them (section 2.3), in the
 /// precursor (no coupler) they follow their declared motions.
 std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> bodies_for(Role role, const CaseConfig &config) {
-  auto bodies = fsi::fluid::rigid_bodies(
-      config.collisions ? config.collisions->surfaces : std::vector<fsi::geometry::SurfaceConfig>{},
-      config.gravity_m_per_s2.norm());
+  auto bodies = fsi::fluid::rigid_bodies(config.collisions ? config.collisions->surfaces
+                                                           : std::vector<fsi::geometry::SurfaceConfig>{},
+                                         config.gravity_m_per_s2.norm());
   if (role == Role::coupled)
     for (auto &body : bodies)
       if (!body->motion().is_static())
@@ -153,9 +168,12 @@ int main(int argc, char **argv) {
                  "WM_PROJECT_DIR=/usr/share/openfoam\n";
     return fsi::common::exit_code_bad_input;
   }
-  const Process process{precursor_only ? Role::precursor : Role::coupled, mpi_rank, argc, argv};
   return fsi::common::guarded_main("OpenFOAM fluid", [&] {
     const auto config = options.load();
+    const Process process{precursor_only           ? Role::precursor
+                          : config.is_flow_alone() ? Role::alone
+                                                   : Role::coupled,
+                          mpi_rank, argc, argv};
     const std::string &case_dir = options.case_dir;
     if (!config.fluid || !config.fluid->openfoam) {
       spdlog::error("case {} has no `fluid.openfoam` section: there is no OpenFOAM fluid to run", case_dir);
@@ -187,6 +205,8 @@ int main(int argc, char **argv) {
     const double end_time = precursor_run ? precursor.end_time_s() : config.run.end_time_s;
     auto flow = fsi::fluid::FoamFlow::create({fs::absolute(foam_case), dt, end_time, process.under_mpirun});
     fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, bodies_for(process.role, config));
+    if (process.role == Role::alone)
+      return run_alone(process, model, *flow, config, out);
     return precursor_run ? run_precursor(process, model, *flow, precursor, config.run.time_step_s)
                          : run_coupled(process, model, *flow, config, out, endpoint);
   });

@@ -187,6 +187,22 @@ def run_precursors(args, plan):
                             code if code in (EXIT_BAD_INPUT, EXIT_INTERRUPTED) else EXIT_RUN_FAILED)
 
 
+def run_flow_alone(command, output_dir, verbose):
+    """A case without structures: the OpenFOAM flow alone with its rigid bodies (a pump's
+    operating point). Its progress lines (stderr) show; the solver's residuals (stdout) go to
+    <output>/logs/fluid.console unless -v."""
+    os.makedirs(os.path.join(output_dir, "logs"), exist_ok=True)
+    console_path = os.path.join(output_dir, "logs", "fluid.console")
+    with open(console_path, "wb") as console:
+        code = subprocess.call(command, stdin=subprocess.DEVNULL, stdout=None if verbose else console)
+    if code < 0:
+        code = 128 - code
+    if code not in (EXIT_OK, EXIT_BAD_INPUT, EXIT_INTERRUPTED):
+        say("the fluid stopped with exit code %d (logs: %s, %s)"
+            % (code, os.path.join(output_dir, "fluid.log"), console_path))
+    return code
+
+
 def command_for(name, executable, args, endpoint, coupled):
     """The command line of one process. endpoint: None to let it read the case file."""
     command = [executable, args.case_dir]
@@ -451,7 +467,10 @@ def main(argv):
 
     if not coupled:
         name = plan.names()[0]
-        exec_process(command_for(name, plan.executable(name), args, None, coupled=False))
+        command = command_for(name, plan.executable(name), args, None, coupled=False)
+        if name == "fluid":
+            return run_flow_alone(command, plan.output_dir, args.verbose)
+        exec_process(command)
 
     run_precursors(args, plan)
     return CoupledRun(args, plan).run()

@@ -80,6 +80,11 @@ int main(int argc, char **argv) {
       return check_case(options);
     auto config = options.load();
     const std::filesystem::path out = options.output_directory(config);
+    if (config.is_flow_alone()) {
+      spdlog::error("case {} has no structure: its flow runs alone (fsi-openfoam-fluid); run it with ./fsi run {}",
+                    case_dir, case_dir);
+      return fsi::common::exit_code_bad_input;
+    }
     if (!coupled) {
       if (config.is_coupled())
         spdlog::warn("case {} has a fluid section; running the structure alone (no fluid load). Use ./fsi run "

@@ -144,6 +144,9 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   text << ", turbulence " << turbulence_->type() << ", case "
        << settings.case_directory.string();
   description_ = text.str();
+  // The case's own function objects (controlDict `functions`: surfaceFieldValue, probes, ...)
+  // run as in OpenFOAM's solvers; the time loop here is ++runTime, which does not call them.
+  runTime_->functionObjects().start();
 }
 
 void OpenFoamFlow::broadcast_from_master(std::vector<double> &data) const {
@@ -287,6 +290,7 @@ void OpenFoamFlow::advance(double dt_s) {
                              " s) is written when the run stops");
   }
   runTime_->write();
+  runTime_->functionObjects().execute();
 }
 
 std::string OpenFoamFlow::find_divergence(double dt_s) const {

@@ -286,7 +286,7 @@ class Precursor(PenalizationTest):
         # The drag continues from the precursor's flow: the first coupled step's drag differs from
         # the precursor's last by about the precursor's own step-to-step change (0.2 %).
         forces = np.loadtxt(os.path.join(pre, "forces.csv"), delimiter=",", skiprows=1)
-        self.assertEqual(forces.shape, (int(round(self.PRE_END / self.PRE_DT)), 4))
+        self.assertEqual(forces.shape, (int(round(self.PRE_END / self.PRE_DT)), 7))  # t, force (N), torque (N m)
         coupled = rigid_body_loads(os.path.join(out, "coupling.h5"))["surface0"][0]
         jump = abs(coupled[0, 0] - forces[-1, 1]) / abs(forces[-1, 1])
         u = read_internal_field(os.path.join(out, "openfoam", "0", "U"), block.n_cells)

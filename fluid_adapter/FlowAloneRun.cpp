@@ -1,0 +1,86 @@
+#include "FlowAloneRun.hpp"
+
+#include "common/ExitCodes.hpp"
+#include "common/FormatDuration.hpp"
+#include "proto/FluidParticipant.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+
+namespace fsi::fluid {
+
+std::vector<double> uniform_steps(double time_step_s, double end_time_s) {
+  std::vector<double> steps;
+  double t = 0.0;
+  while (t < end_time_s * (1.0 - 1e-12)) {
+    const double dt = std::min(time_step_s, end_time_s - t);
+    if (dt < 1e-9 * time_step_s)
+      break;
+    steps.push_back(dt);
+    t += dt;
+  }
+  return steps;
+}
+
+namespace {
+
+void write_header(std::ofstream &forces, std::size_t n_bodies) {
+  forces << "time_s";
+  for (std::size_t b = 0; b < n_bodies; ++b)
+    for (const char *q : {"fx_n", "fy_n", "fz_n", "tx_n_m", "ty_n_m", "tz_n_m"})
+      forces << ",body" << b << "." << q;
+  forces << "\n";
+}
+
+} // namespace
+
+int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSchedule &schedule) {
+  using Clock = std::chrono::steady_clock;
+  const auto &steps = schedule.step_sizes_s;
+  const auto n_steps = static_cast<long>(steps.size());
+  double end = 0.0;
+  for (const double dt : steps)
+    end += dt;
+  std::ofstream forces;
+  const auto start = Clock::now();
+  auto last_report = start;
+  double t = 0.0;
+  for (long step = 0; step < n_steps; ++step) {
+    if (proto::FluidParticipant::stop_signal() != 0) {
+      spdlog::warn("{} interrupted at t = {:.6g} s", schedule.label, t);
+      flow.write_now();
+      return common::exit_code_interrupted;
+    }
+    const auto loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
+    t += steps[static_cast<std::size_t>(step)];
+    if (flow.rank() != 0)
+      continue;
+    if (step == 0 && !loads.empty()) {
+      forces.open(schedule.folder / "forces.csv");
+      write_header(forces, loads.size());
+    }
+    if (forces.is_open()) {
+      forces << flow.time_s();
+      for (const auto &load : loads)
+        forces << "," << load.force_n.x() << "," << load.force_n.y() << "," << load.force_n.z() << ","
+               << load.torque_n_m.x() << "," << load.torque_n_m.y() << "," << load.torque_n_m.z();
+      forces << "\n";
+    }
+    const auto now = Clock::now();
+    if (now - last_report > std::chrono::seconds(5) || step + 1 == n_steps) {
+      last_report = now;
+      forces.flush();
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double eta = wall / static_cast<double>(step + 1) * static_cast<double>(n_steps - step - 1);
+      spdlog::info("{}: t = {:.4g} of {:.4g} s, step {}/{}, {:.1f} ms/step, ETA {}", schedule.label, flow.time_s(), end,
+                   step + 1, n_steps, 1e3 * wall / static_cast<double>(step + 1), common::format_duration(eta));
+    }
+  }
+  flow.write_now();
+  return 0;
+}
+
+} // namespace fsi::fluid

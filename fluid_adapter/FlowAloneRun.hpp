@@ -1,0 +1,30 @@
+#pragma once
+// The time loop of the flow alone with its rigid bodies (no structure, no coupler), on every
+// rank: the precursor of a coupled run (section 3.2, at Precursor::step_sizes), and a case
+// without structures (a pump's single-phase performance, at run.time_step_s).
+
+#include "FoamFlow.hpp"
+#include "OpenFoamFluidModel.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fsi::fluid {
+
+struct FlowAloneSchedule {
+  std::string label;                ///< what the log calls it ("precursor", "flow")
+  std::filesystem::path folder;     ///< where forces.csv goes
+  std::vector<double> step_sizes_s; ///< the time steps, in order
+};
+
+/// Steps through the schedule; progress with ETA and the rigid-body loads (folder/forces.csv:
+/// per body the force of the fluid on it, N, and its torque about the body's box centre, N m)
+/// from the master, a line per step; writes the fields at the end. Returns the exit code
+/// (common::exit_code_interrupted when stopped by a signal).
+int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSchedule &schedule);
+
+/// n steps of dt to end_time_s (the last one shortened to land on it).
+std::vector<double> uniform_steps(double time_step_s, double end_time_s);
+
+} // namespace fsi::fluid
