@@ -1,0 +1,256 @@
+#!/usr/bin/python3
+"""./fsi pump-curve: the performance curve of a pump case (cases/centrifugal-pump): the same
+case run at several flow rates, each point independent and averaged over its last whole
+revolutions (scripts/pump_point.py), written to pump_curve.csv and drawn in pump_curve.png (H/H_BEP
+and T/T_BEP against Q/Q_BEP, as the paper's Figs. 10-11, the efficiency on a second axis).
+
+    pump_curve.py --bin-dir BIN [--points 0.36,0.6,0.8,1.0,1.2] [--jobs N] [--resolution NAME]
+                  [--end-time S] [-o DIR] CASE_DIR
+
+Each point is a copy of the case folder with its flow rate (constant/operatingPoint of the
+OpenFOAM case) set to the fraction of the design flow rate (pump.yaml), run by fsi_launch.py in
+DIR/q<fraction>/ (the run) and DIR/q<fraction>/case (the copy). Points run in parallel, up to
+--jobs at once (default: the cores, over the fluid's MPI ranks); the first one meshes and the
+others start once its mesh is in the mesh cache. Progress with ETA on stderr; a failed point is
+reported and the curve drawn with the others.
+"""
+
+import argparse
+import concurrent.futures
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import threading
+import time
+
+import yaml
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import pump_point  # noqa: E402
+
+LAUNCHER = os.path.join(HERE, "fsi_launch.py")
+PROGRESS = re.compile(r"flow: t = ([0-9.eE+-]+) of ([0-9.eE+-]+) s.*ETA (.*)$")
+LOCK = threading.Lock()
+
+
+def say(message):
+    with LOCK:
+        sys.stderr.write("pump-curve: %s\n" % message)
+        sys.stderr.flush()
+
+
+class Point:
+    def __init__(self, fraction, design_q, out):
+        self.fraction = fraction
+        self.flow_rate = fraction * design_q
+        self.name = "q%.2f" % fraction
+        self.folder = os.path.join(out, self.name)
+        self.case = os.path.join(self.folder, "case")
+        self.progress = 0.0
+        self.eta = ""
+        self.state = "waiting"
+        self.result = None
+        self.error = None
+        self.started = None
+        self.meshed = threading.Event()
+
+
+def copy_case(case_dir, point, template):
+    """The case folder without its results, with the flow rate of this point."""
+    if os.path.exists(point.case):
+        shutil.rmtree(point.case)
+    shutil.copytree(case_dir, point.case, symlinks=True,
+                    ignore=shutil.ignore_patterns("output", "__pycache__"))
+    operating = os.path.join(point.case, template, "constant", "operatingPoint")
+    with open(operating) as f:
+        text = f.read()
+    text, n = re.subn(r"^flowRate\s+[^;]+;", "flowRate        %r;" % point.flow_rate, text, flags=re.M)
+    if n != 1:
+        raise SystemExit("pump-curve: %s has no `flowRate VALUE;` line" % operating)
+    with open(operating, "w") as f:
+        f.write("// Set by pump_curve.py: %.3g of the design flow rate.\n" % point.fraction + text)
+
+
+def run_point(args, point, template):
+    copy_case(args.case_dir, point, template)
+    command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", point.folder]
+    if args.resolution:
+        command += ["--resolution", args.resolution]
+    if args.end_time:
+        command += ["--end-time", str(args.end_time)]
+    command.append(point.case)
+    point.state, point.started = "running", time.monotonic()
+    with open(os.path.join(point.folder, "pump_curve.log"), "wb") as log:
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
+        for raw in iter(process.stderr.readline, b""):
+            log.write(raw)
+            line = raw.decode("utf-8", "replace").rstrip()
+            if "flow alone (no structure)" in line:
+                point.meshed.set()
+            match = PROGRESS.search(line)
+            if match:
+                point.progress = float(match.group(1)) / float(match.group(2))
+                point.eta = match.group(3)
+        code = process.wait()
+    point.meshed.set()
+    if code != 0:
+        point.state, point.error = "failed", "exit code %d (log: %s)" % (code, os.path.join(point.folder, "pump_curve.log"))
+        return
+    made = subprocess.run([sys.executable, os.path.join(point.case, "postprocess.py"), point.folder, point.case],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if made.returncode != 0:
+        point.state, point.error = "failed", "postprocess: %s" % made.stdout.decode().strip().splitlines()[-1]
+        return
+    with open(os.path.join(point.folder, "operating_point.yaml")) as f:
+        point.result = yaml.safe_load(f)
+    point.state = "done"
+
+
+def report_progress(points, stop):
+    while not stop.wait(15.0):
+        running = [p for p in points if p.state == "running"]
+        done = sum(p.state in ("done", "failed") for p in points)
+        say("%d/%d points done; %s" % (done, len(points), ", ".join(
+            "%s %.0f %% (ETA %s)" % (p.name, 100 * p.progress, p.eta or "?") for p in running) or "starting"))
+
+
+def write_csv(points, path):
+    keys = ["fraction_of_design", "flow_rate_m3_per_s", "head_m", "shaft_torque_n_m", "efficiency",
+            "head_coefficient_psi", "flow_coefficient_phi", "torque_pulsation_1_per_rev",
+            "head_pulsation_1_per_rev", "revolutions_averaged"]
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(keys)
+        for p in points:
+            if p.result:
+                w.writerow([p.fraction] + [p.result[k] for k in keys[1:]])
+
+
+def plausibility(points):
+    """The checks of issue 11 that a single curve can tell, as lines of text."""
+    done = [p for p in points if p.result]
+    if len(done) < 3:
+        return ["fewer than 3 points: no curve checks"]
+    q = [p.flow_rate for p in done]
+    h = [p.result["head_m"] for p in done]
+    t = [p.result["shaft_torque_n_m"] for p in done]
+    eta = [p.result["efficiency"] for p in done]
+    bep = max(range(len(done)), key=lambda i: eta[i])
+    import numpy as np
+    fit = np.polyfit(q, h, 2)
+    lines = [
+        "BEP at %.3g Q_design: psi = %.3f (band 0.3-0.5), eta = %.2f (band 0.5-0.8)"
+        % (done[bep].fraction, done[bep].result["head_coefficient_psi"], eta[bep]),
+        "shut-off head (quadratic fit to Q = 0) / H_BEP = %.2f (band 1.2-1.4)" % (np.polyval(fit, 0.0) / h[bep]),
+        "head falls with Q: %s; torque rises with Q: %s" % (
+            all(b < a for a, b in zip(h, h[1:])), all(b > a for a, b in zip(t, t[1:]))),
+    ]
+    return lines
+
+
+def draw(points, path, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    done = [p for p in points if p.result]
+    if not done:
+        return
+    bep = max(done, key=lambda p: p.result["efficiency"])
+    q = [p.flow_rate / bep.flow_rate for p in done]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.plot(q, [p.result["head_m"] / bep.result["head_m"] for p in done], "o-", label="H / H_BEP (penalized IBM)")
+    ax.plot(q, [p.result["shaft_torque_n_m"] / bep.result["shaft_torque_n_m"] for p in done], "s-",
+            label="T / T_BEP (penalized IBM)")
+    ax.set_xlabel("Q / Q_BEP (Q_BEP = %.3g L/s)" % (1e3 * bep.flow_rate))
+    ax.set_ylabel("H / H_BEP, T / T_BEP (H_BEP = %.3g m, T_BEP = %.3g N m)"
+                  % (bep.result["head_m"], bep.result["shaft_torque_n_m"]))
+    ax.grid(alpha=0.3)
+    right = ax.twinx()
+    right.plot(q, [p.result["efficiency"] for p in done], "^--", color="C2", label="efficiency")
+    right.set_ylabel("efficiency rho g Q H / (T omega)")
+    right.set_ylim(0, 1)
+    lines = ax.get_legend_handles_labels()
+    more = right.get_legend_handles_labels()
+    ax.legend(lines[0] + more[0], lines[1] + more[1], loc="lower left", fontsize=8)
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(prog="./fsi pump-curve", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--bin-dir", required=True)
+    parser.add_argument("--points", default="0.36,0.6,0.8,1.0,1.2",
+                        help="flow rates as fractions of the design flow rate (pump.yaml), comma-separated")
+    parser.add_argument("--jobs", type=int, default=0, help="points at once (default: cores / MPI ranks)")
+    parser.add_argument("--resolution", default="", help="a preset of the case (coarse, medium, fine, rans)")
+    parser.add_argument("--end-time", type=float, default=0.0, help="stop each point at this time (s)")
+    parser.add_argument("-o", "--output", default="", help="results folder (default CASE/output/pump-curve)")
+    parser.add_argument("case_dir")
+    args = parser.parse_args(argv)
+    args.case_dir = os.path.abspath(args.case_dir)
+    design_file = os.path.join(args.case_dir, "pump.yaml")
+    if not os.path.isfile(design_file):
+        raise SystemExit("pump-curve: %s not found: a pump case holds its design file pump.yaml" % design_file)
+    try:
+        fractions = [float(v) for v in args.points.split(",") if v.strip()]
+    except ValueError:
+        raise SystemExit("pump-curve: --points %s: expected comma-separated numbers, e.g. 0.36,0.6,0.8,1.0,1.2"
+                         % args.points)
+    if not fractions or min(fractions) <= 0:
+        raise SystemExit("pump-curve: --points %s: fractions must be > 0" % args.points)
+    with open(design_file) as f:
+        design_q = float(yaml.safe_load(f)["operation"]["design_flow_rate_m3_per_s"])
+    plan = subprocess.run([sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "--print-output-dir"]
+                          + (["--resolution", args.resolution] if args.resolution else []) + [args.case_dir],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    if plan.returncode != 0:
+        raise SystemExit("pump-curve: %s" % plan.stderr.decode().strip())
+    with open(os.path.join(args.case_dir, "case.yaml")) as f:
+        case = yaml.safe_load(f)
+    template = case["fluid"]["openfoam"]["case_directory"]
+    ranks = int(case["fluid"]["openfoam"].get("mpi_ranks", 1))
+    if args.resolution:
+        with open(os.path.join(args.case_dir, "presets", args.resolution + ".yaml")) as f:
+            preset = yaml.safe_load(f) or {}
+        template = ((preset.get("fluid") or {}).get("openfoam") or {}).get("case_directory", template)
+        ranks = int(((preset.get("fluid") or {}).get("openfoam") or {}).get("mpi_ranks", ranks))
+    out = os.path.abspath(args.output or os.path.join(args.case_dir, "output",
+                                                      "pump-curve" + ("-" + args.resolution if args.resolution else "")))
+    os.makedirs(out, exist_ok=True)
+    jobs = args.jobs or max(1, (os.cpu_count() or 1) // max(ranks, 1))
+    points = [Point(f, design_q, out) for f in fractions]
+    say("%d points (%s of Q_design = %.4g L/s), %d at once, in %s"
+        % (len(points), args.points, 1e3 * design_q, jobs, out))
+    start = time.monotonic()
+    stop = threading.Event()
+    threading.Thread(target=report_progress, args=(points, stop), daemon=True).start()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        first = pool.submit(run_point, args, points[0], template)
+        points[0].meshed.wait()  # the others reuse its mesh from the cache
+        futures = [first] + [pool.submit(run_point, args, p, template) for p in points[1:]]
+        for future in futures:
+            future.result()
+    stop.set()
+    for p in points:
+        if p.error:
+            say("%s failed: %s" % (p.name, p.error))
+    write_csv(points, os.path.join(out, "pump_curve.csv"))
+    title = "%s%s: %d points, %.0f s" % (os.path.basename(args.case_dir),
+                                         " (" + args.resolution + ")" if args.resolution else "",
+                                         sum(p.result is not None for p in points), time.monotonic() - start)
+    draw(points, os.path.join(out, "pump_curve.png"), title)
+    for line in plausibility(points):
+        say(line)
+    say("pump_curve.csv, pump_curve.png in %s (%.0f s)" % (out, time.monotonic() - start))
+    return 0 if all(p.result for p in points) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

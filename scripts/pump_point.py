@@ -1,0 +1,122 @@
+"""The operating point of a pump run (a case without structures whose rigid body rotates): the
+head, the shaft torque, the efficiency and the once-per-revolution pulsation, averaged over the
+last whole revolutions after a settling period. Used by cases/centrifugal-pump/postprocess.py
+and scripts/pump_curve.py. Inputs, all in the run's output folder:
+  forces.csv            the fluid's force (N) and torque (N m, about the body's box centre, which
+                        the generated impeller has on the axis) on each rigid body, every step
+  openfoam/postProcessing/{inlet,outlet}TotalPressure/*/surfaceFieldValue.dat
+                        the mass-flow-averaged total pressure p + rho |U|^2 / 2 (Pa) of the patches
+  openfoam/postProcessing/outletFlowRate/*/surfaceFieldValue.dat   sum(phi) on the outlet (m^3/s)
+Definitions (SI): H = (p_t,out - p_t,in) / (rho g) (m); T = -a . T_fluid (N m, the torque the
+shaft supplies, a the rotation axis); eta = rho g Q H / (T omega); psi = g H / (omega R2)^2 and
+phi = Q / (omega R2^3) (the issue's coefficients); the pulsation is the amplitude of the Fourier
+component at the rotation frequency (the blade passing frequency of a single blade), as a
+fraction of the mean."""
+
+import glob
+import math
+import os
+
+import numpy as np
+
+G = 9.81  # m/s^2
+
+
+def read_dat(folder, name):
+    """(time, columns) of OpenFOAM's postProcessing/<name>/<start>/<file>.dat (restarts joined)."""
+    files = sorted(glob.glob(os.path.join(folder, "openfoam", "postProcessing", name, "*", "*.dat")),
+                   key=lambda p: float(os.path.basename(os.path.dirname(p))))
+    if not files:
+        raise FileNotFoundError("no %s output in %s/openfoam/postProcessing (is the controlDict's "
+                                "function object there?)" % (name, folder))
+    rows = []
+    for path in files:
+        with open(path) as f:
+            for line in f:
+                if line.strip() and not line.startswith("#"):
+                    rows.append([float(w) for w in line.split()])
+    data = np.array(rows)
+    _, unique = np.unique(data[:, 0], return_index=True)
+    data = data[unique]
+    return data[:, 0], data[:, 1:]
+
+
+def read_forces(folder, body=0):
+    with open(os.path.join(folder, "forces.csv")) as f:
+        header = f.readline().strip().split(",")
+    data = np.loadtxt(os.path.join(folder, "forces.csv"), delimiter=",", skiprows=1, ndmin=2)
+    column = {name: k for k, name in enumerate(header)}
+    torque = np.stack([data[:, column["body%d.t%s_n_m" % (body, c)]] for c in "xyz"], axis=1)
+    return data[:, 0], torque
+
+
+def harmonic(t, y, omega):
+    """Amplitude of the component of y at angular frequency omega over the samples t (uniform)."""
+    c = np.mean(y * np.cos(omega * t))
+    s = np.mean(y * np.sin(omega * t))
+    return 2.0 * math.hypot(c, s)
+
+
+def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, average_revolutions=4,
+                    settle_revolutions=None):
+    """The operating point of the run in `folder`: a dict of SI values (see the module text).
+    Averages over the last `average_revolutions` whole revolutions that follow at least
+    `settle_revolutions` (default: the rest of the run, at least 1)."""
+    period = 2.0 * math.pi / omega
+    t_f, torque = read_forces(folder)
+    shaft = -(torque @ (np.asarray(axis, float) / np.linalg.norm(axis)))
+    t_in, p_in = read_dat(folder, "inletTotalPressure")
+    t_out, p_out = read_dat(folder, "outletTotalPressure")
+    t_end = min(t_f[-1], t_in[-1], t_out[-1])
+    n_rev = int(math.floor(t_end / period + 1e-6))
+    n_avg = min(average_revolutions, n_rev - (settle_revolutions if settle_revolutions is not None else 1))
+    if n_avg < 1:
+        raise ValueError("%s: %.3g s is %d revolutions, too short to settle and average one" % (folder, t_end, n_rev))
+    t0, t1 = (n_rev - n_avg) * period, n_rev * period
+
+    def window(t, y):
+        keep = (t > t0 + 1e-9) & (t <= t1 + 1e-9)
+        return t[keep], y[keep]
+
+    tw, tq = window(t_f, shaft)
+    head_t = np.interp(t_out, t_in, p_in[:, 0])
+    hw, dp = window(t_out, p_out[:, 0] - head_t)
+    head = np.mean(dp) / (rho * G)
+    torque_mean = float(np.mean(tq))
+    q_out = None
+    try:
+        t_q, q = read_dat(folder, "outletFlowRate")
+        q_out = float(np.mean(window(t_q, q[:, 0])[1]))
+    except FileNotFoundError:
+        pass
+    power = torque_mean * omega
+    u2 = omega * radius_m
+    point = {
+        "flow_rate_m3_per_s": flow_rate,
+        "outlet_flow_rate_m3_per_s": q_out,
+        "head_m": float(head),
+        "head_rms_fluctuation_m": float(np.std(dp) / (rho * G)),
+        "shaft_torque_n_m": torque_mean,
+        "shaft_power_w": power,
+        "hydraulic_power_w": rho * G * flow_rate * head,
+        "efficiency": rho * G * flow_rate * head / power if power > 0 else float("nan"),
+        "head_coefficient_psi": G * head / u2 ** 2,
+        "flow_coefficient_phi": flow_rate / (omega * radius_m ** 3),
+        "torque_pulsation_1_per_rev": harmonic(tw, tq, omega) / abs(torque_mean) if torque_mean else float("nan"),
+        "head_pulsation_1_per_rev": harmonic(hw, dp, omega) / abs(np.mean(dp)) if np.mean(dp) else float("nan"),
+        "averaged_from_s": t0,
+        "averaged_to_s": t1,
+        "revolutions_averaged": n_avg,
+        "revolutions_run": n_rev,
+    }
+    return {k: (None if v is None else int(v) if isinstance(v, int) else float(v)) for k, v in point.items()}
+
+
+def histories(folder, omega, axis, rho=1000.0):
+    """(t, shaft torque N m) and (t, head m) for pictures."""
+    t_f, torque = read_forces(folder)
+    shaft = -(torque @ (np.asarray(axis, float) / np.linalg.norm(axis)))
+    t_in, p_in = read_dat(folder, "inletTotalPressure")
+    t_out, p_out = read_dat(folder, "outletTotalPressure")
+    head = (p_out[:, 0] - np.interp(t_out, t_in, p_in[:, 0])) / (rho * G)
+    return (t_f, shaft), (t_out, head)
