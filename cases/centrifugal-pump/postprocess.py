@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""After a run of centrifugal-pump (./fsi run calls it; ./fsi pump-curve calls it per point): the
+operating point averaged over the last whole revolutions (scripts/pump_point.py: head H, shaft
+torque T, efficiency, psi, phi, the once-per-revolution pulsation), written to
+operating_point.yaml, and operating_point.png: T and H against revolutions with the averaged
+window, and the spectrum of T in multiples of the rotation frequency (24 Hz), where a single
+blade shows its once-per-revolution pulsation.
+Usage: postprocess.py RESULTS_DIR CASE_DIR"""
+
+import math
+import os
+import re
+import sys
+
+import matplotlib
+import yaml
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import pump_point  # noqa: E402
+
+
+def rotation(case_dir):
+    with open(os.path.join(case_dir, "case.yaml")) as f:
+        case = yaml.safe_load(f)
+    for surface in case.get("collisions", {}).get("surfaces", []):
+        rot = (surface.get("motion") or {}).get("rotation")
+        if rot:
+            return float(rot["rate_rad_per_s"]), rot.get("axis_direction", [0, 0, 1])
+    raise SystemExit("%s/case.yaml: no rotating surface (collisions.surfaces[].motion.rotation)" % case_dir)
+
+
+def flow_rate(out):
+    with open(os.path.join(out, "openfoam", "constant", "operatingPoint")) as f:
+        return float(re.search(r"^flowRate\s+([^;]+);", f.read(), re.M).group(1))
+
+
+def picture(out, omega, axis, point, path):
+    (t_t, torque), (t_h, head) = pump_point.histories(out, omega, axis)
+    rev = omega / (2 * math.pi)
+    fig, (a, b, c) = plt.subplots(3, 1, figsize=(7, 8.5))
+    a.plot(t_t * rev, torque, lw=0.8)
+    b.plot(t_h * rev, head, lw=0.8, color="C1")
+    for ax in (a, b):
+        ax.axvspan(point["averaged_from_s"] * rev, point["averaged_to_s"] * rev, color="0.9", zorder=0)
+    a.axhline(point["shaft_torque_n_m"], color="k", lw=0.6, ls="--")
+    b.axhline(point["head_m"], color="k", lw=0.6, ls="--")
+    a.set_ylabel("shaft torque T (N m)")
+    b.set_ylabel("head H (m)")
+    b.set_xlabel("revolutions (shaded: averaged)")
+    a.set_title("Q = %.4g L/s: H = %.3g m, T = %.3g N m, eta = %.2f"
+                % (1e3 * point["flow_rate_m3_per_s"], point["head_m"], point["shaft_torque_n_m"],
+                   point["efficiency"]))
+    keep = (t_t > point["averaged_from_s"]) & (t_t <= point["averaged_to_s"])
+    y = torque[keep] - np.mean(torque[keep])
+    if len(y) > 8:
+        dt = np.median(np.diff(t_t[keep]))
+        spectrum = np.abs(np.fft.rfft(y)) * 2 / len(y)
+        freq = np.fft.rfftfreq(len(y), dt) / rev
+        c.plot(freq, spectrum, lw=0.8, color="C2")
+        c.set_xlim(0, 10)
+    c.set_xlabel("frequency / rotation frequency (%.3g Hz)" % rev)
+    c.set_ylabel("|T| amplitude (N m)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    out, case_dir = sys.argv[1], sys.argv[2]
+    omega, axis = rotation(case_dir)
+    with open(os.path.join(case_dir, "pump.yaml")) as f:
+        radius = 0.5 * yaml.safe_load(f)["impeller"]["outer_diameter_m"]
+    point = pump_point.operating_point(out, omega, axis, radius, flow_rate(out))
+    with open(os.path.join(out, "operating_point.yaml"), "w") as f:
+        f.write("# The operating point of this run (scripts/pump_point.py), SI units.\n")
+        yaml.safe_dump(point, f, sort_keys=False)
+    picture(out, omega, axis, point, os.path.join(out, "operating_point.png"))
+    print("operating_point.yaml (H = %.3g m, T = %.3g N m, eta = %.2f), operating_point.png"
+          % (point["head_m"], point["shaft_torque_n_m"], point["efficiency"]))
+
+
+if __name__ == "__main__":
+    main()
