@@ -44,7 +44,7 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
   double end = 0.0;
   for (const double dt : steps)
     end += dt;
-  std::ofstream forces;
+  std::ofstream forces, timings;
   const auto start = Clock::now();
   auto last_report = start;
   double t = 0.0;
@@ -62,6 +62,13 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
       forces.open(schedule.folder / "forces.csv");
       write_header(forces, loads.size());
     }
+    if (step == 0) {
+      timings.open(schedule.folder / "timings.csv");
+      timings << "time_s,penalization_s,fluid_solve_s,loads_s\n";
+    }
+    const auto &split = model.last_step_timings();
+    timings << flow.time_s() << "," << split.penalization_s << "," << split.fluid_solve_s << "," << split.loads_s
+            << "\n";
     if (forces.is_open()) {
       forces << flow.time_s();
       for (const auto &load : loads)
@@ -73,6 +80,7 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
     if (now - last_report > std::chrono::seconds(5) || step + 1 == n_steps) {
       last_report = now;
       forces.flush();
+      timings.flush();
       const double wall = std::chrono::duration<double>(now - start).count();
       const double eta = wall / static_cast<double>(step + 1) * static_cast<double>(n_steps - step - 1);
       spdlog::info("{}: t = {:.4g} of {:.4g} s, step {}/{}, {:.1f} ms/step, ETA {}", schedule.label, flow.time_s(), end,

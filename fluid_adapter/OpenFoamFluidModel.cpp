@@ -7,6 +7,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
+
 #include <limits>
 #include <stdexcept>
 
@@ -232,16 +234,27 @@ void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigi
 }
 
 void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
   const double t_next = time_s + dt_s;
+  auto start = Clock::now();
+  timings_ = {};
   if (!bodies_.empty())
     penalize_rigid_bodies(t_next);
+  timings_.penalization_s = seconds_since(start);
+  start = Clock::now();
   flow_.advance(dt_s);
+  timings_.fluid_solve_s = seconds_since(start);
   if (bodies_.empty())
     return;
+  start = Clock::now();
   flow_.penalization_acceleration(penalization_acceleration_);
   penalization_force_ = penalization_acceleration_ * config_.density_kg_per_m3; // N/m^3 on the fluid
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     loads.push_back(rigid_body_load(b, t_next));
+  timings_.loads_s = seconds_since(start);
 }
 
 std::vector<rigid::BodyLoad> OpenFoamFluidModel::advance_without_structure(double time_s, double dt_s) {

@@ -28,6 +28,13 @@
 
 namespace fsi::fluid {
 
+/// Wall times of the last step of the flow (s), on this rank.
+struct FlowStepTimings {
+  double penalization_s = 0.0; ///< rigid bodies: chi and u_rib update (Eq. 10), immersed wall distance
+  double fluid_solve_s = 0.0;  ///< the PIMPLE step (with turbulence, writing, function objects)
+  double loads_s = 0.0;        ///< rigid bodies: the penalization force and the loads (sums over ranks)
+};
+
 class OpenFoamFluidModel final : public proto::FluidModel {
 public:
   OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &flow,
@@ -47,8 +54,11 @@ public:
   /// The precursor run (no structure, no coupler): one step of the flow with its rigid bodies
   /// from time_s to time_s + dt_s, collective over the ranks. Returns the rigid-body loads.
   std::vector<rigid::BodyLoad> advance_without_structure(double time_s, double dt_s);
+  /// The split of the last step's wall time (the flow alone, the pump's cost per revolution).
+  const FlowStepTimings &last_step_timings() const { return timings_; }
 
 private:
+  FlowStepTimings timings_;
   enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
   void broadcast(Command command, std::vector<double> &payload) const;
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
