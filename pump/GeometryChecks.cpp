@@ -15,6 +15,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
+#include <utility>
 
 namespace fsi::pump {
 namespace {
@@ -82,7 +84,7 @@ bool check_orientation(GeometryCheckReport &report, const Part &part) {
   return true;
 }
 
-/// The unit a file seems to be in when its size is off by `factor` (file unit in metres).
+/// Advice on the unit a file seems to be in, from the unit scale that would make it fit.
 std::string unit_advice(double suggested_scale) {
   struct Unit {
     double scale;

@@ -17,6 +17,7 @@
 #include "common/ExitCodes.hpp"
 #include "common/GuardedMain.hpp"
 #include "common/Logging.hpp"
+#include "common/UserError.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -70,7 +71,7 @@ int check_stl(const fsi::pump::PumpDesign &design, const std::vector<std::string
   const fsi::pump::GeometryCheckReport report = checks.run(files.at(0), files.at(1));
   std::cout << report.table();
   if (!report_file.empty() && !(std::ofstream(report_file) << report.to_yaml()))
-    throw std::runtime_error("cannot write the check report '" + report_file + "'; check that its folder exists.");
+    throw fsi::common::UserError("cannot write the check report '" + report_file + "'; check that its folder exists.");
   if (const auto *failed = report.first_failure()) {
     spdlog::error("{}", failed->message);
     return fsi::common::exit_code_bad_input;
