@@ -88,7 +88,7 @@ private:
     return lower_bound_[index];
   }
 
-  /// The bottleneck of the best path to `to` through `from`, whose best path's is
+  /// The bottleneck of the path to `to` through `from`, when the best path to `from` has
   /// `bottleneck`: queries the clearance of `to` only if its lower bound could lower it.
   float through(std::size_t from, std::size_t to, float step_m, float bottleneck) {
     if (!exact_[to]) {
