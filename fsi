@@ -171,8 +171,8 @@ cmd_bench() {
     transport) "$BUILD/bin/bench_transport" --benchmark_counters_tabular=true ;;
     coupling) shift || true; "$BUILD/bin/bench_coupling" "$@" ;;
     fluid) shift || true; /usr/bin/python3 "$ROOT/bench/fluid/bench_fluid.py" --bin-dir "$BUILD/bin" "$@" ;;
-    mesh_surface|kernel_stencil|body_indicator) shift || true; "$BUILD/bin/bench_$which" "$@" ;;
-    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, mesh_surface, kernel_stencil, body_indicator)" ;;
+    mesh_surface|kernel_stencil|body_indicator|free_passage) shift || true; "$BUILD/bin/bench_$which" "$@" ;;
+    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, mesh_surface, kernel_stencil, body_indicator, free_passage)" ;;
   esac
 }
 

@@ -107,4 +107,69 @@ TriangleSoup make_torus(const Vec3 &centre_m, double major_radius_m, double mino
   return to_soup(vertices, faces);
 }
 
+TriangleSoup make_box(const Vec3 &min_m, const Vec3 &max_m) {
+  if (!(min_m.array() < max_m.array()).all())
+    throw std::invalid_argument("make_box: need min_m < max_m on every axis.");
+  std::vector<Vec3> vertices; // corner v is (x, y, z) = bits (0, 1, 2) of v
+  for (int v = 0; v < 8; ++v)
+    vertices.emplace_back(v & 1 ? max_m.x() : min_m.x(), v & 2 ? max_m.y() : min_m.y(), v & 4 ? max_m.z() : min_m.z());
+  const std::vector<Face> faces = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                   {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return to_soup(vertices, faces);
+}
+
+TriangleSoup make_ring(const Vec3 &base_centre_m, double inner_radius_m, double outer_radius_m, double height_m,
+                       int n_around) {
+  if (!(inner_radius_m >= 0.0) || !(outer_radius_m > inner_radius_m) || !(height_m > 0.0) || n_around < 3)
+    throw std::invalid_argument("make_ring: need 0 <= inner_radius_m < outer_radius_m, height_m > 0 and at "
+                                "least 3 corners around.");
+  const bool disc = inner_radius_m == 0.0;
+  // Vertices: the outer circle at the bottom and the top, then the inner circle at the bottom
+  // and the top (a ring) or the two cap centres (a disc).
+  std::vector<Vec3> vertices;
+  auto add_circle = [&](double radius_m, double z_m) {
+    for (int i = 0; i < n_around; ++i) {
+      const double angle = 2.0 * M_PI * i / n_around;
+      vertices.push_back(base_centre_m + Vec3(radius_m * std::cos(angle), radius_m * std::sin(angle), z_m));
+    }
+  };
+  add_circle(outer_radius_m, 0.0);
+  add_circle(outer_radius_m, height_m);
+  if (disc) {
+    vertices.push_back(base_centre_m);
+    vertices.push_back(base_centre_m + Vec3(0.0, 0.0, height_m));
+  } else {
+    add_circle(inner_radius_m, 0.0);
+    add_circle(inner_radius_m, height_m);
+  }
+  auto id = [&](int circle, int i) { return circle * n_around + i % n_around; }; // circle 0..3 as added
+  const int bottom_centre = 2 * n_around, top_centre = 2 * n_around + 1;
+  std::vector<Face> faces;
+  for (int i = 0; i < n_around; ++i) {
+    faces.push_back({id(0, i), id(0, i + 1), id(1, i + 1)}); // outer wall, facing out
+    faces.push_back({id(0, i), id(1, i + 1), id(1, i)});
+    if (disc) {
+      faces.push_back({bottom_centre, id(0, i + 1), id(0, i)}); // bottom cap, facing -z
+      faces.push_back({top_centre, id(1, i), id(1, i + 1)});    // top cap, facing +z
+      continue;
+    }
+    faces.push_back({id(2, i), id(3, i + 1), id(2, i + 1)}); // inner wall, facing the axis
+    faces.push_back({id(2, i), id(3, i), id(3, i + 1)});
+    faces.push_back({id(0, i), id(2, i), id(2, i + 1)}); // bottom annulus, facing -z
+    faces.push_back({id(0, i), id(2, i + 1), id(0, i + 1)});
+    faces.push_back({id(1, i), id(1, i + 1), id(3, i + 1)}); // top annulus, facing +z
+    faces.push_back({id(1, i), id(3, i + 1), id(3, i)});
+  }
+  return to_soup(vertices, faces);
+}
+
+TriangleSoup append_soup(const TriangleSoup &first, const TriangleSoup &second) {
+  TriangleSoup both;
+  both.vertices_m.resize(first.vertices_m.rows() + second.vertices_m.rows(), 3);
+  both.vertices_m << first.vertices_m, second.vertices_m;
+  both.triangles.resize(first.triangles.rows() + second.triangles.rows(), 3);
+  both.triangles << first.triangles, (second.triangles.array() + static_cast<int>(first.vertices_m.rows())).matrix();
+  return both;
+}
+
 } // namespace fsi::geometry

@@ -34,7 +34,7 @@ void check_indices(const TriangleSoup &soup, const std::string &source) {
 
 } // namespace
 
-std::size_t count_border_edges(const TriangleArray &triangles) {
+std::vector<std::array<int, 2>> border_edges(const TriangleArray &triangles) {
   std::unordered_map<std::uint64_t, int> uses;
   uses.reserve(static_cast<std::size_t>(triangles.rows()) * 2);
   for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
@@ -42,8 +42,44 @@ std::size_t count_border_edges(const TriangleArray &triangles) {
       ++uses[edge_key(triangles(t, k), triangles(t, (k + 1) % 3))];
     }
   }
+  std::vector<std::array<int, 2>> border;
+  for (const auto &[key, n_uses] : uses) {
+    if (n_uses % 2)
+      border.push_back({static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffULL)});
+  }
+  std::sort(border.begin(), border.end());
+  return border;
+}
+
+std::size_t count_border_edges(const TriangleArray &triangles) { return border_edges(triangles).size(); }
+
+std::size_t count_misoriented_edges(const TriangleArray &triangles) {
+  std::unordered_map<std::uint64_t, int> runs; // directed edge a -> b, key (a, b) unordered
+  runs.reserve(static_cast<std::size_t>(triangles.rows()) * 3);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles(t, k), b = triangles(t, (k + 1) % 3);
+      const auto key =
+          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+      ++runs[key];
+    }
+  }
   return static_cast<std::size_t>(
-      std::count_if(uses.begin(), uses.end(), [](const auto &entry) { return entry.second % 2; }));
+      std::count_if(runs.begin(), runs.end(), [](const auto &entry) { return entry.second > 1; }));
+}
+
+double signed_volume_m3(const TriangleSoup &soup) {
+  if (soup.vertices_m.rows() == 0)
+    return 0.0;
+  const Vec3 origin = soup.vertices_m.row(0).transpose(); // tetrahedra from a nearby apex: less round-off
+  double six_volume = 0.0;
+  for (Eigen::Index t = 0; t < soup.triangles.rows(); ++t) {
+    const Vec3 a = soup.vertices_m.row(soup.triangles(t, 0)).transpose() - origin;
+    const Vec3 b = soup.vertices_m.row(soup.triangles(t, 1)).transpose() - origin;
+    const Vec3 c = soup.vertices_m.row(soup.triangles(t, 2)).transpose() - origin;
+    six_volume += a.dot(b.cross(c));
+  }
+  return six_volume / 6.0;
 }
 
 std::size_t count_zero_area_triangles(const TriangleSoup &soup) {

@@ -4,13 +4,27 @@
 
 #include "geometry/TriangleSoup.hpp"
 
+#include <array>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace fsi::geometry {
 
+/// The undirected edges used by an odd number of triangles, as vertex pairs (lower index
+/// first, sorted): the rims of the holes.
+std::vector<std::array<int, 2>> border_edges(const TriangleArray &triangles);
+
 /// Number of undirected edges used by an odd number of triangles (0 for a closed mesh).
 std::size_t count_border_edges(const TriangleArray &triangles);
+
+/// Number of edges that two triangles run through in the same direction: where neighbouring
+/// triangles disagree on which side is out (0 for a consistently oriented mesh).
+std::size_t count_misoriented_edges(const TriangleArray &triangles);
+
+/// Volume enclosed by a closed soup by the divergence theorem (m^3): positive when the
+/// triangles are counter-clockwise seen from outside, negative when they all face inwards.
+double signed_volume_m3(const TriangleSoup &soup);
 
 /// Number of triangles whose area vanishes relative to their longest edge squared (repeated
 /// vertices or collinear corners).

@@ -4,21 +4,28 @@
 // every 45 degrees, throat area), each against the plausibility bands of the design rules.
 //   fsi-pump-design DESIGN.yaml
 //   fsi-pump-design --schema          the design-file reference (docs/pump-design.md)
-// Exit codes: 0 valid, 2 bad input.
+//   fsi-pump-design DESIGN.yaml --check-stl IMPELLER.stl CASING.stl [--unit-scale S] [--report FILE]
+//                                     the generated STL files' checks (pump/GeometryChecks.hpp) as a
+//                                     table, and as YAML in FILE
+// Exit codes: 0 valid, 2 bad input (a failed geometry check included).
 
 #include "pump/DutyEstimate.hpp"
+#include "pump/GeometryChecks.hpp"
 #include "pump/PhysicalConstants.hpp"
 #include "pump/PumpDesign.hpp"
 #include "pump/VoluteSizing.hpp"
 #include "common/ExitCodes.hpp"
 #include "common/GuardedMain.hpp"
 #include "common/Logging.hpp"
+#include "common/UserError.hpp"
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
+#include <vector>
 
 namespace {
 
@@ -55,6 +62,24 @@ int report(const fsi::pump::PumpDesign &design) {
   return fsi::common::exit_code_success;
 }
 
+/// --check-stl: every check of the two files, the table on stdout, the YAML in report_file.
+int check_stl(const fsi::pump::PumpDesign &design, const std::vector<std::string> &files, double unit_scale,
+              const std::string &report_file) {
+  fsi::pump::GeometryCheckLimits limits;
+  limits.unit_scale = unit_scale;
+  const fsi::pump::GeometryChecks checks(fsi::pump::PumpGeometryFrame::from_design(design), limits);
+  const fsi::pump::GeometryCheckReport report = checks.run(files.at(0), files.at(1));
+  std::cout << report.table();
+  if (!report_file.empty() && !(std::ofstream(report_file) << report.to_yaml()))
+    throw fsi::common::UserError("cannot write the check report '" + report_file + "'; check that its folder exists.");
+  if (const auto *failed = report.first_failure()) {
+    spdlog::error("{}", failed->message);
+    return fsi::common::exit_code_bad_input;
+  }
+  spdlog::info("{} and {}: every check passed", files[0], files[1]);
+  return fsi::common::exit_code_success;
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -63,6 +88,13 @@ int main(int argc, char **argv) {
   bool schema = false;
   app.add_option("design", file, "Pump design file (YAML)");
   app.add_flag("--schema", schema, "Print the design-file reference (Markdown) and exit");
+  std::vector<std::string> stl_files;
+  double unit_scale = 1.0;
+  std::string check_report;
+  app.add_option("--check-stl", stl_files, "Check the generated IMPELLER.stl and CASING.stl against the design")
+      ->expected(2);
+  app.add_option("--unit-scale", unit_scale, "Metres per STL unit (0.001 for millimetres)")->check(CLI::PositiveNumber);
+  app.add_option("--report", check_report, "Write the --check-stl report as YAML to this file");
   CLI11_PARSE(app, argc, argv);
   if (schema) {
     std::cout << fsi::pump::PumpDesign::schema_markdown();
@@ -74,5 +106,9 @@ int main(int argc, char **argv) {
     return fsi::common::exit_code_bad_input;
   }
   fsi::common::setup_logging("pump", false);
+  if (!stl_files.empty())
+    return fsi::common::guarded_main("pump geometry check", [&] {
+      return check_stl(fsi::pump::PumpDesign::load(file), stl_files, unit_scale, check_report);
+    });
   return fsi::common::guarded_main("pump design", [&] { return report(fsi::pump::PumpDesign::load(file)); });
 }

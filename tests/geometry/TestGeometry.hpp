@@ -18,14 +18,7 @@ inline TriangleSoup test_torus() { return make_torus(Vec3(-0.1, 0.05, 0.0), 0.6,
 /// Axis-aligned cube [0, 0.4]^3 shifted by `origin_m`, two triangles a face (sharp convex
 /// edges and corners, flat face diagonals), counter-clockwise seen from outside.
 inline TriangleSoup test_cube(const Vec3 &origin_m = Vec3(0.1, -0.2, 0.05)) {
-  TriangleSoup soup;
-  soup.vertices_m.resize(8, 3);
-  for (int v = 0; v < 8; ++v) // corner v is (x, y, z) = bits (0, 1, 2) of v
-    soup.vertices_m.row(v) = (origin_m + 0.4 * Vec3(v & 1, (v >> 1) & 1, (v >> 2) & 1)).transpose();
-  soup.triangles.resize(12, 3);
-  soup.triangles << 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6,
-      0, 6, 2, 1, 3, 7, 1, 7, 5;
-  return soup;
+  return make_box(origin_m, origin_m + Vec3::Constant(0.4));
 }
 
 /// A thin blade: a prism whose cross-section is a wedge of about 17 degrees, extruded along

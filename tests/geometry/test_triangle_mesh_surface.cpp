@@ -9,6 +9,7 @@
 
 #include "geometry/MeshErrors.hpp"
 #include "geometry/TriangleMeshSurface.hpp"
+#include "geometry/TriangleSoupChecks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -167,16 +168,9 @@ TEST(TriangleMeshSurface, CasingWithFluidInsideFlipsTheSign) {
 
 /// A sphere of radius 0.5 with a spherical cavity of radius 0.3 (inner shell facing inwards).
 TriangleSoup hollow_sphere() {
-  const TriangleSoup outer = make_icosphere(Vec3::Zero(), 0.5, 3);
   TriangleSoup inner = make_icosphere(Vec3(0.05, 0.0, 0.0), 0.3, 2);
   inner.triangles.col(1).swap(inner.triangles.col(2));
-  TriangleSoup both;
-  both.vertices_m.resize(outer.vertices_m.rows() + inner.vertices_m.rows(), 3);
-  both.vertices_m << outer.vertices_m, inner.vertices_m;
-  both.triangles.resize(outer.triangles.rows() + inner.triangles.rows(), 3);
-  both.triangles << outer.triangles,
-      (inner.triangles.array() + static_cast<int>(outer.vertices_m.rows())).matrix();
-  return both;
+  return append_soup(make_icosphere(Vec3::Zero(), 0.5, 3), inner);
 }
 
 TEST(TriangleMeshSurface, HollowSphereCavityIsFluidWithCullingGrid) {
@@ -217,13 +211,7 @@ TEST(TriangleMeshSurface, InconsistentTriangleOrientationIsRepaired) {
 
 TEST(TriangleMeshSurface, VolumeMatchesPolyhedronFormula) {
   const TriangleSoup soup = testing::test_icosphere();
-  double volume_m3 = 0.0; // divergence theorem over the outward-oriented generated triangles
-  for (Eigen::Index t = 0; t < soup.triangles.rows(); ++t) {
-    const Vec3 a = soup.vertices_m.row(soup.triangles(t, 0)).transpose();
-    const Vec3 b = soup.vertices_m.row(soup.triangles(t, 1)).transpose();
-    const Vec3 c = soup.vertices_m.row(soup.triangles(t, 2)).transpose();
-    volume_m3 += a.dot(b.cross(c)) / 6.0;
-  }
+  const double volume_m3 = signed_volume_m3(soup); // divergence theorem over the generated triangles
   const auto surface =
       TriangleMeshSurface::from_triangles(soup.vertices_m, soup.triangles, FluidSide::outside);
   EXPECT_NEAR(surface->enclosed_volume_m3(), std::abs(volume_m3), 1e-12);
