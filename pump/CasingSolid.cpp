@@ -75,17 +75,18 @@ CasingSolid::Section CasingSolid::spiral_section(double phi_rad) const {
   const double outer = volute_.outer_radius_m(phi_rad);
   if (design_.volute.section == VoluteSection::rectangular)
     return {{inner, z_low_}, {outer, z_low_}, {outer, z_high_}, {inner, z_high_}};
-  const double half = 0.5 * volute_.width_m(std::max(outer, r3_));
+  // The flanks open at the flank angle from width b3 at r3; inside the chamber (r < r3) they
+  // run on, narrower, so that they cut the chamber's flat walls instead of lying on them.
   const double zc = 0.5 * (z_low_ + z_high_);
-  const double knee = outer > r3_ + 1e-4 ? r3_ : 0.5 * (inner + outer); // flanks open from r3 on
-  return {{inner, z_low_}, {knee, z_low_}, {outer, zc - half}, {outer, zc + half}, {knee, z_high_}, {inner, z_high_}};
+  const double inner_half = 0.5 * volute_.width_m(inner), outer_half = 0.5 * volute_.width_m(outer);
+  return {{inner, zc - inner_half}, {outer, zc - outer_half}, {outer, zc + outer_half}, {inner, zc + inner_half}};
 }
 
 CasingSolid::Section CasingSolid::throat_section(double inner_v_m) const {
   Section section = spiral_section(2 * M_PI);
-  for (auto &corner : section)
-    if (corner[0] < r3_ - 1e-12)
-      corner[0] = inner_v_m;
+  const double zc = 0.5 * (z_low_ + z_high_), inner_half = 0.5 * volute_.width_m(inner_v_m);
+  section.front() = {inner_v_m, zc - inner_half};
+  section.back() = {inner_v_m, zc + inner_half};
   return section;
 }
 
@@ -163,29 +164,34 @@ int CasingSolid::tongue_filler() {
 
 int CasingSolid::build() {
   namespace occ = gmsh::model::occ;
-  gmsh::vectorpair parts;
+  std::vector<std::pair<std::string, int>> parts;
   const int chamber =
       gmsh_step(part, "impeller chamber", [&] { return occ::addCylinder(0, 0, z_low_, 0, 0, z_high_ - z_low_, r3_); });
-  gmsh_step(part, "spiral volute (lofts through its sections)", [&] {
-    parts.emplace_back(3, spiral_loft(-spiral_lead_in_rad, M_PI));
-    parts.emplace_back(3, spiral_loft(M_PI, 2 * M_PI));
-  });
-  gmsh_step(part, "discharge duct", [&] { parts.emplace_back(3, discharge()); });
-  gmsh_step(part, "cut-water nose", [&] { parts.emplace_back(3, tongue_filler()); });
   gmsh_step(part, "suction pipe", [&] {
     const double length = design_.inlet.suction_pipe_length_m, overlap = 0.25 * (z_high_ - z_low_);
-    parts.emplace_back(3, occ::addCylinder(0, 0, z_low_ - length, 0, 0, length + overlap,
-                                           0.5 * design_.inlet.suction_pipe_diameter_m));
+    parts.emplace_back("suction pipe", occ::addCylinder(0, 0, z_low_ - length, 0, 0, length + overlap,
+                                                        0.5 * design_.inlet.suction_pipe_diameter_m));
   });
-  gmsh::vectorpair fused;
-  gmsh_step(part, "fusing chamber, spiral, discharge and suction pipe", [&] {
-    std::vector<gmsh::vectorpair> map;
-    occ::fuse({{3, chamber}}, parts, fused, map);
-    occ::synchronize();
+  gmsh_step(part, "spiral volute (lofts through its sections)", [&] {
+    parts.emplace_back("spiral's first half", spiral_loft(-spiral_lead_in_rad, M_PI));
+    parts.emplace_back("spiral's second half", spiral_loft(M_PI, 2 * M_PI));
   });
-  if (fused.size() != 1)
-    throw GeometryError(std::string(part) + ": the fused parts form " + std::to_string(fused.size()) +
-                        " solids instead of one");
+  gmsh_step(part, "discharge duct", [&] { parts.emplace_back("discharge duct", discharge()); });
+  gmsh_step(part, "cut-water nose", [&] { parts.emplace_back("cut-water's filled tip", tongue_filler()); });
+  // One part at a time: a failure names the part, and small booleans are the robust ones.
+  int body = chamber;
+  for (const auto &[name, tag] : parts)
+    body = gmsh_step(part, "fusing the " + name + " with the rest", [&, tag = tag, name = name] {
+      gmsh::vectorpair fused;
+      std::vector<gmsh::vectorpair> map;
+      occ::fuse({{3, body}}, {{3, tag}}, fused, map);
+      if (fused.size() != 1)
+        throw GeometryError(std::string(part) + ": fusing the " + name + " gave " + std::to_string(fused.size()) +
+                            " solids instead of one");
+      return fused.front().second;
+    });
+  gmsh_step(part, "synchronizing", [&] { occ::synchronize(); });
+  gmsh::vectorpair fused{{3, body}};
   gmsh_step(part, "measuring the volume", [&] { occ::getMass(3, fused.front().second, cad_volume_m3_); });
   return fused.front().second;
 }
@@ -197,7 +203,8 @@ int CasingSolid::classify(const CadFace &face) const {
     return inlet;
   if (face.lower_m[0] >= outlet_x_m() - tol)
     return outlet;
-  if (face.upper_m[2] <= z_low_ + tol && face.lower_m[2] < z_low_ - tol)
+  if (face.upper_m[2] <= z_low_ + tol && face.lower_m[2] < z_low_ - tol &&
+      face.max_radius_m <= 0.5 * design_.inlet.suction_pipe_diameter_m + tol)
     return suction_wall;
   const Eigen::Vector2d nose_xy = nose_centre_xy_m();
   bool on_nose = face.surface_type != "Plane";

@@ -13,7 +13,7 @@
 namespace fsi::pump {
 
 struct GeometryOptions {
-  MeshSizes impeller{0.006, 0.0004, 28};
+  MeshSizes impeller{0.007, 0.0004, 20};
   MeshSizes casing{0.012, 0.0008, 36};
   /// Coarser sizes for tests (same CAD, fewer triangles).
   static GeometryOptions coarse() { return {{0.012, 0.001, 16}, {0.025, 0.002, 16}}; }
