@@ -44,7 +44,7 @@ BladeCamber::BladeCamber(double inlet_radius_m, double outlet_radius_m, double i
         "impeller.blade_inlet_diameter_m / 2 and impeller.outer_diameter_m / 2 with a blade angle inside "
         "(0, 90) deg (it would need beta = " +
         std::to_string(std::atan2(1.0, lowest) * 180.0 / M_PI) +
-        " deg); raise the wrap angle or lower the blade angles");
+        " deg); raise the wrap angle or the blade angles (steeper blades wrap less)");
 }
 
 double BladeCamber::cot_beta(double radius_m) const {

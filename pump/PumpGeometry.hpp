@@ -16,7 +16,7 @@ struct GeometryOptions {
   MeshSizes impeller{0.007, 0.0004, 20};
   MeshSizes casing{0.012, 0.0008, 36};
   /// Coarser sizes for tests (same CAD, fewer triangles).
-  static GeometryOptions coarse() { return {{0.012, 0.001, 16}, {0.025, 0.002, 16}}; }
+  static GeometryOptions coarse() { return {{0.012, 0.001, 16}, {0.025, 0.002, 36}}; }
 };
 
 /// The blade as built, measured on the built camber curve of blade 1 (a B-spline through the
