@@ -15,7 +15,9 @@
 #                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
 #   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
-#   ./fsi pump-design FILE    check a pump design file; the duty and volute its design rules give
+#   ./fsi pump-design FILE [--write DIR]  check a pump design file; the duty and volute its design
+#                             rules give; --write: generate the geometry (DIR/impeller.stl, casing.stl,
+#                             geometry.yaml, geometry.png; docs/pump-design.md)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
 # FSI_SANITIZE=0 skips the sanitizer pass of './fsi test'.
@@ -182,8 +184,9 @@ case "${1:-help}" in
   build) prepare ;;
   report) shift; prepare; /usr/bin/python3 "$ROOT/scripts/report.py" --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
   pump-design)
-    shift; [ $# -eq 1 ] || die "usage: ./fsi pump-design DESIGN.yaml (e.g. pump/designs/single-blade.yaml)"
-    prepare fsi-pump-design; "$BUILD/bin/fsi-pump-design" "$1" ;;
+    shift; [ $# -eq 1 ] || [ $# -eq 3 ] ||
+      die "usage: ./fsi pump-design DESIGN.yaml [--write DIR] (e.g. pump/designs/single-blade.yaml)"
+    prepare fsi-pump-design; "$BUILD/bin/fsi-pump-design" "$@" ;;
   help|-h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//' ;;
   *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, pump-design, build, help)" ;;
 esac

@@ -55,6 +55,10 @@ void write_geometry_report(const std::filesystem::path &file, const PumpDesign &
   out << YAML::Key << "generation_time_s" << YAML::Value << geometry.seconds;
   part(out, "impeller", "impeller.stl", geometry.impeller);
   part(out, "casing", "casing.stl", geometry.casing);
+  out << YAML::Key << "cut_water_nose" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "axis_xy_m" << YAML::Value << YAML::Flow << YAML::BeginSeq << geometry.nose_centre_xy_m[0]
+      << geometry.nose_centre_xy_m[1] << YAML::EndSeq;
+  out << YAML::Key << "radius_m" << YAML::Value << geometry.nose_radius_m << YAML::EndMap;
   const BladeCamber camber = design.blade_camber();
   out << YAML::Key << "blade" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "design" << YAML::Value << YAML::Flow << YAML::BeginMap;

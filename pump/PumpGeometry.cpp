@@ -102,6 +102,8 @@ PumpGeometry PumpGeometry::build(const PumpDesign &design, const GeometryOptions
     geometry.casing.surface = mesh_solid("casing", volume, options.casing, CasingSolid::region_names(),
                                          [&](const CadFace &face) { return solid.classify(face); });
     geometry.casing.cad_volume_m3 = solid.cad_volume_m3();
+    geometry.nose_centre_xy_m = solid.nose_centre_xy_m();
+    geometry.nose_radius_m = solid.cut_water().nose_radius_m;
   }
   geometry.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return geometry;

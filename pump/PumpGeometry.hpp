@@ -36,6 +36,8 @@ struct BuiltPart {
 struct PumpGeometry {
   BuiltPart impeller, casing;
   AsBuiltBlade blade;
+  Eigen::Vector2d nose_centre_xy_m = Eigen::Vector2d::Zero(); ///< axis of the cut-water's round nose (z-parallel)
+  double nose_radius_m = 0.0;
   double seconds = 0.0; ///< wall time of the build (CAD and meshing)
 
   /// Builds both parts. Throws GeometryError naming the part.

@@ -127,6 +127,20 @@ TEST_P(GeneratedPump, TheBladeIsBuiltWithItsDesignWrapAndAngles) {
   EXPECT_NEAR(b.geometry.blade.outlet_angle_deg, b.design.impeller.outlet_blade_angle_deg, 0.5);
 }
 
+TEST_P(GeneratedPump, TheCutWaterHasItsRoundNose) {
+  const Built &b = built(GetParam());
+  const RegionSurface &casing = b.geometry.casing.surface;
+  const int nose = casing.region_index("cut_water");
+  const double radius = b.design.volute.cut_water_nose_radius_m;
+  for (std::size_t t = 0; t < casing.triangles.size(); ++t)
+    if (casing.triangle_regions[t] == nose)
+      for (const int v : casing.triangles[t]) {
+        const Vec3 &p = casing.vertices_m[v];
+        EXPECT_NEAR(std::hypot(p[0] - b.geometry.nose_centre_xy_m[0], p[1] - b.geometry.nose_centre_xy_m[1]), radius,
+                    1e-6);
+      }
+}
+
 INSTANTIATE_TEST_SUITE_P(OneAndTwoBlades, GeneratedPump, testing::Values(1, 2),
                          [](const testing::TestParamInfo<int> &info) {
                            return info.param == 1 ? std::string("SingleBlade") : std::string("TwoBlades");
