@@ -44,8 +44,10 @@ CasingSolid::CasingSolid(const PumpDesign &design)
   // The duct's inner wall sits a little inside the base circle, so that it cuts the chamber
   // instead of touching it tangentially (the throat grows by this strip, < 1 %).
   inner_v_m_ = r3_ - std::min(0.001, 0.2 * (r3_ - 0.5 * design.impeller.outer_diameter_m));
-  cut_water_ = place_cut_water([this](double phi) { return volute_.outer_radius_m(phi); }, inner_v_m_,
-                               design.volute.cut_water_nose_radius_m);
+  cut_water_ = gmsh_step(part, "placing the cut-water", [&] {
+    return place_cut_water([this](double phi) { return volute_.outer_radius_m(phi); }, inner_v_m_,
+                           design.volute.cut_water_nose_radius_m);
+  });
   duct_length_m_ = cut_water_.nose_centre_m[0] + 3.0 * design.volute.cut_water_nose_radius_m;
 }
 

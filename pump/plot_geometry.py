@@ -51,7 +51,8 @@ def main(folder):
     all_imp = np.concatenate(list(impeller.values()))
     z_mid = 0.5 * (all_imp[:, :, 2].min() + all_imp[:, :, 2].max())
     fig, (top, side) = plt.subplots(1, 2, figsize=(15, 7.5))
-    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]  # the impeller's regions
+    casing_colours = ["0.25", "0.45", "0.6", "tab:cyan", "tab:olive", "k"]  # the casing's, in greys
     for ax, axis, level, plane in ((top, 2, z_mid, (0, 1)), (side, 1, None, (0, 2))):
         for parts, width in ((casing, 1.2), (impeller, 1.6)):
             for k, (name, tris) in enumerate(sorted(parts.items())):
@@ -60,7 +61,8 @@ def main(folder):
                     at = 0.0
                 segs = cut(tris, axis, at + 1e-7)
                 if len(segs):
-                    ax.add_collection(LineCollection(segs[:, :, plane], colors=colours[(k + (3 if parts is impeller else 0)) % len(colours)],
+                    palette = casing_colours if parts is casing else colours
+                    ax.add_collection(LineCollection(segs[:, :, plane], colors=palette[k % len(palette)],
                                                      linewidths=width, label=name))
         ax.set_aspect("equal")
         ax.autoscale()
