@@ -68,10 +68,7 @@ double estimated_impeller_volume(const PumpDesign &d) {
   return hub + shroud + boss + i.n_blades * blade;
 }
 
-class GeneratedPump : public testing::TestWithParam<int> {};
-
-TEST_P(GeneratedPump, BothSolidsAreClosedOutwardAndNamedByRegion) {
-  const Built &b = built(GetParam());
+void BothSolidsAreClosedOutwardAndNamedByRegion(const Built &b) {
   for (const char *file : {"impeller.stl", "casing.stl"}) {
     const auto soup = geometry::read_stl((b.dir / file).string());
     EXPECT_NO_THROW(geometry::check_triangle_soup(soup, file));
@@ -91,8 +88,7 @@ TEST_P(GeneratedPump, BothSolidsAreClosedOutwardAndNamedByRegion) {
       ASSERT_GE(region, 0);
 }
 
-TEST_P(GeneratedPump, VolumesMatchIndependentEstimates) {
-  const Built &b = built(GetParam());
+void VolumesMatchIndependentEstimates(const Built &b) {
   const double impeller = b.geometry.impeller.surface.enclosed_volume_m3();
   EXPECT_NEAR(impeller, estimated_impeller_volume(b.design), 0.03 * impeller);
   EXPECT_NEAR(impeller, b.geometry.impeller.cad_volume_m3, 0.01 * impeller);
@@ -100,8 +96,7 @@ TEST_P(GeneratedPump, VolumesMatchIndependentEstimates) {
   EXPECT_NEAR(casing, b.geometry.casing.cad_volume_m3, 0.01 * casing);
 }
 
-TEST_P(GeneratedPump, TheImpellerSitsInsideTheCasing) {
-  const Built &b = built(GetParam());
+void TheImpellerSitsInsideTheCasing(const Built &b) {
   const geometry::TriangleMeshSurface casing((b.dir / "casing.stl").string(),
                                              geometry::TriangleMeshSurface::FluidSide::inside);
   int outside = 0;
@@ -110,8 +105,7 @@ TEST_P(GeneratedPump, TheImpellerSitsInsideTheCasing) {
   EXPECT_EQ(outside, 0);
 }
 
-TEST_P(GeneratedPump, InletAndOutletDiscsHaveTheirDesignAreas) {
-  const Built &b = built(GetParam());
+void InletAndOutletDiscsHaveTheirDesignAreas(const Built &b) {
   const RegionSurface &casing = b.geometry.casing.surface;
   const double inlet = M_PI * std::pow(b.design.inlet.suction_pipe_diameter_m, 2) / 4.0;
   const double outlet = M_PI * std::pow(b.design.volute.discharge_diameter_m, 2) / 4.0;
@@ -119,16 +113,14 @@ TEST_P(GeneratedPump, InletAndOutletDiscsHaveTheirDesignAreas) {
   EXPECT_NEAR(casing.region_area_m2(casing.region_index("outlet")), outlet, 0.01 * outlet);
 }
 
-TEST_P(GeneratedPump, TheBladeIsBuiltWithItsDesignWrapAndAngles) {
-  const Built &b = built(GetParam());
+void TheBladeIsBuiltWithItsDesignWrapAndAngles(const Built &b) {
   EXPECT_NEAR(b.geometry.blade.wrap_deg, b.design.impeller.wrap_angle_deg, 1.0);
   EXPECT_NEAR(b.geometry.blade.wrap_on_mesh_deg, b.design.impeller.wrap_angle_deg, 1.0);
   EXPECT_NEAR(b.geometry.blade.inlet_angle_deg, b.design.impeller.inlet_blade_angle_deg, 0.5);
   EXPECT_NEAR(b.geometry.blade.outlet_angle_deg, b.design.impeller.outlet_blade_angle_deg, 0.5);
 }
 
-TEST_P(GeneratedPump, TheCutWaterHasItsRoundNose) {
-  const Built &b = built(GetParam());
+void TheCutWaterHasItsRoundNose(const Built &b) {
   const RegionSurface &casing = b.geometry.casing.surface;
   const int nose = casing.region_index("cut_water");
   const double radius = b.design.volute.cut_water_nose_radius_m;
@@ -139,6 +131,37 @@ TEST_P(GeneratedPump, TheCutWaterHasItsRoundNose) {
         EXPECT_NEAR(std::hypot(p[0] - b.geometry.nose_centre_xy_m[0], p[1] - b.geometry.nose_centre_xy_m[1]), radius,
                     1e-6);
       }
+}
+
+// One test per design: ctest runs each test in its own process, and the build is the cost.
+class GeneratedPump : public testing::TestWithParam<int> {};
+
+TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
+  const Built &b = built(GetParam());
+  {
+    SCOPED_TRACE("BothSolidsAreClosedOutwardAndNamedByRegion");
+    BothSolidsAreClosedOutwardAndNamedByRegion(b);
+  }
+  {
+    SCOPED_TRACE("VolumesMatchIndependentEstimates");
+    VolumesMatchIndependentEstimates(b);
+  }
+  {
+    SCOPED_TRACE("TheImpellerSitsInsideTheCasing");
+    TheImpellerSitsInsideTheCasing(b);
+  }
+  {
+    SCOPED_TRACE("InletAndOutletDiscsHaveTheirDesignAreas");
+    InletAndOutletDiscsHaveTheirDesignAreas(b);
+  }
+  {
+    SCOPED_TRACE("TheBladeIsBuiltWithItsDesignWrapAndAngles");
+    TheBladeIsBuiltWithItsDesignWrapAndAngles(b);
+  }
+  {
+    SCOPED_TRACE("TheCutWaterHasItsRoundNose");
+    TheCutWaterHasItsRoundNose(b);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(OneAndTwoBlades, GeneratedPump, testing::Values(1, 2),
