@@ -16,7 +16,8 @@
 #   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
 #   ./fsi pump-design FILE [--write DIR]  check a pump design file; the duty and volute its design
-#                             rules give; --write: the impeller and casing solids (STL) and their checks
+#                             rules give; --write: generate the geometry (DIR/impeller.stl, casing.stl,
+#                             geometry.yaml, geometry.png; docs/pump-design.md)
 #   ./fsi pump-curve [--points 0.36,0.6,0.8,1.0,1.2] [--jobs N] [--resolution NAME] CASE_DIR
 #                             a pump case at several flow rates: pump_curve.csv and pump_curve.png
 #
@@ -30,7 +31,8 @@ JOBS=${FSI_JOBS:-$(nproc)}
 PACKAGES=(cmake ninja-build g++ ccache git pkg-config libeigen3-dev libspdlog-dev libfmt-dev libhdf5-dev
           libyaml-cpp-dev libcli11-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libnanoflann-dev
           libgtest-dev libgmock-dev libbenchmark-dev python3-h5py python3-matplotlib python3-numpy
-          paraview python3-paraview python3-yaml openmpi-bin libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler)
+          paraview python3-paraview python3-yaml openmpi-bin libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler
+          libgmsh-dev)
 
 say() { printf 'fsi: %s\n' "$*" >&2; }
 die() { printf 'fsi: error: %s\n' "$*" >&2; exit 2; }

@@ -262,19 +262,16 @@ void skip(GeometryCheckReport &report, const std::vector<std::string> &names, co
 
 PumpGeometryFrame PumpGeometryFrame::from_design(const PumpDesign &design) {
   const auto &imp = design.impeller;
-  const auto &op = design.operation;
-  const DutyEstimate duty =
-      estimate_duty_for_flow(op.rotation_rate_rad_per_s, imp.outer_diameter_m, op.design_flow_rate_m3_per_s);
-  const VoluteSizing volute(op.design_flow_rate_m3_per_s, duty.head_m, op.hydraulic_efficiency, duty.tip_speed_m_per_s,
-                            0.5 * imp.outer_diameter_m, design.volute.base_radius_m, design.volute.base_width_m,
-                            design.volute.flank_angle_deg * M_PI / 180.0);
+  const VoluteSizing volute = size_volute(design);
   PumpGeometryFrame frame;
   frame.impeller_radius_m = 0.5 * imp.outer_diameter_m;
   frame.eye_radius_m = 0.5 * imp.eye_diameter_m;
   frame.outlet_width_m = imp.outlet_width_m;
   frame.disc_thickness_m = imp.blade_thickness_m;
   frame.volute_base_radius_m = design.volute.base_radius_m;
-  frame.cut_water_angle_rad = 0.0;
+  // The generator's throat (CasingSolid: the spiral's 360 deg section) lies in the half-plane
+  // x = 0 on the side -sense y: +y for rotation about -z, -y about +z.
+  frame.cut_water_angle_rad = -design.rotation_sense() * M_PI / 2;
   frame.design_throat_area_m2 = volute.throat_area_m2();
   return frame;
 }

@@ -2,7 +2,10 @@
 
 #include "common/ConfigDocWriter.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace fsi::pump {
 
@@ -23,6 +26,25 @@ std::string PumpDesign::schema_markdown() {
   return out.str();
 }
 
+Vec3 PumpDesign::rotation_axis() const {
+  return Vec3(0.0, 0.0, operation.direction == RotationDirection::counterclockwise ? -1.0 : 1.0);
+}
+
+BladeCamber PumpDesign::blade_camber() const {
+  constexpr double deg = M_PI / 180.0;
+  return BladeCamber(0.5 * impeller.blade_inlet_diameter_m, 0.5 * impeller.outer_diameter_m,
+                     impeller.inlet_blade_angle_deg * deg, impeller.outlet_blade_angle_deg * deg,
+                     impeller.wrap_angle_deg * deg, rotation_sense());
+}
+
+double PumpDesign::impeller_bottom_z_m() const {
+  const double shroud = impeller.closed ? -impeller.blade_thickness_m : 0.0;
+  const double nose = impeller.hub_diameter_m > 0.0 ? -hub_nose_depth * impeller.outlet_width_m : 0.0;
+  return std::min(shroud, nose);
+}
+
+double PumpDesign::impeller_top_z_m() const { return impeller.outlet_width_m + impeller.blade_thickness_m; }
+
 void PumpDesign::validate(common::ConfigReader &v) const {
   const auto &i = impeller;
   if (i.eye_diameter_m >= i.outer_diameter_m)
@@ -31,15 +53,43 @@ void PumpDesign::validate(common::ConfigReader &v) const {
   if (i.hub_diameter_m >= i.eye_diameter_m)
     v.fail_value("impeller", "hub_diameter_m = " + std::to_string(i.hub_diameter_m) +
                                  " must be below eye_diameter_m = " + std::to_string(i.eye_diameter_m) + ".");
-  if (2.0 * i.leading_edge_radius_m > i.blade_thickness_m)
-    v.fail_value("impeller", "leading_edge_radius_m must be at most half of blade_thickness_m (the nose is "
-                             "the blade's rounded end).");
+  if (2.0 * i.leading_edge_radius_m < i.blade_thickness_m * (1.0 - 1e-12))
+    v.fail_value("impeller",
+                 "leading_edge_radius_m = " + std::to_string(i.leading_edge_radius_m) +
+                     " must be at least half of blade_thickness_m = " + std::to_string(i.blade_thickness_m) +
+                     " (the nose is a semicircle across the blade, or a larger circular bulb).");
+  if (i.blade_inlet_diameter_m <= i.hub_diameter_m + 2.0 * i.leading_edge_radius_m)
+    v.fail_value("impeller", "blade_inlet_diameter_m = " + std::to_string(i.blade_inlet_diameter_m) +
+                                 " must exceed hub_diameter_m + 2 leading_edge_radius_m = " +
+                                 std::to_string(i.hub_diameter_m + 2.0 * i.leading_edge_radius_m) +
+                                 " (the rounded leading edge must clear the hub).");
+  if (i.blade_inlet_diameter_m >= i.outer_diameter_m)
+    v.fail_value("impeller", "blade_inlet_diameter_m = " + std::to_string(i.blade_inlet_diameter_m) +
+                                 " must be below outer_diameter_m = " + std::to_string(i.outer_diameter_m) + ".");
+  try {
+    blade_camber();
+  } catch (const std::invalid_argument &e) {
+    v.fail_value("impeller", e.what() + std::string("."));
+  }
   if (volute.base_radius_m <= 0.5 * i.outer_diameter_m)
     v.fail_value("volute", "base_radius_m = " + std::to_string(volute.base_radius_m) +
                                " must exceed the impeller radius outer_diameter_m / 2 = " +
                                std::to_string(0.5 * i.outer_diameter_m) + " (the cut-water gap).");
-  if (volute.base_width_m < i.outlet_width_m)
-    v.fail_value("volute", "base_width_m must be at least the impeller's outlet_width_m.");
+  const double chamber_low = 0.5 * (i.outlet_width_m - volute.base_width_m);
+  const double chamber_high = 0.5 * (i.outlet_width_m + volute.base_width_m);
+  if (chamber_low > impeller_bottom_z_m() - min_axial_clearance_m ||
+      chamber_high < impeller_top_z_m() + min_axial_clearance_m)
+    v.fail_value("volute", "base_width_m = " + std::to_string(volute.base_width_m) +
+                               " gives an impeller chamber z in [" + std::to_string(chamber_low) + ", " +
+                               std::to_string(chamber_high) + "] m that does not hold the impeller, z in [" +
+                               std::to_string(impeller_bottom_z_m()) + ", " + std::to_string(impeller_top_z_m()) +
+                               "] m (shroud, hub disc and the hub's nose, from impeller.outlet_width_m, "
+                               "blade_thickness_m and hub_diameter_m), with " +
+                               std::to_string(min_axial_clearance_m) + " m clearance on each side.");
+  if (0.5 * inlet.suction_pipe_diameter_m >= volute.base_radius_m)
+    v.fail_value("inlet", "suction_pipe_diameter_m = " + std::to_string(inlet.suction_pipe_diameter_m) +
+                              " must be below 2 volute.base_radius_m = " + std::to_string(2.0 * volute.base_radius_m) +
+                              " (the suction pipe opens into the impeller chamber).");
   if (volute.section == VoluteSection::rectangular && volute.flank_angle_deg != 0.0)
     v.fail_value("volute", "flank_angle_deg is for a trapezoidal section; a rectangular one has none.");
 }

@@ -5,7 +5,10 @@
 // defaults are the single-blade waste-water pump sized to the paper's duty (section 4.1:
 // 1440 rpm, n_s = 56.4, cell size 0.002 m = D2 / 100).
 
+#include "BladeCamber.hpp"
+
 #include "common/ConfigReader.hpp"
+#include "common/Types.hpp"
 
 #include <filesystem>
 #include <string>
@@ -17,6 +20,7 @@ struct ImpellerDesign {
   double outlet_width_m = 0.05;
   double eye_diameter_m = 0.1;
   double hub_diameter_m = 0.03;
+  double blade_inlet_diameter_m = 0.05;
   int n_blades = 1;
   double wrap_angle_deg = 360.0;
   double inlet_blade_angle_deg = 15.0;
@@ -30,6 +34,8 @@ struct ImpellerDesign {
     v.number("outlet_width_m", outlet_width_m, common::Range::positive("m"), "Blade height at the outlet b2.");
     v.number("eye_diameter_m", eye_diameter_m, common::Range::positive("m"), "Impeller eye (inlet) diameter D1.");
     v.number("hub_diameter_m", hub_diameter_m, common::Range::non_negative("m"), "Hub diameter at the eye.");
+    v.number("blade_inlet_diameter_m", blade_inlet_diameter_m, common::Range::positive("m"),
+             "Diameter D1B of the blade leading edge's camber point (the camber line runs from there to D2).");
     v.integer("n_blades", n_blades, common::Range::between(1, 12, "1"),
               "Number of blades (1: the paper's single-blade pump; 2: its two-blade pump).");
     v.number("wrap_angle_deg", wrap_angle_deg, common::Range::between(30.0, 720.0, "deg"),
@@ -40,7 +46,8 @@ struct ImpellerDesign {
              "Blade angle beta_2B at the trailing edge, from the circumferential direction.");
     v.number("blade_thickness_m", blade_thickness_m, common::Range::positive("m"), "Blade thickness.");
     v.number("leading_edge_radius_m", leading_edge_radius_m, common::Range::positive("m"),
-             "Radius of the rounded leading edge (the high-curvature surface a rag wraps around).");
+             "Radius of the rounded leading edge (the high-curvature surface a rag wraps around): half the "
+             "blade thickness (a semicircle) or more (a circular bulb).");
     v.flag("closed", closed, "Closed impeller: hub and shroud discs (false: open, hub disc only).");
   }
 };
@@ -121,6 +128,23 @@ struct PumpDesign {
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       validate(v);
   }
+
+  /// The rotation axis (right-hand rule): counterclockwise seen from the inlet, looking along +z
+  /// into the eye, is rotation about -z, i.e. (0, 0, -1); clockwise is (0, 0, 1).
+  Vec3 rotation_axis() const;
+  /// +1 for rotation about +z, -1 about -z (the z component of rotation_axis()).
+  double rotation_sense() const { return rotation_axis()[2]; }
+
+  /// The camber line of the blades (throws std::invalid_argument when the angles cannot be met).
+  BladeCamber blade_camber() const;
+  /// The axial extent of the impeller: the shroud's (or the channel's) bottom or the hub's nose,
+  /// and the hub disc's top (m; the channel spans z in [0, outlet_width_m]).
+  double impeller_bottom_z_m() const;
+  double impeller_top_z_m() const;
+  /// The hub's nose reaches hub_nose_depth outlet widths below the channel, into the eye.
+  static constexpr double hub_nose_depth = 0.2;
+  /// The smallest axial gap between the impeller and the chamber's flat walls.
+  static constexpr double min_axial_clearance_m = 0.002;
 
   /// Reads and validates a design file; throws common::ConfigError naming the file and key.
   static PumpDesign load(const std::filesystem::path &file);

@@ -1,6 +1,8 @@
 #include "VoluteSizing.hpp"
 
+#include "DutyEstimate.hpp"
 #include "PhysicalConstants.hpp"
+#include "PumpDesign.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -9,8 +11,7 @@ namespace fsi::pump {
 VoluteSizing::VoluteSizing(double flow_rate_m3_per_s, double head_m, double hydraulic_efficiency,
                            double tip_speed_m_per_s, double impeller_radius_m, double base_radius_m,
                            double base_width_m, double flank_angle_rad)
-    : q_(flow_rate_m3_per_s),
-      k_(g_m_per_s2 * head_m / (hydraulic_efficiency * tip_speed_m_per_s) * impeller_radius_m),
+    : q_(flow_rate_m3_per_s), k_(g_m_per_s2 * head_m / (hydraulic_efficiency * tip_speed_m_per_s) * impeller_radius_m),
       r3_(base_radius_m), b3_(base_width_m), tan_alpha_(std::tan(flank_angle_rad)) {
   if (!(q_ > 0.0 && k_ > 0.0 && r3_ > 0.0 && b3_ > 0.0 && tan_alpha_ >= 0.0))
     throw std::invalid_argument("VoluteSizing: flow rate, head, speeds and the section must be positive");
@@ -18,7 +19,8 @@ VoluteSizing::VoluteSizing(double flow_rate_m3_per_s, double head_m, double hydr
 
 double VoluteSizing::section_flow_m3_per_s(double outer_radius_m) const {
   // k int_{r3}^{ro} (b3 + 2 (r - r3) t) / r dr = k [(b3 - 2 r3 t) ln(ro / r3) + 2 t (ro - r3)]
-  return k_ * ((b3_ - 2.0 * r3_ * tan_alpha_) * std::log(outer_radius_m / r3_) + 2.0 * tan_alpha_ * (outer_radius_m - r3_));
+  return k_ *
+         ((b3_ - 2.0 * r3_ * tan_alpha_) * std::log(outer_radius_m / r3_) + 2.0 * tan_alpha_ * (outer_radius_m - r3_));
 }
 
 double VoluteSizing::outer_radius_m(double theta_rad) const {
@@ -43,5 +45,14 @@ double VoluteSizing::section_area_m2(double theta_rad) const {
 }
 
 double VoluteSizing::throat_area_m2() const { return section_area_m2(2.0 * M_PI); }
+
+VoluteSizing size_volute(const PumpDesign &design) {
+  const auto &op = design.operation;
+  const auto &vol = design.volute;
+  const double d2 = design.impeller.outer_diameter_m;
+  const DutyEstimate duty = estimate_duty_for_flow(op.rotation_rate_rad_per_s, d2, op.design_flow_rate_m3_per_s);
+  return VoluteSizing(op.design_flow_rate_m3_per_s, duty.head_m, op.hydraulic_efficiency, duty.tip_speed_m_per_s,
+                      0.5 * d2, vol.base_radius_m, vol.base_width_m, vol.flank_angle_deg * M_PI / 180.0);
+}
 
 } // namespace fsi::pump

@@ -33,4 +33,8 @@ private:
   double q_, k_, r3_, b3_, tan_alpha_;
 };
 
+struct PumpDesign;
+/// The volute of a design: sized for the duty its impeller reaches at the design flow rate.
+VoluteSizing size_volute(const PumpDesign &design);
+
 } // namespace fsi::pump

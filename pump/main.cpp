@@ -3,6 +3,9 @@
 // torque) and the volute its constant-angular-momentum rule gives (outer radius of the spiral
 // every 45 degrees, throat area), each against the plausibility bands of the design rules.
 //   fsi-pump-design DESIGN.yaml
+//   fsi-pump-design DESIGN.yaml --write DIR   also generate the geometry: DIR/impeller.stl,
+//                                     DIR/casing.stl (multi-solid ASCII STL, named regions),
+//                                     DIR/geometry.yaml (the report) and DIR/geometry.png
 //   fsi-pump-design --schema          the design-file reference (docs/pump-design.md)
 //   fsi-pump-design DESIGN.yaml --check-stl IMPELLER.stl CASING.stl [--unit-scale S] [--report FILE]
 //                                     the generated STL files' checks (pump/GeometryChecks.hpp) as a
@@ -13,6 +16,7 @@
 #include "pump/GeometryChecks.hpp"
 #include "pump/PhysicalConstants.hpp"
 #include "pump/PumpDesign.hpp"
+#include "pump/PumpGeometry.hpp"
 #include "pump/VoluteSizing.hpp"
 #include "common/ExitCodes.hpp"
 #include "common/GuardedMain.hpp"
@@ -24,6 +28,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
@@ -37,8 +43,8 @@ std::string band(double value, double lo, double hi) {
 int report(const fsi::pump::PumpDesign &design) {
   const auto &op = design.operation;
   const auto &imp = design.impeller;
-  const auto duty = fsi::pump::estimate_duty_for_flow(op.rotation_rate_rad_per_s, imp.outer_diameter_m,
-                                                      op.design_flow_rate_m3_per_s);
+  const auto duty =
+      fsi::pump::estimate_duty_for_flow(op.rotation_rate_rad_per_s, imp.outer_diameter_m, op.design_flow_rate_m3_per_s);
   spdlog::info("duty at Q = {:.4g} m^3/s, omega = {:.4g} rad/s ({:.0f} rpm), D2 = {:.4g} m (Gülich's psi_opt):",
                op.design_flow_rate_m3_per_s, op.rotation_rate_rad_per_s, fsi::pump::rpm(op.rotation_rate_rad_per_s),
                imp.outer_diameter_m);
@@ -80,6 +86,35 @@ int check_stl(const fsi::pump::PumpDesign &design, const std::vector<std::string
   return fsi::common::exit_code_success;
 }
 
+void log_part(const char *name, const fsi::pump::BuiltPart &part) {
+  const auto &s = part.surface;
+  std::string regions;
+  for (std::size_t r = 0; r < s.region_names.size(); ++r) {
+    const double area = s.region_area_m2(static_cast<int>(r));
+    if (area > 0.0)
+      regions += fmt::format("{}{} {:.5g}", regions.empty() ? "" : ", ", s.region_names[r], area);
+  }
+  spdlog::info("{}: {} triangles, volume {:.6g} m^3 (OCC {:.6g} m^3); region areas m^2: {}", name, s.triangles.size(),
+               s.enclosed_volume_m3(), part.cad_volume_m3, regions);
+}
+
+int write_geometry(const fsi::pump::PumpDesign &design, const std::filesystem::path &dir) {
+  const auto geometry = fsi::pump::PumpGeometry::build(design);
+  geometry.write(dir, design);
+  log_part("impeller", geometry.impeller);
+  log_part("casing", geometry.casing);
+  spdlog::info("blade as built: wrap {:.3f} deg (on the mesh {:.2f} deg), beta1 {:.3f} deg, beta2 {:.3f} deg; "
+               "built in {:.1f} s",
+               geometry.blade.wrap_deg, geometry.blade.wrap_on_mesh_deg, geometry.blade.inlet_angle_deg,
+               geometry.blade.outlet_angle_deg, geometry.seconds);
+  const std::string plot =
+      std::string("/usr/bin/python3 ") + FSI_SOURCE_DIR + "/pump/plot_geometry.py '" + dir.string() + "'";
+  if (std::system(plot.c_str()) != 0)
+    spdlog::warn("the picture {}/geometry.png was not drawn ({} failed)", dir.string(), plot);
+  spdlog::info("wrote {}/impeller.stl, casing.stl, geometry.yaml, geometry.png", dir.string());
+  return fsi::common::exit_code_success;
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -87,6 +122,9 @@ int main(int argc, char **argv) {
   std::string file;
   bool schema = false;
   app.add_option("design", file, "Pump design file (YAML)");
+  std::string write_dir;
+  app.add_option("--write", write_dir, "Generate the geometry into DIR: impeller.stl, casing.stl, geometry.yaml")
+      ->type_name("DIR");
   app.add_flag("--schema", schema, "Print the design-file reference (Markdown) and exit");
   std::vector<std::string> stl_files;
   double unit_scale = 1.0;
@@ -110,5 +148,15 @@ int main(int argc, char **argv) {
     return fsi::common::guarded_main("pump geometry check", [&] {
       return check_stl(fsi::pump::PumpDesign::load(file), stl_files, unit_scale, check_report);
     });
-  return fsi::common::guarded_main("pump design", [&] { return report(fsi::pump::PumpDesign::load(file)); });
+  return fsi::common::guarded_main("pump design", [&] {
+    const auto design = fsi::pump::PumpDesign::load(file);
+    if (const int code = report(design); write_dir.empty() || code != fsi::common::exit_code_success)
+      return code;
+    if (const int code = write_geometry(design, write_dir); code != fsi::common::exit_code_success)
+      return code;
+    // The generated files pass the same checks as a user's own (geometry_checks.yaml).
+    const std::filesystem::path dir(write_dir);
+    return check_stl(design, {(dir / "impeller.stl").string(), (dir / "casing.stl").string()}, 1.0,
+                     (dir / "geometry_checks.yaml").string());
+  });
 }

@@ -1,0 +1,173 @@
+// The generated pump geometry (coarse mesh sizes, same CAD): both solids closed and outward as
+// the project's STL reader sees them, their volumes against independent estimates, the
+// impeller inside the casing, the inlet and outlet discs' areas, the blade as built.
+
+#include "pump/PumpGeometry.hpp"
+
+#include "geometry/StlIo.hpp"
+#include "geometry/TriangleMeshSurface.hpp"
+#include "geometry/TriangleSoupChecks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <random>
+
+namespace fsi::pump {
+namespace {
+
+struct Built {
+  PumpDesign design;
+  PumpGeometry geometry;
+  std::filesystem::path dir;
+};
+
+const Built &built(int n_blades) {
+  static std::map<int, Built> cache;
+  auto found = cache.find(n_blades);
+  if (found == cache.end()) {
+    Built b;
+    b.design.impeller.n_blades = n_blades;
+    b.geometry = PumpGeometry::build(b.design, GeometryOptions::coarse());
+    b.dir = std::filesystem::temp_directory_path() /
+            ("fsi-pump-geometry-" + std::to_string(std::random_device{}()) + "-" + std::to_string(n_blades));
+    b.geometry.write(b.dir, b.design);
+    found = cache.emplace(n_blades, std::move(b)).first;
+  }
+  return found->second;
+}
+
+double signed_volume(const geometry::TriangleSoup &soup) {
+  double six = 0.0;
+  for (int t = 0; t < soup.triangles.rows(); ++t) {
+    const Vec3 a = soup.vertices_m.row(soup.triangles(t, 0)), b = soup.vertices_m.row(soup.triangles(t, 1)),
+               c = soup.vertices_m.row(soup.triangles(t, 2));
+    six += a.cross(b).dot(c);
+  }
+  return six / 6.0;
+}
+
+/// Discs, boss and blades (section area x channel height), the blade section from the camber
+/// length: t int dr / sin(beta) plus the nose's half disc.
+double estimated_impeller_volume(const PumpDesign &d) {
+  const auto &i = d.impeller;
+  const double r2 = 0.5 * i.outer_diameter_m, t = i.blade_thickness_m, b2 = i.outlet_width_m;
+  const BladeCamber camber = d.blade_camber();
+  double length = 0.0;
+  const int n = 2000;
+  for (int k = 0; k < n; ++k) {
+    const double r = camber.inlet_radius_m() + (k + 0.5) * (r2 - camber.inlet_radius_m()) / n;
+    length += (r2 - camber.inlet_radius_m()) / n / std::sin(camber.beta_rad(r));
+  }
+  const double blade = (t * length + M_PI * t * t / 8.0) * b2;
+  const double hub = M_PI * r2 * r2 * t;
+  const double shroud = M_PI * (r2 * r2 - 0.25 * i.eye_diameter_m * i.eye_diameter_m) * t;
+  const double boss = M_PI * 0.25 * i.hub_diameter_m * i.hub_diameter_m * (1.0 + PumpDesign::hub_nose_depth) * b2;
+  return hub + shroud + boss + i.n_blades * blade;
+}
+
+void BothSolidsAreClosedOutwardAndNamedByRegion(const Built &b) {
+  for (const char *file : {"impeller.stl", "casing.stl"}) {
+    const auto soup = geometry::read_stl((b.dir / file).string());
+    EXPECT_NO_THROW(geometry::check_triangle_soup(soup, file));
+    EXPECT_GT(signed_volume(soup), 0.0) << file;
+  }
+  b.geometry.impeller.surface.check_closed_and_outward("impeller");
+  b.geometry.casing.surface.check_closed_and_outward("casing");
+  for (const BuiltPart *part : {&b.geometry.impeller, &b.geometry.casing}) {
+    for (std::size_t r = 0; r < part->surface.region_names.size(); ++r) {
+      if (part->surface.region_names[r] != "blade_tip") { // the open impeller's only
+        EXPECT_GT(part->surface.region_area_m2(static_cast<int>(r)), 0.0) << part->surface.region_names[r];
+      }
+    }
+  }
+  for (const BuiltPart *part : {&b.geometry.impeller, &b.geometry.casing})
+    for (const int region : part->surface.triangle_regions)
+      ASSERT_GE(region, 0);
+}
+
+void VolumesMatchIndependentEstimates(const Built &b) {
+  const double impeller = b.geometry.impeller.surface.enclosed_volume_m3();
+  EXPECT_NEAR(impeller, estimated_impeller_volume(b.design), 0.03 * impeller);
+  EXPECT_NEAR(impeller, b.geometry.impeller.cad_volume_m3, 0.01 * impeller);
+  const double casing = b.geometry.casing.surface.enclosed_volume_m3();
+  EXPECT_NEAR(casing, b.geometry.casing.cad_volume_m3, 0.01 * casing);
+}
+
+void TheImpellerSitsInsideTheCasing(const Built &b) {
+  const geometry::TriangleMeshSurface casing((b.dir / "casing.stl").string(),
+                                             geometry::TriangleMeshSurface::FluidSide::inside);
+  int outside = 0;
+  for (const Vec3 &p : b.geometry.impeller.surface.vertices_m)
+    outside += !casing.is_inside_mesh(p);
+  EXPECT_EQ(outside, 0);
+}
+
+void InletAndOutletDiscsHaveTheirDesignAreas(const Built &b) {
+  const RegionSurface &casing = b.geometry.casing.surface;
+  const double inlet = M_PI * std::pow(b.design.inlet.suction_pipe_diameter_m, 2) / 4.0;
+  const double outlet = M_PI * std::pow(b.design.volute.discharge_diameter_m, 2) / 4.0;
+  EXPECT_NEAR(casing.region_area_m2(casing.region_index("inlet")), inlet, 0.01 * inlet);
+  EXPECT_NEAR(casing.region_area_m2(casing.region_index("outlet")), outlet, 0.01 * outlet);
+}
+
+void TheBladeIsBuiltWithItsDesignWrapAndAngles(const Built &b) {
+  EXPECT_NEAR(b.geometry.blade.wrap_deg, b.design.impeller.wrap_angle_deg, 1.0);
+  EXPECT_NEAR(b.geometry.blade.wrap_on_mesh_deg, b.design.impeller.wrap_angle_deg, 1.0);
+  EXPECT_NEAR(b.geometry.blade.inlet_angle_deg, b.design.impeller.inlet_blade_angle_deg, 0.5);
+  EXPECT_NEAR(b.geometry.blade.outlet_angle_deg, b.design.impeller.outlet_blade_angle_deg, 0.5);
+}
+
+void TheCutWaterHasItsRoundNose(const Built &b) {
+  const RegionSurface &casing = b.geometry.casing.surface;
+  const int nose = casing.region_index("cut_water");
+  const double radius = b.design.volute.cut_water_nose_radius_m;
+  for (std::size_t t = 0; t < casing.triangles.size(); ++t)
+    if (casing.triangle_regions[t] == nose)
+      for (const int v : casing.triangles[t]) {
+        const Vec3 &p = casing.vertices_m[v];
+        EXPECT_NEAR(std::hypot(p[0] - b.geometry.nose_centre_xy_m[0], p[1] - b.geometry.nose_centre_xy_m[1]), radius,
+                    1e-6);
+      }
+}
+
+// One test per design: ctest runs each test in its own process, and the build is the cost.
+class GeneratedPump : public testing::TestWithParam<int> {};
+
+TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
+  const Built &b = built(GetParam());
+  {
+    SCOPED_TRACE("BothSolidsAreClosedOutwardAndNamedByRegion");
+    BothSolidsAreClosedOutwardAndNamedByRegion(b);
+  }
+  {
+    SCOPED_TRACE("VolumesMatchIndependentEstimates");
+    VolumesMatchIndependentEstimates(b);
+  }
+  {
+    SCOPED_TRACE("TheImpellerSitsInsideTheCasing");
+    TheImpellerSitsInsideTheCasing(b);
+  }
+  {
+    SCOPED_TRACE("InletAndOutletDiscsHaveTheirDesignAreas");
+    InletAndOutletDiscsHaveTheirDesignAreas(b);
+  }
+  {
+    SCOPED_TRACE("TheBladeIsBuiltWithItsDesignWrapAndAngles");
+    TheBladeIsBuiltWithItsDesignWrapAndAngles(b);
+  }
+  {
+    SCOPED_TRACE("TheCutWaterHasItsRoundNose");
+    TheCutWaterHasItsRoundNose(b);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(OneAndTwoBlades, GeneratedPump, testing::Values(1, 2),
+                         [](const testing::TestParamInfo<int> &info) {
+                           return info.param == 1 ? std::string("SingleBlade") : std::string("TwoBlades");
+                         });
+
+} // namespace
+} // namespace fsi::pump
