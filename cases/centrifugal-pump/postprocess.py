@@ -44,8 +44,12 @@ def picture(out, omega, axis, point, path):
     fig, (a, b, c) = plt.subplots(3, 1, figsize=(7, 8.5))
     a.plot(t_t * rev, torque, lw=0.8)
     b.plot(t_h * rev, head, lw=0.8, color="C1")
-    for ax in (a, b):
+    for ax, t, y in ((a, t_t, torque), (b, t_h, head)):
         ax.axvspan(point["averaged_from_s"] * rev, point["averaged_to_s"] * rev, color="0.9", zorder=0)
+        later = y[t * rev >= 1.0]  # the start-up transient (first revolution) off the scale
+        if len(later) > 2:
+            lo, hi = np.percentile(later, [0.5, 99.5])
+            ax.set_ylim(lo - 0.2 * (hi - lo), hi + 0.2 * (hi - lo))
     a.axhline(point["shaft_torque_n_m"], color="k", lw=0.6, ls="--")
     b.axhline(point["head_m"], color="k", lw=0.6, ls="--")
     a.set_ylabel("shaft torque T (N m)")

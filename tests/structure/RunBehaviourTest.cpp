@@ -70,6 +70,20 @@ TEST(RunBehaviour, MissingMeshFileIsNamed) {
                    "impeller.stl': file not found");
 }
 
+TEST(RunBehaviour, NoStructureOnlyWithAnOpenFoamFluid) {
+  // A scene without structures is the OpenFOAM flow alone with its rigid bodies (a pump's
+  // performance): refused without an OpenFOAM fluid, and not a structure solver's job with one.
+  const std::string none = "run: {end_time_s: 0.01, time_step_s: 1.0e-4, output_interval_s: 0.005}\nstructures: []\n";
+  expect_bad_input(none, "must list at least one structure (none only with `fluid.openfoam`");
+  const auto dir = testing::make_case_dir(none + "fluid:\n  openfoam: {case_directory: foam}\n");
+  std::filesystem::create_directories(dir / "foam" / "system");
+  const Outcome out = run_solver(dir.string());
+  EXPECT_EQ(out.exit_code, 2) << out.output;
+  EXPECT_NE(out.output.find("has no structure: its flow runs alone (fsi-openfoam-fluid); run it with ./fsi run"),
+            std::string::npos)
+      << out.output;
+}
+
 TEST(RunBehaviour, MalformedYamlAndWrongTypesAreRejected) {
   expect_bad_input(with("n_points: [11, 6]", "n_points: [11, 6"), "not valid YAML");
   expect_bad_input(with("n_points: [11, 6]", "n_points: eleven"), "must be a list of two integers");
