@@ -11,7 +11,7 @@
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
-#   ./fsi bench [structure|transport|coupling|fluid]  run a benchmark (fluid: vs stock pimpleFoam;
+#   ./fsi bench [structure|transport|coupling|fluid|pump]  run a benchmark (fluid, pump: vs stock pimpleFoam;
 #                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
 #   ./fsi report [--quick]    speed-against-error report (report/REPORT.md, error_vs_cost.png)
 #   ./fsi schema              print the case-file reference (Markdown)
@@ -173,8 +173,9 @@ cmd_bench() {
     transport) "$BUILD/bin/bench_transport" --benchmark_counters_tabular=true ;;
     coupling) shift || true; "$BUILD/bin/bench_coupling" "$@" ;;
     fluid) shift || true; /usr/bin/python3 "$ROOT/bench/fluid/bench_fluid.py" --bin-dir "$BUILD/bin" "$@" ;;
+    pump) shift || true; /usr/bin/python3 "$ROOT/bench/pump/bench_pump.py" --bin-dir "$BUILD/bin" "$@" ;;
     mesh_surface|kernel_stencil|body_indicator|free_passage) shift || true; "$BUILD/bin/bench_$which" "$@" ;;
-    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, mesh_surface, kernel_stencil, body_indicator, free_passage)" ;;
+    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, pump, mesh_surface, kernel_stencil, body_indicator, free_passage)" ;;
   esac
 }
 

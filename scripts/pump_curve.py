@@ -4,7 +4,7 @@ case run at several flow rates, each point independent and averaged over its las
 revolutions (scripts/pump_point.py), written to pump_curve.csv and drawn in pump_curve.png (H/H_BEP
 and T/T_BEP against Q/Q_BEP, as the paper's Figs. 10-11, the efficiency on a second axis).
 
-    pump_curve.py --bin-dir BIN [--points 0.36,0.6,0.8,1.0,1.2] [--jobs N] [--resolution NAME]
+    pump_curve.py --bin-dir BIN [--points 0.36,0.6,0.8,1.0,1.2] [--method ibm|ami|both] [--jobs N] [--resolution NAME]
                   [--end-time S] [-o DIR] CASE_DIR
 
 Each point is a copy of the case folder with its flow rate (constant/operatingPoint of the
@@ -12,12 +12,18 @@ OpenFOAM case) set to the fraction of the design flow rate (pump.yaml), run by f
 DIR/q<fraction>/ (the run) and DIR/q<fraction>/case (the copy). Points run in parallel, up to
 --jobs at once (default: the cores, over the fluid's MPI ranks); the first one meshes and the
 others start once its mesh is in the mesh cache. Progress with ETA on stderr; a failed point is
-reported and the curve drawn with the others.
+reported and the curve drawn with the others. A point already run with the same case files,
+flow rate and options (DIR/q<fraction>/run.complete) is not run again: its results are reused.
+--method ami runs the reference instead, --method both both of them: the same geometry meshed
+body-fitted with the impeller in a rotating zone behind an AMI, by stock pimpleFoam
+(scripts/pump_ami_run.py, in DIR/ami-q<fraction>/), the same averaging; the picture then shows
+both curves scaled by the reference's BEP and the log the differences point by point.
 """
 
 import argparse
 import concurrent.futures
 import csv
+import hashlib
 import math
 import os
 import re
@@ -34,6 +40,7 @@ sys.path.insert(0, HERE)
 import pump_point  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
+AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
 PROGRESS = re.compile(r"flow: t = ([0-9.eE+-]+) of ([0-9.eE+-]+) s.*ETA (.*)$")
 LOCK = threading.Lock()
 
@@ -44,11 +51,15 @@ def say(message):
         sys.stderr.flush()
 
 
+METHODS = {"ibm": "penalized IBM (ours)", "ami": "body-fitted AMI (stock pimpleFoam)"}
+
+
 class Point:
-    def __init__(self, fraction, design_q, out):
+    def __init__(self, fraction, design_q, out, method):
         self.fraction = fraction
+        self.method = method
         self.flow_rate = fraction * design_q
-        self.name = "q%.2f" % fraction
+        self.name = ("q%.2f" if method == "ibm" else "ami-q%.2f") % fraction
         self.folder = os.path.join(out, self.name)
         self.case = os.path.join(self.folder, "case")
         self.progress = 0.0
@@ -76,21 +87,69 @@ def copy_case(case_dir, point, template):
         f.write("// Set by pump_curve.py: %.3g of the design flow rate.\n" % point.fraction + text)
 
 
+def case_fingerprint(case_dir):
+    """A hash of every file of the case folder but its results: a point reruns when it changes."""
+    digest = hashlib.sha256()
+    for root, dirs, files in os.walk(case_dir, followlinks=False):
+        dirs[:] = sorted(d for d in dirs if d not in ("output", "__pycache__"))
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            digest.update(os.path.relpath(path, case_dir).encode() + b"\0")
+            with open(path, "rb") as f:
+                digest.update(f.read())
+    return digest.hexdigest()[:16]
+
+
+def postprocess(args, point):
+    """The case's own postprocess.py (the source case's: the copy's relative imports would not
+    resolve) on the point's results."""
+    made = subprocess.run([sys.executable, os.path.join(args.case_dir, "postprocess.py"), point.folder, point.case],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if made.returncode != 0:
+        lines = made.stdout.decode().strip().splitlines() or ["(no output)"]
+        point.state, point.error = "failed", "postprocess: %s" % lines[-1]
+        return
+    with open(os.path.join(point.folder, "operating_point.yaml")) as f:
+        point.result = yaml.safe_load(f)
+    point.state = "done"
+
+
 def run_point(args, point, template):
-    copy_case(args.case_dir, point, template)
-    command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", point.folder]
-    if args.resolution:
-        command += ["--resolution", args.resolution]
-    if args.end_time:
-        command += ["--end-time", str(args.end_time)]
-    command.append(point.case)
+    stamp_file = os.path.join(point.folder, "run.complete")
+    stamp = "%s q=%r resolution=%s end=%r\n" % (args.fingerprint, point.flow_rate, args.resolution, args.end_time)
+    if os.path.exists(stamp_file) and open(stamp_file).read() == stamp and os.path.isdir(point.case):
+        point.meshed.set()
+        say("%s: up to date (same case, flow rate and run): reused" % point.name)
+        if point.method == "ibm":
+            postprocess(args, point)
+        else:
+            with open(os.path.join(point.folder, "operating_point.yaml")) as f:
+                point.result = yaml.safe_load(f)
+            point.state = "done"
+        return
+    if os.path.exists(stamp_file):
+        os.remove(stamp_file)
+    if point.method == "ibm":
+        copy_case(args.case_dir, point, template)
+        command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", point.folder]
+        if args.resolution:
+            command += ["--resolution", args.resolution]
+        if args.end_time:
+            command += ["--end-time", str(args.end_time)]
+        command.append(point.case)
+    else:  # the reference: scripts/pump_ami_run.py on the case's openfoam-ami-<resolution>
+        os.makedirs(point.folder, exist_ok=True)
+        point.case = args.case_dir
+        command = [sys.executable, AMI_RUN, "--resolution", args.resolution or "coarse", "--flow-rate",
+                   repr(point.flow_rate), "--end-time", repr(args.end_time or args.case_end_time), "-o", point.folder,
+                   args.case_dir]
     point.state, point.started = "running", time.monotonic()
     with open(os.path.join(point.folder, "pump_curve.log"), "wb") as log:
         process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
         for raw in iter(process.stderr.readline, b""):
             log.write(raw)
             line = raw.decode("utf-8", "replace").rstrip()
-            if "flow alone (no structure)" in line:
+            if "flow alone (no structure)" in line or "pimpleFoam to t =" in line:
                 point.meshed.set()
             match = PROGRESS.search(line)
             if match:
@@ -101,14 +160,14 @@ def run_point(args, point, template):
     if code != 0:
         point.state, point.error = "failed", "exit code %d (log: %s)" % (code, os.path.join(point.folder, "pump_curve.log"))
         return
-    made = subprocess.run([sys.executable, os.path.join(point.case, "postprocess.py"), point.folder, point.case],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    if made.returncode != 0:
-        point.state, point.error = "failed", "postprocess: %s" % made.stdout.decode().strip().splitlines()[-1]
-        return
-    with open(os.path.join(point.folder, "operating_point.yaml")) as f:
-        point.result = yaml.safe_load(f)
-    point.state = "done"
+    with open(stamp_file, "w") as f:
+        f.write(stamp)
+    if point.method == "ibm":
+        postprocess(args, point)
+    else:  # pump_ami_run.py wrote it
+        with open(os.path.join(point.folder, "operating_point.yaml")) as f:
+            point.result = yaml.safe_load(f)
+        point.state = "done"
 
 
 def report_progress(points, stop):
@@ -120,7 +179,7 @@ def report_progress(points, stop):
 
 
 def write_csv(points, path):
-    keys = ["fraction_of_design", "flow_rate_m3_per_s", "head_m", "shaft_torque_n_m", "efficiency",
+    keys = ["method", "fraction_of_design", "flow_rate_m3_per_s", "head_m", "shaft_torque_n_m", "efficiency",
             "head_coefficient_psi", "flow_coefficient_phi", "torque_pulsation_1_per_rev",
             "head_pulsation_1_per_rev", "revolutions_averaged"]
     with open(path, "w", newline="") as f:
@@ -128,14 +187,14 @@ def write_csv(points, path):
         w.writerow(keys)
         for p in points:
             if p.result:
-                w.writerow([p.fraction] + [p.result[k] for k in keys[1:]])
+                w.writerow([p.method, p.fraction] + [p.result[k] for k in keys[2:]])
 
 
-def plausibility(points):
+def plausibility(points, method):
     """The checks of issue 11 that a single curve can tell, as lines of text."""
-    done = [p for p in points if p.result]
+    done = [p for p in points if p.result and p.method == method]
     if len(done) < 3:
-        return ["fewer than 3 points: no curve checks"]
+        return ["%s: fewer than 3 points, no curve checks" % method]
     q = [p.flow_rate for p in done]
     h = [p.result["head_m"] for p in done]
     t = [p.result["shaft_torque_n_m"] for p in done]
@@ -144,39 +203,61 @@ def plausibility(points):
     import numpy as np
     fit = np.polyfit(q, h, 2)
     lines = [
-        "BEP at %.3g Q_design: psi = %.3f (band 0.3-0.5), eta = %.2f (band 0.5-0.8)"
+        method + ": BEP at %.3g Q_design: psi = %.3f (band 0.3-0.5), eta = %.2f (band 0.5-0.8)"
         % (done[bep].fraction, done[bep].result["head_coefficient_psi"], eta[bep]),
-        "shut-off head (quadratic fit to Q = 0) / H_BEP = %.2f (band 1.2-1.4)" % (np.polyval(fit, 0.0) / h[bep]),
-        "head falls with Q: %s; torque rises with Q: %s" % (
+        method + ": shut-off head (quadratic fit to Q = 0) / H_BEP = %.2f (band 1.2-1.4)" % (np.polyval(fit, 0.0) / h[bep]),
+        method + ": head falls with Q: %s; torque rises with Q: %s" % (
             all(b < a for a, b in zip(h, h[1:])), all(b > a for a, b in zip(t, t[1:]))),
     ]
     return lines
 
 
+def comparison(points):
+    """The penalized IBM against the AMI reference, point by point (relative differences)."""
+    ami = {p.fraction: p for p in points if p.method == "ami" and p.result}
+    lines = []
+    for p in points:
+        if p.method == "ibm" and p.result and p.fraction in ami:
+            ref = ami[p.fraction].result
+            lines.append("Q = %.3g Q_design: H %.3g m vs AMI %.3g m (%+.1f %%), T %.3g vs %.3g N m (%+.1f %%)" % (
+                p.fraction, p.result["head_m"], ref["head_m"], 100 * (p.result["head_m"] / ref["head_m"] - 1),
+                p.result["shaft_torque_n_m"], ref["shaft_torque_n_m"],
+                100 * (p.result["shaft_torque_n_m"] / ref["shaft_torque_n_m"] - 1)))
+    return lines
+
+
 def draw(points, path, title):
+    """H/H_BEP and T/T_BEP against Q/Q_BEP per method, scaled by the reference's BEP (AMI when it
+    ran, else the method's own), efficiency on the right axis."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     done = [p for p in points if p.result]
     if not done:
         return
-    bep = max(done, key=lambda p: p.result["efficiency"])
-    q = [p.flow_rate / bep.flow_rate for p in done]
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    ax.plot(q, [p.result["head_m"] / bep.result["head_m"] for p in done], "o-", label="H / H_BEP (penalized IBM)")
-    ax.plot(q, [p.result["shaft_torque_n_m"] / bep.result["shaft_torque_n_m"] for p in done], "s-",
-            label="T / T_BEP (penalized IBM)")
-    ax.set_xlabel("Q / Q_BEP (Q_BEP = %.3g L/s)" % (1e3 * bep.flow_rate))
+    methods = [m for m in METHODS if any(p.method == m for p in done)]
+    scale_method = "ami" if "ami" in methods else methods[0]
+    bep = max((p for p in done if p.method == scale_method), key=lambda p: p.result["efficiency"])
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    right = ax.twinx()
+    for k, method in enumerate(methods):
+        pts = sorted((p for p in done if p.method == method), key=lambda p: p.flow_rate)
+        q = [p.flow_rate / bep.flow_rate for p in pts]
+        style = "-" if method == "ibm" else ":"
+        ax.plot(q, [p.result["head_m"] / bep.result["head_m"] for p in pts], "o" + style, color="C0",
+                label="H / H_BEP, " + METHODS[method])
+        ax.plot(q, [p.result["shaft_torque_n_m"] / bep.result["shaft_torque_n_m"] for p in pts], "s" + style,
+                color="C1", label="T / T_BEP, " + METHODS[method])
+        right.plot(q, [p.result["efficiency"] for p in pts], "^" + style, color="C2", label="efficiency, " + method)
+    ax.set_xlabel("Q / Q_BEP (Q_BEP = %.3g L/s, %s)" % (1e3 * bep.flow_rate, scale_method))
     ax.set_ylabel("H / H_BEP, T / T_BEP (H_BEP = %.3g m, T_BEP = %.3g N m)"
                   % (bep.result["head_m"], bep.result["shaft_torque_n_m"]))
     ax.grid(alpha=0.3)
-    right = ax.twinx()
-    right.plot(q, [p.result["efficiency"] for p in done], "^--", color="C2", label="efficiency")
     right.set_ylabel("efficiency rho g Q H / (T omega)")
     right.set_ylim(0, 1)
     lines = ax.get_legend_handles_labels()
     more = right.get_legend_handles_labels()
-    ax.legend(lines[0] + more[0], lines[1] + more[1], loc="lower left", fontsize=8)
+    ax.legend(lines[0] + more[0], lines[1] + more[1], loc="lower left", fontsize=7)
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -191,6 +272,9 @@ def main(argv):
     parser.add_argument("--jobs", type=int, default=0, help="points at once (default: cores / MPI ranks)")
     parser.add_argument("--resolution", default="", help="a preset of the case (coarse, medium, fine, rans)")
     parser.add_argument("--end-time", type=float, default=0.0, help="stop each point at this time (s)")
+    parser.add_argument("--method", choices=["ibm", "ami", "both"], default="ibm",
+                        help="ibm: the penalized impeller (ours); ami: the body-fitted sliding-mesh reference "
+                             "(stock pimpleFoam, openfoam-ami-<resolution>); both")
     parser.add_argument("-o", "--output", default="", help="results folder (default CASE/output/pump-curve)")
     parser.add_argument("case_dir")
     args = parser.parse_args(argv)
@@ -225,16 +309,22 @@ def main(argv):
                                                       "pump-curve" + ("-" + args.resolution if args.resolution else "")))
     os.makedirs(out, exist_ok=True)
     jobs = args.jobs or max(1, (os.cpu_count() or 1) // max(ranks, 1))
-    points = [Point(f, design_q, out) for f in fractions]
-    say("%d points (%s of Q_design = %.4g L/s), %d at once, in %s"
-        % (len(points), args.points, 1e3 * design_q, jobs, out))
+    args.fingerprint = case_fingerprint(args.case_dir)
+    args.case_end_time = float(case["run"]["end_time_s"])
+    methods = ["ibm", "ami"] if args.method == "both" else [args.method]
+    points = [Point(f, design_q, out, m) for m in methods for f in fractions]
+    say("%d points (%s of Q_design = %.4g L/s; %s), %d at once, in %s"
+        % (len(points), args.points, 1e3 * design_q, " and ".join(METHODS[m] for m in methods), jobs, out))
     start = time.monotonic()
     stop = threading.Event()
     threading.Thread(target=report_progress, args=(points, stop), daemon=True).start()
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        first = pool.submit(run_point, args, points[0], template)
-        points[0].meshed.wait()  # the others reuse its mesh from the cache
-        futures = [first] + [pool.submit(run_point, args, p, template) for p in points[1:]]
+        futures = []
+        for method in methods:  # the first point of each method meshes; the others reuse its mesh
+            mine = [p for p in points if p.method == method]
+            futures.append(pool.submit(run_point, args, mine[0], template))
+            mine[0].meshed.wait()
+            futures += [pool.submit(run_point, args, p, template) for p in mine[1:]]
         for future in futures:
             future.result()
     stop.set()
@@ -246,7 +336,10 @@ def main(argv):
                                          " (" + args.resolution + ")" if args.resolution else "",
                                          sum(p.result is not None for p in points), time.monotonic() - start)
     draw(points, os.path.join(out, "pump_curve.png"), title)
-    for line in plausibility(points):
+    for method in methods:
+        for line in plausibility(points, method):
+            say(line)
+    for line in comparison(points):
         say(line)
     say("pump_curve.csv, pump_curve.png in %s (%.0f s)" % (out, time.monotonic() - start))
     return 0 if all(p.result for p in points) else 1
