@@ -254,10 +254,35 @@ def run_pimple(foam_case, logs, end_time, dt):
     return exec_times, time.monotonic() - start
 
 
+def time_mesh_motion(foam_case, logs, steps=20):
+    """Wall seconds per step of the mesh motion alone (the solid-body rotation and the AMI's
+    new addressing and weights): moveDynamicMesh on a copy of the case for `steps` steps.
+    pimpleFoam's log does not time its mesh.update()."""
+    copy = foam_case.rstrip("/") + ".mesh-motion"
+    if os.path.exists(copy):
+        shutil.rmtree(copy)
+    shutil.copytree(foam_case, copy, ignore=shutil.ignore_patterns("postProcessing", "[1-9]*", "0.[0-9]*"))
+    control = os.path.join(copy, "system", "controlDict")
+    with open(control) as f:
+        dt = float(re.search(r"^deltaT\s+([^;]+);", f.read(), re.M).group(1))
+    set_entry(control, "endTime", repr(steps * dt))
+    log = os.path.join(logs, "log.moveDynamicMesh")
+    with open(log, "w") as f:
+        code = subprocess.call(["moveDynamicMesh", "-case", copy, "-noFunctionObjects"], stdout=f,
+                               stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+    shutil.rmtree(copy, ignore_errors=True)
+    if code != 0:
+        say("moveDynamicMesh failed (exit %d): see %s" % (code, log))
+        return None
+    with open(log) as f:
+        times = [float(m) for m in re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", f.read(), re.M)]
+    if len(times) < 3:
+        return None
+    return (times[-1] - times[0]) / (len(times) - 1)
+
+
 def solver_split(log):
-    """Seconds per step spent in the mesh update (solidBody + AMI), if the log shows it."""
-    # v1912's pimpleFoam prints no timing of mesh.update(); the AMIWeights function object and
-    # "AMI: Creating addressing" lines are counted instead.
+    """The AMI's addressing updates counted in pimpleFoam's log (one per step)."""
     with open(log) as f:
         text = f.read()
     return {"ami_addressing_updates": text.count("Creating addressing and weights")}
@@ -287,7 +312,10 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse"):
     control = os.path.join(foam_case, "system", "controlDict")
     set_entry(control, "endTime", repr(float(end_time)))
     with open(control) as f:
-        dt = float(re.search(r"^deltaT\s+([^;]+);", f.read(), re.M).group(1))
+        text = f.read()
+    dt = float(re.search(r"^deltaT\s+([^;]+);", text, re.M).group(1))
+    if float(re.search(r"^writeInterval\s+([^;]+);", text, re.M).group(1)) > end_time:
+        set_entry(control, "writeInterval", repr(float(end_time)))   # the end state, to continue from
     with open(os.path.join(foam_case, "constant", "dynamicMeshDict")) as f:
         text = f.read()
     omega = float(re.search(r"^omega\s+([^;]+);", text, re.M).group(1))
@@ -317,6 +345,10 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse"):
         "ami_weights_sum_min_max": ami_weights(foam_case),
     }
     cost.update(solver_split(os.path.join(logs, "log.pimpleFoam")))
+    motion = time_mesh_motion(foam_case, logs)
+    if motion is not None:
+        cost["mesh_motion_and_ami_s_per_step"] = motion
+        cost["mesh_motion_and_ami_s_per_revolution"] = motion * period / dt
     with open(os.path.join(out_dir, "cost.yaml"), "w") as f:
         yaml.safe_dump(cost, f, sort_keys=False)
     say("forces.csv (%d rows); %.1f wall s per revolution (%d cells, 1 core)" % (n, cost["wall_s_per_revolution"], cells))
