@@ -1,0 +1,396 @@
+#!/usr/bin/python3
+"""The body-fitted sliding-mesh (AMI) reference of a pump point, run by stock pimpleFoam (serial):
+the case folder that cases/centrifugal-pump/make_ami_case.py wrote (openfoam-ami-<resolution>),
+copied to OUT/openfoam with the flow rate set, meshed (blockMesh, snappyHexMesh, createBaffles,
+mergeOrSplitBaffles -split, checkMesh; or the same mesh from the cache, ~/.cache/fsi/meshes/<hash
+of the mesh inputs>, as fluid_adapter/OpenFoamCase.cpp does for the penalized runs), run to
+end_time with the logs in OUT/logs/, and the forces function object's output converted to
+OUT/forces.csv in the format of the penalized runs (time_s,body0.fx_n,...,body0.tz_n_m: the
+fluid's force and torque on the impeller, pressure + viscous, about the origin), so that
+scripts/pump_point.py's operating_point(OUT, ...) reads it unchanged.
+
+    pump_ami_run.py [--resolution coarse] [--flow-rate Q] [--end-time S] -o OUT CASE_DIR
+
+CASE_DIR is the pump case (cases/centrifugal-pump: its openfoam-ami-<resolution> is taken) or
+an AMI case folder itself. Progress with ETA on stderr from pimpleFoam's log. Writes
+OUT/operating_point.yaml (pump_point.operating_point) and OUT/cost.yaml (wall seconds per step
+and per revolution, the AMI weights' sums). From Python: run_ami_point(case_dir, flow_rate,
+out_dir, end_time, resolution)."""
+
+import argparse
+import glob
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+import yaml
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import pump_point  # noqa: E402
+
+MESH_DICTS = ("blockMeshDict", "snappyHexMeshDict", "surfaceFeatureExtractDict", "meshQualityDict",
+              "createBafflesDict")
+FORCE_COLUMNS = ["time_s", "body0.fx_n", "body0.fy_n", "body0.fz_n", "body0.tx_n_m", "body0.ty_n_m", "body0.tz_n_m"]
+
+
+def say(message):
+    sys.stderr.write("pump-ami: %s\n" % message)
+    sys.stderr.flush()
+
+
+class Fnv1a:
+    """common/Fnv1a.hpp: FNV-1a 64 bit, add() appends a 0xff separator."""
+
+    def __init__(self):
+        self.h = 14695981039346656037
+
+    def add_bytes(self, data):
+        h = self.h
+        for c in data:
+            h = ((h ^ c) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+        self.h = h
+
+    def add(self, data):
+        self.add_bytes(data if isinstance(data, bytes) else data.encode())
+        self.h = ((self.h ^ 0xFF) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+
+    def add_file(self, path):
+        try:
+            with open(path, "rb") as f:
+                self.add(f.read())
+        except FileNotFoundError:
+            self.add(b"")
+
+    def hex(self):
+        return "%016x" % self.h
+
+
+def mesh_cache_root():
+    if os.environ.get("FSI_MESH_CACHE"):
+        return os.environ["FSI_MESH_CACHE"]
+    if os.environ.get("XDG_CACHE_HOME"):
+        return os.path.join(os.environ["XDG_CACHE_HOME"], "fsi", "meshes")
+    if os.environ.get("HOME"):
+        return os.path.join(os.environ["HOME"], ".cache", "fsi", "meshes")
+    return ""
+
+
+def mesh_inputs_hash(foam_case):
+    """As mesh_inputs_hash() of OpenFoamCase.cpp (the system dicts, then the triSurface files in
+    name order), with createBafflesDict among the dicts and an "ami" tag first: never the key of
+    a penalized mesh."""
+    h = Fnv1a()
+    h.add("ami")
+    for name in MESH_DICTS:
+        h.add_file(os.path.join(foam_case, "system", name))
+    tri = os.path.join(foam_case, "constant", "triSurface")
+    if os.path.isdir(tri):
+        for name in sorted(os.listdir(tri)):
+            if os.path.isfile(os.path.join(tri, name)):
+                h.add(name)
+                h.add_file(os.path.join(tri, name))
+    return h.hex()
+
+
+def run_tool(tool, foam_case, logs, options=()):
+    log = os.path.join(logs, "log." + tool)
+    say("meshing: %s %s (log %s)" % (tool, " ".join(options), log))
+    with open(log, "w") as f:
+        code = subprocess.call([tool, "-case", foam_case] + list(options), stdout=f, stderr=subprocess.STDOUT,
+                               stdin=subprocess.DEVNULL)
+    if code != 0:
+        raise RuntimeError("%s failed (exit %d): see %s" % (tool, code, log))
+    return log
+
+
+def mesh(foam_case, logs):
+    """blockMesh, snappyHexMesh, createBaffles, mergeOrSplitBaffles -split, checkMesh; or the
+    cached mesh of the same inputs. The 0/ fields are set aside while meshing (the tools would
+    map them)."""
+    root = mesh_cache_root()
+    key = mesh_inputs_hash(foam_case)
+    cached = os.path.join(root, key) if root else ""
+    poly = os.path.join(foam_case, "constant", "polyMesh")
+    if cached and os.path.exists(os.path.join(cached, "polyMesh", "owner")):
+        shutil.rmtree(poly, ignore_errors=True)
+        shutil.copytree(os.path.join(cached, "polyMesh"), poly)
+        for name in ("log.checkMesh", "log.snappyHexMesh", "log.createBaffles", "log.mergeOrSplitBaffles"):
+            if os.path.exists(os.path.join(cached, name)):
+                shutil.copy(os.path.join(cached, name), os.path.join(logs, name))
+        say("meshing: the AMI mesh of these inputs is cached: %s" % cached)
+        return cached
+    start = time.monotonic()
+    zero, aside = os.path.join(foam_case, "0"), os.path.join(foam_case, "0.fields")
+    os.rename(zero, aside)
+    try:
+        run_tool("blockMesh", foam_case, logs)
+        run_tool("snappyHexMesh", foam_case, logs, ["-overwrite"])
+        run_tool("createBaffles", foam_case, logs, ["-overwrite"])
+        run_tool("mergeOrSplitBaffles", foam_case, logs, ["-split", "-overwrite"])
+    finally:
+        if os.path.isdir(zero):
+            shutil.rmtree(zero)
+        os.rename(aside, zero)
+    for extra in ("cellLevel", "pointLevel", "level0Edge", "surfaceIndex"):
+        path = os.path.join(poly, extra)
+        if os.path.exists(path):
+            os.remove(path)
+    check = run_tool("checkMesh", foam_case, logs, ["-constant"])
+    with open(check) as f:
+        text = f.read()
+    say("meshing: done in %.0f s, checkMesh: %s" % (time.monotonic() - start,
+                                                    "Mesh OK" if "Mesh OK." in text else "FAILED (see %s)" % check))
+    if cached:
+        partial = "%s.partial.%d" % (cached, os.getpid())
+        try:
+            os.makedirs(partial)
+            shutil.copytree(poly, os.path.join(partial, "polyMesh"))
+            for name in ("log.checkMesh", "log.snappyHexMesh", "log.createBaffles", "log.mergeOrSplitBaffles"):
+                shutil.copy(os.path.join(logs, name), os.path.join(partial, name))
+            os.rename(partial, cached)
+        except OSError:
+            shutil.rmtree(partial, ignore_errors=True)
+    return cached
+
+
+def set_entry(path, key, value):
+    with open(path) as f:
+        text = f.read()
+    text, n = re.subn(r"^%s\s+[^;]+;" % key, "%-15s %s;" % (key, value), text, flags=re.M)
+    if n != 1:
+        raise SystemExit("pump-ami: %s has no `%s VALUE;` line" % (path, key))
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def read_foam_vectors(path):
+    """Rows of floats of a forces .dat file (`time (x y z) (x y z) ...`), comments skipped."""
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                rows.append([float(w) for w in line.replace("(", " ").replace(")", " ").split()])
+    return rows
+
+
+def write_forces_csv(foam_case, out_dir):
+    """OUT/forces.csv from postProcessing/forces/<start>/{force,moment}.dat: total = pressure +
+    viscous (the first vector of each row), restarts joined (the later start wins)."""
+    rows = {}
+    starts = sorted(glob.glob(os.path.join(foam_case, "postProcessing", "forces", "*")),
+                    key=lambda p: float(os.path.basename(p)))
+    for start in starts:
+        forces = read_foam_vectors(os.path.join(start, "force.dat"))
+        moments = {r[0]: r for r in read_foam_vectors(os.path.join(start, "moment.dat"))}
+        for f in forces:
+            m = moments.get(f[0])
+            if m is not None:
+                rows[f[0]] = f[1:4] + m[1:4]
+    if not rows:
+        raise RuntimeError("no forces output in %s/postProcessing/forces" % foam_case)
+    with open(os.path.join(out_dir, "forces.csv"), "w") as f:
+        f.write(",".join(FORCE_COLUMNS) + "\n")
+        for t in sorted(rows):
+            f.write("%.9g,%s\n" % (t, ",".join("%.9g" % v for v in rows[t])))
+    return len(rows)
+
+
+def ami_weights(foam_case):
+    """min/max of the AMI weights' sums over the run, per patch, from the AMIWeights output."""
+    result = {}
+    for path in glob.glob(os.path.join(foam_case, "postProcessing", "AMIWeights", "*", "*.dat")):
+        with open(path) as f:
+            header = []
+            for line in f:
+                if line.startswith("#"):
+                    words = line[1:].split()
+                    if words and words[0] == "Time":
+                        header = words
+                    continue
+                values = line.split()
+                for name, v in zip(header[1:], values[1:]):
+                    try:
+                        x = float(v)
+                    except ValueError:
+                        continue
+                    lo, hi = result.get(name, (math.inf, -math.inf))
+                    result[name] = (min(lo, x), max(hi, x))
+    return {k: [v[0], v[1]] for k, v in sorted(result.items())}
+
+
+def run_pimple(foam_case, logs, end_time, dt):
+    """pimpleFoam, serial; progress with ETA on stderr. (steps, [ExecutionTime per step])."""
+    log = os.path.join(logs, "log.pimpleFoam")
+    say("pimpleFoam to t = %g s (dt = %g s, %d steps), log %s" % (end_time, dt, round(end_time / dt), log))
+    exec_times, t, last_report, start = [], 0.0, 0.0, time.monotonic()
+    with open(log, "w") as f:
+        process = subprocess.Popen(["pimpleFoam", "-case", foam_case], stdout=subprocess.PIPE,
+                                   stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+        for raw in iter(process.stdout.readline, b""):
+            line = raw.decode("utf-8", "replace")
+            f.write(line)
+            if line.startswith("Time = "):
+                try:
+                    t = float(line.split()[2])
+                except (IndexError, ValueError):
+                    pass
+            elif line.startswith("ExecutionTime = "):
+                exec_times.append(float(line.split()[2]))
+                now = time.monotonic()
+                if now - last_report > 15.0 and t > 0:
+                    elapsed = now - start
+                    say("flow: t = %.6g of %g s, step %d/%d, %.0f ms/step, ETA %.0f s"
+                        % (t, end_time, len(exec_times), round(end_time / dt), 1e3 * elapsed / len(exec_times),
+                           elapsed * (end_time - t) / t))
+                    last_report = now
+        code = process.wait()
+    if code != 0:
+        raise RuntimeError("pimpleFoam failed (exit %d): see %s" % (code, log))
+    return exec_times, time.monotonic() - start
+
+
+def time_mesh_motion(foam_case, logs, steps=20):
+    """Wall seconds per step of the mesh motion alone (the solid-body rotation and the AMI's
+    new addressing and weights): moveDynamicMesh on a copy of the case for `steps` steps.
+    pimpleFoam's log does not time its mesh.update()."""
+    copy = foam_case.rstrip("/") + ".mesh-motion"
+    if os.path.exists(copy):
+        shutil.rmtree(copy)
+    shutil.copytree(foam_case, copy, ignore=shutil.ignore_patterns("postProcessing", "[1-9]*", "0.[0-9]*"))
+    control = os.path.join(copy, "system", "controlDict")
+    with open(control) as f:
+        dt = float(re.search(r"^deltaT\s+([^;]+);", f.read(), re.M).group(1))
+    set_entry(control, "endTime", repr(steps * dt))
+    log = os.path.join(logs, "log.moveDynamicMesh")
+    with open(log, "w") as f:
+        code = subprocess.call(["moveDynamicMesh", "-case", copy, "-noFunctionObjects"], stdout=f,
+                               stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+    shutil.rmtree(copy, ignore_errors=True)
+    if code != 0:
+        say("moveDynamicMesh failed (exit %d): see %s" % (code, log))
+        return None
+    with open(log) as f:
+        times = [float(m) for m in re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", f.read(), re.M)]
+    if len(times) < 3:
+        return None
+    return (times[-1] - times[0]) / (len(times) - 1)
+
+
+def solver_split(log):
+    """The AMI's addressing updates counted in pimpleFoam's log (one per step)."""
+    with open(log) as f:
+        text = f.read()
+    return {"ami_addressing_updates": text.count("Creating addressing and weights")}
+
+
+def case_folder(case_dir, resolution):
+    if os.path.isdir(os.path.join(case_dir, "system")):
+        return case_dir
+    return os.path.join(case_dir, "openfoam-ami-" + resolution)
+
+
+def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse"):
+    """Runs the AMI reference at `flow_rate` (m^3/s) to `end_time` (s) in out_dir; returns the
+    operating point (pump_point.operating_point) and writes out_dir/{forces.csv,
+    operating_point.yaml, cost.yaml}."""
+    source = case_folder(os.path.abspath(case_dir), resolution)
+    if not os.path.isfile(os.path.join(source, "constant", "dynamicMeshDict")):
+        raise SystemExit("pump-ami: %s is not an AMI case folder (make_ami_case.py writes them)" % source)
+    out_dir = os.path.abspath(out_dir)
+    foam_case, logs = os.path.join(out_dir, "openfoam"), os.path.join(out_dir, "logs")
+    if os.path.exists(foam_case):
+        shutil.rmtree(foam_case)
+    os.makedirs(logs, exist_ok=True)
+    shutil.copytree(source, foam_case, symlinks=False)          # the STL links resolved
+    operating = os.path.join(foam_case, "constant", "operatingPoint")
+    set_entry(operating, "flowRate", repr(float(flow_rate)))
+    control = os.path.join(foam_case, "system", "controlDict")
+    set_entry(control, "endTime", repr(float(end_time)))
+    with open(control) as f:
+        text = f.read()
+    dt = float(re.search(r"^deltaT\s+([^;]+);", text, re.M).group(1))
+    if float(re.search(r"^writeInterval\s+([^;]+);", text, re.M).group(1)) > end_time:
+        set_entry(control, "writeInterval", repr(float(end_time)))   # the end state, to continue from
+    with open(os.path.join(foam_case, "constant", "dynamicMeshDict")) as f:
+        text = f.read()
+    omega = float(re.search(r"^omega\s+([^;]+);", text, re.M).group(1))
+    axis = [float(v) for v in re.search(r"^axis\s+\(([^)]*)\)", text, re.M).group(1).split()]
+    t0 = time.monotonic()
+    mesh(foam_case, logs)
+    mesh_s = time.monotonic() - t0
+    with open(os.path.join(logs, "log.checkMesh")) as f:
+        check = f.read()
+    cells = int(re.search(r"^\s+cells:\s+(\d+)", check, re.M).group(1))
+    exec_times, wall = run_pimple(foam_case, logs, end_time, dt)
+    n = write_forces_csv(foam_case, out_dir)
+    steps = len(exec_times)
+    per_step = [b - a for a, b in zip([0.0] + exec_times[:-1], exec_times)]
+    steady = per_step[min(5, steps - 1):] if steps else [float("nan")]
+    period = 2 * math.pi / omega
+    cost = {
+        "cells": cells,
+        "checkMesh": "Mesh OK" if "Mesh OK." in check else "failed",
+        "mesh_wall_s": round(mesh_s, 1),
+        "steps": steps,
+        "dt_s": dt,
+        "pimpleFoam_wall_s": round(wall, 1),
+        "execution_s_per_step": sum(steady) / len(steady),
+        "wall_s_per_revolution": wall / (end_time / period),
+        "steps_per_revolution": period / dt,
+        "ami_weights_sum_min_max": ami_weights(foam_case),
+    }
+    cost.update(solver_split(os.path.join(logs, "log.pimpleFoam")))
+    motion = time_mesh_motion(foam_case, logs)
+    if motion is not None:
+        cost["mesh_motion_and_ami_s_per_step"] = motion
+        cost["mesh_motion_and_ami_s_per_revolution"] = motion * period / dt
+    with open(os.path.join(out_dir, "cost.yaml"), "w") as f:
+        yaml.safe_dump(cost, f, sort_keys=False)
+    say("forces.csv (%d rows); %.1f wall s per revolution (%d cells, 1 core)" % (n, cost["wall_s_per_revolution"], cells))
+    radius = None
+    pump_yaml = os.path.join(os.path.dirname(source), "pump.yaml")
+    if os.path.isfile(pump_yaml):
+        with open(pump_yaml) as f:
+            radius = 0.5 * yaml.safe_load(f)["impeller"]["outer_diameter_m"]
+    point = None
+    if radius:
+        try:
+            point = pump_point.operating_point(out_dir, omega, axis, radius, float(flow_rate))
+        except ValueError as error:
+            say("no operating point: %s" % error)
+    if point:
+        with open(os.path.join(out_dir, "operating_point.yaml"), "w") as f:
+            f.write("# The operating point of this AMI run (scripts/pump_point.py), SI units.\n")
+            yaml.safe_dump(point, f, sort_keys=False)
+        say("H = %.4g m, T = %.4g N m, eta = %.3f" % (point["head_m"], point["shaft_torque_n_m"], point["efficiency"]))
+    return point
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--resolution", default="coarse")
+    parser.add_argument("--flow-rate", type=float, default=0.0, help="m^3/s (default: the design flow rate, pump.yaml)")
+    parser.add_argument("--end-time", type=float, default=0.0, help="s (default: case.yaml run.end_time_s)")
+    parser.add_argument("-o", "--output", required=True)
+    parser.add_argument("case_dir")
+    args = parser.parse_args(argv)
+    pump_dir = args.case_dir if os.path.isfile(os.path.join(args.case_dir, "pump.yaml")) else os.path.dirname(
+        os.path.abspath(args.case_dir))
+    q, end = args.flow_rate, args.end_time
+    if not q:
+        with open(os.path.join(pump_dir, "pump.yaml")) as f:
+            q = float(yaml.safe_load(f)["operation"]["design_flow_rate_m3_per_s"])
+    if not end:
+        with open(os.path.join(pump_dir, "case.yaml")) as f:
+            end = float(yaml.safe_load(f)["run"]["end_time_s"])
+    run_ami_point(args.case_dir, q, args.output, end, args.resolution)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
