@@ -32,6 +32,10 @@ import yaml
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import pump_point  # noqa: E402
+from fsi_launch import OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
+
+for _name, _value in OPENFOAM_ENVIRONMENT.items():
+    os.environ.setdefault(_name, _value)
 
 MESH_DICTS = ("blockMeshDict", "snappyHexMeshDict", "surfaceFeatureExtractDict", "meshQualityDict",
               "createBafflesDict")
