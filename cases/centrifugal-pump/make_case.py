@@ -6,7 +6,9 @@ solids the pump generator made of it (geometry/: impeller.stl, casing.stl):
     /usr/bin/python3 cases/centrifugal-pump/make_case.py
 
 One OpenFOAM case folder per resolution (openfoam-coarse, -medium, -fine: h = D2/25, D2/50,
-D2/100) and openfoam-coarse-rans (k-omega SST, for cheap curves). Each meshes the casing (the
+D2/100), openfoam-coarse-rans (k-omega SST, for cheap curves) and openfoam-coarse-gaps (the coarse
+mesh with 2 mm cells within 4 mm of the impeller, so that the 5-7 mm side gaps are resolved as
+in the AMI reference). Each meshes the casing (the
 fluid domain) body-fitted: a background block mesh of cube cells of size h around it, carved
 and snapped by snappyHexMesh to constant/triSurface/casing.stl (a link to geometry/casing.stl),
 whose regions become the patches: inlet (the imposed volume flow rate, Dirichlet as in the
@@ -83,7 +85,7 @@ geometry
 %(regions)s
         }
     }
-}
+%(extra_geometry)s}
 castellatedMeshControls
 {
     maxLocalCells 2000000;
@@ -105,7 +107,7 @@ castellatedMeshControls
         }
     }
     resolveFeatureAngle 30;
-    refinementRegions {}
+    refinementRegions {%(refinement)s}
     locationInMesh (%(inside)s);   // in the suction pipe
     allowFreeStandingZoneFaces false;
 }
@@ -342,7 +344,27 @@ boundaryField
 }
 
 
-def write_case(folder, design, h, turbulence, casing):
+GAP_REFINEMENT = """
+        impeller   // cells within 4 mm of the impeller: 2 levels finer (h / 4), the side gaps resolved
+        {
+            mode distance;
+            levels ((0.004 2));
+        }
+    """
+IMPELLER_GEOMETRY = """    impeller.stl { type triSurfaceMesh; name impeller; }   // a refinement region only: penalized, not meshed
+"""
+
+
+def link_surface(folder, source):
+    """constant/triSurface/<name> as a relative link to the geometry file."""
+    link = os.path.join(folder, "constant", "triSurface", os.path.basename(source))
+    os.makedirs(os.path.dirname(link), exist_ok=True)
+    if os.path.lexists(link):
+        os.remove(link)
+    os.symlink(os.path.relpath(source, os.path.dirname(link)), link)
+
+
+def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     lo, hi = stl_bounds(casing)
     pad = 2.0 * h
     box = {}
@@ -355,7 +377,9 @@ def write_case(folder, design, h, turbulence, casing):
     inside = (0.0131, 0.0173, lo[2] + 0.05 * (hi[2] - lo[2]) + 0.37 * h)
     write_foam_file(folder, "system/blockMeshDict", "dictionary", BLOCK_MESH % box)
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary",
-                    SNAPPY % {"regions": regions, "inside": "%r %r %r" % inside})
+                    SNAPPY % {"regions": regions, "inside": "%r %r %r" % inside,
+                              "extra_geometry": IMPELLER_GEOMETRY if refine_gaps else "",
+                              "refinement": GAP_REFINEMENT if refine_gaps else ""})
     omega = design["operation"]["rotation_rate_rad_per_s"]
     write_foam_file(folder, "system/controlDict", "dictionary",
                     CONTROL % {"write": round(10 * 2 * math.pi / omega, 6), "rho": RHO})
@@ -367,11 +391,9 @@ def write_case(folder, design, h, turbulence, casing):
     write_foam_file(folder, "constant/operatingPoint", "dictionary",
                     "// The imposed volume flow rate at the inlet (m^3/s): the design point of pump.yaml.\n"
                     "flowRate        %r;\n" % design["operation"]["design_flow_rate_m3_per_s"])
-    link = os.path.join(folder, "constant", "triSurface", "casing.stl")
-    os.makedirs(os.path.dirname(link), exist_ok=True)
-    if os.path.lexists(link):
-        os.remove(link)
-    os.symlink(os.path.relpath(casing, os.path.dirname(link)), link)
+    link_surface(folder, casing)
+    if refine_gaps:
+        link_surface(folder, os.path.join(os.path.dirname(casing), "impeller.stl"))
     u_in = design["operation"]["design_flow_rate_m3_per_s"] / (math.pi * design["inlet"]["suction_pipe_diameter_m"] ** 2 / 4)
     k_in = 1.5 * (0.05 * u_in) ** 2                       # 5 % intensity
     values = {"nt": NU_TILDA_IN, "k": k_in, "w": math.sqrt(k_in) / (0.09 ** 0.25 * 0.01)}
@@ -393,6 +415,9 @@ def main():
         box = write_case(os.path.join(HERE, "openfoam-" + name), design, d2 / n, "ddes", casing)
         print("openfoam-%s: h = %.4g m, background %d cells" % (name, d2 / n, box["nc"]))
     write_case(os.path.join(HERE, "openfoam-coarse-rans"), design, d2 / RESOLUTIONS["coarse"], "rans", casing)
+    # The coarse mesh with 2 mm cells within 4 mm of the impeller, as the AMI reference's gap cells.
+    write_case(os.path.join(HERE, "openfoam-coarse-gaps"), design, d2 / RESOLUTIONS["coarse"], "ddes", casing,
+               refine_gaps=True)
 
 
 if __name__ == "__main__":
