@@ -58,16 +58,18 @@ def harmonic(t, y, omega):
 
 
 def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, average_revolutions=4,
-                    settle_revolutions=None):
+                    settle_revolutions=None, end_time_s=None):
     """The operating point of the run in `folder`: a dict of SI values (see the module text).
     Averages over the last `average_revolutions` whole revolutions that follow at least
-    `settle_revolutions` (default: the rest of the run, at least 1)."""
+    `settle_revolutions` (default: the rest of the run, at least 1), of the run up to
+    `end_time_s` (default: its end; an earlier time compares runs of different lengths over the
+    same window)."""
     period = 2.0 * math.pi / omega
     t_f, torque = read_forces(folder)
     shaft = -(torque @ (np.asarray(axis, float) / np.linalg.norm(axis)))
     t_in, p_in = read_dat(folder, "inletTotalPressure")
     t_out, p_out = read_dat(folder, "outletTotalPressure")
-    t_end = min(t_f[-1], t_in[-1], t_out[-1])
+    t_end = min(t_f[-1], t_in[-1], t_out[-1], end_time_s if end_time_s is not None else math.inf)
     n_rev = int(math.floor(t_end / period + 1e-6))
     n_avg = min(average_revolutions, n_rev - (settle_revolutions if settle_revolutions is not None else 1))
     if n_avg < 1:
