@@ -23,6 +23,9 @@ public:
   /// Reads the mesh and fields at the case's start time; throws std::runtime_error (with
   /// OpenFOAM's message) when the case is unusable.
   static std::unique_ptr<FoamFlow> create(const FoamFlowSettings &settings);
+  /// The process's exit, to call with main's exit code once every flow is destroyed: under
+  /// MPI it ends OpenFOAM's parallel run (and does not return); otherwise returns the code.
+  static int end_process(int exit_code);
   virtual ~FoamFlow() = default;
 
   virtual std::string describe() const = 0;

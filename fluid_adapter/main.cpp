@@ -168,7 +168,7 @@ int main(int argc, char **argv) {
                  "WM_PROJECT_DIR=/usr/share/openfoam\n";
     return fsi::common::exit_code_bad_input;
   }
-  return fsi::common::guarded_main("OpenFOAM fluid", [&] {
+  return fsi::fluid::FoamFlow::end_process(fsi::common::guarded_main("OpenFOAM fluid", [&] {
     const auto config = options.load();
     const Process process{precursor_only           ? Role::precursor
                           : config.is_flow_alone() ? Role::alone
@@ -209,5 +209,5 @@ int main(int argc, char **argv) {
       return run_alone(process, model, *flow, config, out);
     return precursor_run ? run_precursor(process, model, *flow, precursor, config.run.time_step_s)
                          : run_coupled(process, model, *flow, config, out, endpoint);
-  });
+  }));
 }

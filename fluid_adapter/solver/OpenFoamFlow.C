@@ -33,6 +33,10 @@ struct ThrowOnFatalError {
 class OpenFoamFlow final : public FoamFlow {
 public:
   explicit OpenFoamFlow(const FoamFlowSettings &settings);
+  // argList's destructor ends the process (UPstream::exit(0)): destroyed while an exception
+  // unwinds or before main returns, it would exit with status 0 before the error is logged or
+  // the exit code returned. It is never destroyed; FoamFlow::end_process ends MPI.
+  ~OpenFoamFlow() override { (void)args_.release(); }
 
   std::string describe() const override { return description_; }
   const PointArray &cell_centres_m() const override { return centres_; }
@@ -385,6 +389,12 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
 }
 
 } // namespace
+
+int FoamFlow::end_process(int exit_code) {
+  if (Foam::UPstream::parRun())
+    Foam::UPstream::exit(exit_code); // MPI_Finalize (or abort with the code), then exit
+  return exit_code;
+}
 
 std::unique_ptr<FoamFlow> FoamFlow::create(const FoamFlowSettings &settings) {
   // Floating-point traps would abort the process on the first NaN, before the divergence
