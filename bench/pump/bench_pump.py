@@ -4,7 +4,8 @@
 body-fitted with the impeller in a rotating zone and an AMI to the casing (stock pimpleFoam,
 scripts/pump_ami_run.py), at the same cell size and time step, interleaved in one run:
 
-    bench_pump.py --bin-dir BIN [--resolution coarse] [--revolutions 1] [--rounds 1] [-o DIR]
+    bench_pump.py --bin-dir BIN [--resolution coarse] [--ours-resolution coarse-gaps] [--revolutions 1]
+                  [--rounds 1] [-o DIR]
 
 Both start from water at rest at the design flow rate (pump.yaml) and run `--revolutions` on one
 core each, one after the other (the machine's other core idle). What the numbers contain:
@@ -35,6 +36,7 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import pump_ami_run  # noqa: E402
 
 CASE = os.path.join(ROOT, "cases", "centrifugal-pump")
+CELLS = re.compile(r"PIMPLE, (\d+) cells")  # the fluid's description (the mesh may come from the cache)
 LOOP = re.compile(r"flow: t = [0-9.eE+-]+ of [0-9.eE+-]+ s, step (\d+)/(\d+), ([0-9.]+) ms/step")
 
 
@@ -44,14 +46,15 @@ def ours(bin_dir, resolution, end_time, out):
     start = time.monotonic()
     subprocess.run(command, check=True, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     wall = time.monotonic() - start
-    steps, per_step_ms = 0, 0.0
+    steps, per_step_ms, cells = 0, 0.0, 0
     with open(os.path.join(out, "fluid.log")) as f:
         for line in f:
             m = LOOP.search(line)
             if m:
                 steps, per_step_ms = int(m.group(1)), float(m.group(3))
-    with open(os.path.join(out, "openfoam", "log.checkMesh")) as f:
-        cells = int(re.search(r"^\s+cells:\s+(\d+)", f.read(), re.M).group(1))
+            m = CELLS.search(line)
+            if m:
+                cells = int(m.group(1))
     t = np.loadtxt(os.path.join(out, "timings.csv"), delimiter=",", skiprows=1, ndmin=2)
     loop = steps * per_step_ms * 1e-3
     parts = {"penalization": t[:, 1].sum(), "fluid solve": t[:, 2].sum(), "loads": t[:, 3].sum()}
@@ -73,7 +76,10 @@ def ami(resolution, end_time, flow_rate, out):
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--bin-dir", required=True)
-    parser.add_argument("--resolution", default="coarse")
+    parser.add_argument("--resolution", default="coarse", help="the AMI reference's mesh (coarse, medium)")
+    parser.add_argument("--ours-resolution", default="",
+                        help="our preset (default: --resolution; coarse-gaps has the AMI mesh's 2 mm gap cells: "
+                             "about the same cells as the AMI coarse mesh)")
     parser.add_argument("--revolutions", type=float, default=1.0)
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("-o", "--output", default=os.path.join(ROOT, "build", "bench-pump"))
@@ -89,7 +95,8 @@ def main(argv):
         for name in ("ours", "AMI"):
             out = os.path.join(args.output, "runs", "%s-%s-r%d" % (name.lower(), args.resolution, r))
             sys.stderr.write("bench pump: %s, round %d, %g revolutions (%s)\n" % (name, r + 1, args.revolutions, out))
-            rows[name].append(ours(args.bin_dir, args.resolution, end_time, out) if name == "ours"
+            rows[name].append(ours(args.bin_dir, args.ours_resolution or args.resolution, end_time, out)
+                              if name == "ours"
                               else ami(args.resolution, end_time, q, out))
     lines = ["# Cost per revolution of the centrifugal pump, %s, 1 core each (%s)" % (
                  args.resolution, time.strftime("%Y-%m-%d %H:%M")),
