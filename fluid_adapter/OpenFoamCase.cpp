@@ -11,6 +11,9 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace fsi::fluid {
@@ -56,6 +59,36 @@ std::string mesh_inputs_hash(const fs::path &foam_case) {
   return hash.hex();
 }
 
+std::string read_text(const fs::path &file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Refuses a snappyHexMesh mesh that still has faces on the background block's patches: the box
+/// of blockMeshDict does not enclose the surface, and the part outside (an outlet, often) is cut
+/// off without any error from the mesher.
+void check_not_clipped_by_the_background(const fs::path &foam_case, const fs::path &mesh) {
+  const std::string block = read_text(foam_case / "system" / "blockMeshDict");
+  std::set<std::string> background{"defaultFaces"};
+  if (const auto at = block.find("boundary"); at != std::string::npos) {
+    const std::regex entry(R"((\w+)\s*\{\s*type)");
+    for (auto it = std::sregex_iterator(block.begin() + static_cast<std::ptrdiff_t>(at), block.end(), entry);
+         it != std::sregex_iterator(); ++it)
+      background.insert((*it)[1]);
+  }
+  const std::string boundary = read_text(mesh / "boundary");
+  const std::regex patch(R"((\w+)\s*\{[^}]*?nFaces\s+(\d+)\s*;)");
+  for (auto it = std::sregex_iterator(boundary.begin(), boundary.end(), patch); it != std::sregex_iterator(); ++it)
+    if (background.count((*it)[1]) && std::stol((*it)[2]) > 0)
+      throw std::runtime_error("snappyHexMesh: the mesh of " + foam_case.string() + " reaches the background box (" +
+                               std::string((*it)[2]) + " faces on the block patch '" + std::string((*it)[1]) +
+                               "'): the box of system/blockMeshDict does not enclose the surface, so the part "
+                               "outside it is cut off. Enlarge the box, or regenerate the case's files from its "
+                               "geometry (cases/centrifugal-pump: make_case.py).");
+}
+
 /// blockMesh, snappyHexMesh and checkMesh, or the same mesh from the cache.
 void snappy_mesh(const fs::path &foam_case) {
   const fs::path root = mesh_cache_root();
@@ -64,6 +97,7 @@ void snappy_mesh(const fs::path &foam_case) {
   if (!cached.empty() && fs::exists(cached / "polyMesh" / "owner")) {
     fs::remove_all(mesh);
     fs::copy(cached / "polyMesh", mesh, fs::copy_options::recursive);
+    check_not_clipped_by_the_background(foam_case, mesh);
     spdlog::info("meshing: the snappyHexMesh mesh of these inputs is cached: {}", cached.string());
     return;
   }
@@ -73,6 +107,7 @@ void snappy_mesh(const fs::path &foam_case) {
     run_tool("surfaceFeatureExtract", foam_case);
   run_tool("snappyHexMesh", foam_case, " -overwrite");
   run_tool("checkMesh", foam_case, " -constant");
+  check_not_clipped_by_the_background(foam_case, mesh);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("meshing: snappyHexMesh done in {:.0f} s (checkMesh: {})", seconds,
                (foam_case / "log.checkMesh").string());

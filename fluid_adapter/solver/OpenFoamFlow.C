@@ -33,10 +33,6 @@ struct ThrowOnFatalError {
 class OpenFoamFlow final : public FoamFlow {
 public:
   explicit OpenFoamFlow(const FoamFlowSettings &settings);
-  // argList's destructor ends the process (UPstream::exit(0)): destroyed while an exception
-  // unwinds or before main returns, it would exit with status 0 before the error is logged or
-  // the exit code returned. It is never destroyed; FoamFlow::end_process ends MPI.
-  ~OpenFoamFlow() override { (void)args_.release(); }
 
   std::string describe() const override { return description_; }
   const PointArray &cell_centres_m() const override { return centres_; }
@@ -68,7 +64,11 @@ private:
   std::vector<char *> argument_pointers_;
   int argc_ = 0;
   char **argv_ = nullptr;
-  std::unique_ptr<Foam::argList> args_;
+  // argList's destructor ends the process (UPstream::exit(0)): destroyed while an exception
+  // unwinds (also one thrown by this constructor, when the members are destroyed) or before main
+  // returns, it would exit with status 0 before the error is logged or the exit code returned.
+  // So it is never destroyed (a raw pointer, deliberately leaked); FoamFlow::end_process ends MPI.
+  Foam::argList *args_ = nullptr;
   std::unique_ptr<Foam::Time> runTime_;
   std::unique_ptr<Foam::fvMesh> mesh_;
   std::unique_ptr<Foam::pimpleControl> pimple_;
@@ -103,7 +103,7 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   argList::noBanner();
   if (!settings.parallel)
     argList::noParallel();
-  args_ = std::make_unique<argList>(argc_, argv_);
+  args_ = new argList(argc_, argv_);
   runTime_ = std::make_unique<Time>(Time::controlDictName, *args_);
   runTime_->setDeltaT(settings.time_step_s, false);
   runTime_->setEndTime(settings.end_time_s);
