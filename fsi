@@ -82,8 +82,9 @@ build() {
 ensure_openfoam() { "$ROOT/scripts/ensure_openfoam.sh" || die "OpenFOAM provisioning failed (see above)"; }
 
 # prepare [TARGET...]: packages, OpenFOAM, then a build of the given targets (default: everything,
-# tests and benchmarks included). A run needs only the four process executables.
-RUN_TARGETS=(fsi-structure fsi-coupler fsi-prescribed-flow fsi-openfoam-fluid)
+# tests and benchmarks included). A run needs only the four process executables, and the pump
+# generator (a case's prepare.py may generate its geometry: cases/centrifugal-pump).
+RUN_TARGETS=(fsi-structure fsi-coupler fsi-prescribed-flow fsi-openfoam-fluid fsi-pump-design)
 prepare() {
   ensure_packages
   ensure_openfoam

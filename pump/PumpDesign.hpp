@@ -57,7 +57,7 @@ enum class VoluteSection { rectangular, trapezoidal };
 struct VoluteDesign {
   VoluteSection section = VoluteSection::rectangular;
   double base_radius_m = 0.105;
-  double base_width_m = 0.08;
+  double base_width_m = 0.076;
   double flank_angle_deg = 0.0;
   double cut_water_nose_radius_m = 0.005;
   double discharge_diameter_m = 0.1;
@@ -69,7 +69,9 @@ struct VoluteDesign {
              "Cross-section of the spiral: rectangular, or trapezoidal (flanks opening outwards).");
     v.number("base_radius_m", base_radius_m, common::Range::positive("m"),
              "Base circle of the spiral r3 (the cut-water radius); above D2 / 2.");
-    v.number("base_width_m", base_width_m, common::Range::positive("m"), "Axial width of the section at r3.");
+    v.number("base_width_m", base_width_m, common::Range::positive("m"),
+             "Axial width of the section at r3, and of the impeller chamber: the side gaps between the "
+             "impeller's discs and the casing are (base_width_m - outlet_width_m) / 2 - blade_thickness_m.");
     v.number("flank_angle_deg", flank_angle_deg, common::Range::between(0.0, 45.0, "deg"),
              "Trapezoidal section: angle of each flank from the radial direction (0: rectangular).");
     v.number("cut_water_nose_radius_m", cut_water_nose_radius_m, common::Range::positive("m"),
@@ -82,12 +84,13 @@ struct VoluteDesign {
 };
 
 struct InletDesign {
-  double suction_pipe_diameter_m = 0.15;
+  double suction_pipe_diameter_m = 0.1;
   double suction_pipe_length_m = 0.3;
 
   template <class V> void visit(V &v) {
     v.number("suction_pipe_diameter_m", suction_pipe_diameter_m, common::Range::positive("m"),
-             "Diameter of the suction pipe below the eye.");
+             "Diameter of the suction pipe below the eye: at most the eye diameter for a closed impeller (a wider "
+             "pipe opens the side space under the shroud to the suction, a leak from the volute back to the eye).");
     v.number("suction_pipe_length_m", suction_pipe_length_m, common::Range::positive("m"),
              "Length of the suction pipe (the rag is released at its bottom).");
   }

@@ -1,5 +1,6 @@
 #include "RegionSurface.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <queue>
@@ -73,6 +74,47 @@ void RegionSurface::orient_outward(const std::string &part) {
     for (auto &tri : triangles)
       std::swap(tri[1], tri[2]);
   check_closed_and_outward(part);
+}
+
+int RegionSurface::split_caps() {
+  int removed = 0;
+  for (bool again = true; again;) {
+    again = false;
+    const auto edges = edge_triangles(triangles);
+    for (std::size_t t = 0; t < triangles.size() && !again; ++t) {
+      const auto tri = triangles[t];
+      const Vec3 &a = vertices_m[tri[0]], &b = vertices_m[tri[1]], &c = vertices_m[tri[2]];
+      const double lengths[3] = {(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()};
+      const int k = static_cast<int>(std::max_element(lengths, lengths + 3) - lengths);
+      const double longest = lengths[k];
+      // Collinear: the doubled area against the longest edge squared, near rounding.
+      if (!(longest > 0.0) || (b - a).cross(c - a).norm() > 1e-10 * longest)
+        continue;
+      const int p = tri[k], q = tri[(k + 1) % 3], middle = tri[(k + 2) % 3];
+      if ((vertices_m[middle] - vertices_m[p]).squaredNorm() == 0.0 ||
+          (vertices_m[middle] - vertices_m[q]).squaredNorm() == 0.0)
+        continue; // coincident vertices: not a cap
+      const auto &users = edges.at(edge_key(p, q));
+      if (users.size() != 2)
+        continue;
+      const int n = users[0] == static_cast<int>(t) ? users[1] : users[0];
+      const auto other = triangles[n]; // runs q -> p
+      int apex = -1;
+      for (int j = 0; j < 3; ++j)
+        if (other[j] == q && other[(j + 1) % 3] == p)
+          apex = other[(j + 2) % 3];
+      if (apex < 0)
+        continue; // not consistently oriented: orient_outward first
+      // The cap p -> q -> middle goes; the neighbour q -> p -> apex becomes
+      // q -> middle -> apex and middle -> p -> apex.
+      triangles[n] = {q, middle, apex};
+      triangles[t] = {middle, p, apex};
+      triangle_regions[t] = triangle_regions[n];
+      ++removed;
+      again = true;
+    }
+  }
+  return removed;
 }
 
 void RegionSurface::check_closed_and_outward(const std::string &part) const {

@@ -23,6 +23,12 @@ struct RegionSurface {
   /// volume). Throws std::runtime_error naming `part` when an edge is not shared by exactly two
   /// triangles (the surface is not a closed manifold).
   void orient_outward(const std::string &part);
+  /// Removes the caps of a consistently oriented closed surface: a triangle whose three vertices
+  /// are collinear (gmsh leaves one where a CAD edge is split between two faces), its middle
+  /// vertex on its longest edge. The neighbour across that edge is split at the middle vertex,
+  /// which keeps the surface closed and oriented; the new pair takes the neighbour's region.
+  /// Returns the number of caps removed (a triangle with two coincident vertices is left).
+  int split_caps();
   /// Throws std::runtime_error naming `part` unless every edge is shared by exactly two
   /// triangles running it in opposite directions and the enclosed volume is positive.
   void check_closed_and_outward(const std::string &part) const;

@@ -103,6 +103,8 @@ RegionSurface mesh_solid(const std::string &part, int volume_tag, const MeshSize
     for (std::size_t t = first; t < end; ++t)
       surface.triangle_regions[t] = region;
   }
+  surface.split_caps();
+  surface.check_closed_and_outward(part);
   return surface;
 }
 

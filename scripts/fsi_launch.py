@@ -131,6 +131,21 @@ def output_args(args):
     return extra + (["--end-time", repr(args.end_time)] if args.end_time else [])
 
 
+def prepare_case(case_dir, bin_dir):
+    """A case's generated inputs: cases/<case>/prepare.py CASE_DIR BIN_DIR, when the case has one
+    (the centrifugal pump generates its geometry from pump.yaml). Quiet when there is nothing to do."""
+    script = os.path.join(case_dir, "prepare.py")
+    if not os.path.isfile(script):
+        return
+    made = subprocess.run([sys.executable, script, case_dir, bin_dir], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT)
+    text = made.stdout.decode(errors="replace").strip()
+    if made.returncode != 0:
+        raise UserError("preparing the case failed (%s):\n%s" % (script, text), EXIT_RUN_FAILED)
+    if text:
+        say(text)
+
+
 def read_plan(args):
     coupler = executable_in(args.bin_dir, "fsi-coupler")
     command = [coupler, "--plan", args.case_dir] + output_args(args)
@@ -448,6 +463,8 @@ def main(argv):
         raise UserError("build folder %s not found (build first: ./fsi build)" % args.bin_dir)
     if not os.path.isdir(args.case_dir):
         raise UserError("case folder %s not found" % args.case_dir)
+    if not args.print_output_dir:
+        prepare_case(args.case_dir, args.bin_dir)
     plan = read_plan(args)
     if args.print_output_dir:
         print(plan.output_dir)

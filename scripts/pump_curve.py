@@ -37,6 +37,7 @@ import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import fsi_launch  # noqa: E402
 import pump_point  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
@@ -291,6 +292,10 @@ def main(argv):
         raise SystemExit("pump-curve: --points %s: fractions must be > 0" % args.points)
     with open(design_file) as f:
         design_q = float(yaml.safe_load(f)["operation"]["design_flow_rate_m3_per_s"])
+    try:  # the case's generated inputs (the pump's geometry) before the points copy the case
+        fsi_launch.prepare_case(args.case_dir, args.bin_dir)
+    except fsi_launch.UserError as e:
+        raise SystemExit("pump-curve: %s" % e)
     plan = subprocess.run([sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "--print-output-dir"]
                           + (["--resolution", args.resolution] if args.resolution else []) + [args.case_dir],
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE)

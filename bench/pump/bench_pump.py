@@ -33,6 +33,7 @@ import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import fsi_launch  # noqa: E402
 import pump_ami_run  # noqa: E402
 
 CASE = os.path.join(ROOT, "cases", "centrifugal-pump")
@@ -84,6 +85,7 @@ def main(argv):
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("-o", "--output", default=os.path.join(ROOT, "build", "bench-pump"))
     args = parser.parse_args(argv)
+    fsi_launch.prepare_case(CASE, args.bin_dir)  # the geometry, from pump.yaml (both runs use it)
     with open(os.path.join(CASE, "pump.yaml")) as f:
         design = yaml.safe_load(f)
     omega = design["operation"]["rotation_rate_rad_per_s"]

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Writes the generated files of the centrifugal-pump case from its design (pump.yaml) and the
-solids the pump generator made of it (geometry/: impeller.stl, casing.stl):
+solids the pump generator made of it (geometry/: impeller.stl, casing.stl). prepare.py runs
+both before a run whenever the geometry is (re)generated; by hand:
 
     ./fsi pump-design cases/centrifugal-pump/pump.yaml --write cases/centrifugal-pump/geometry
     /usr/bin/python3 cases/centrifugal-pump/make_case.py
@@ -18,7 +19,8 @@ no slip, Spalding's wall law for the turbulence). The impeller is not meshed: it
 constant/operatingPoint (`flowRate` in m^3/s): ./fsi pump-curve writes its own per point.
 The controlDict's function objects write the mass-flow-averaged total pressure (Pa) on the
 inlet and outlet patches at every step (postProcessing/), from which postprocess.py takes the
-head. The files are committed; run this after changing the design or a resolution.
+head. The files are committed (to be read); prepare.py rewrites them when the geometry changes,
+run this by hand after changing a resolution.
 """
 
 import math

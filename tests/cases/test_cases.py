@@ -16,6 +16,7 @@ Each test writes into its own temporary folder (FSI_KEEP_TEST_DIRS=1 keeps it).
 """
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -153,6 +154,58 @@ class CentrifugalPump(CaseTest):
             self.assertFalse(os.path.exists(os.path.join(again, "openfoam", "log.snappyHexMesh")))
         finally:
             del os.environ["FSI_MESH_CACHE"]
+
+
+class CentrifugalPumpRefusals(CaseTest):
+    """What a broken OpenFOAM case of the pump gives: a clear error and a non-zero exit, not a
+    silent exit 0 (argList's destructor used to end the process with status 0 when the fluid's
+    set-up threw), and no mesh cut off by a background box that misses the outlet."""
+
+    def prepared_copy(self):
+        case = self.copy_case("centrifugal-pump")
+        made = subprocess.run([PYTHON, os.path.join(case, "prepare.py"), case, BIN_DIR], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, timeout=120)
+        self.assertEqual(made.returncode, 0, made.stdout.decode()[-2000:])
+        return case
+
+    def launch_one_step(self, case):
+        os.environ["FSI_MESH_CACHE"] = os.path.join(self.tmp, "mesh-cache")
+        try:
+            result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", os.path.join(self.tmp, "out"),
+                                     "--end-time", "0.00025", case], stdin=subprocess.DEVNULL,
+                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=600)
+        finally:
+            del os.environ["FSI_MESH_CACHE"]
+        return result.returncode, result.stderr.decode("utf-8", "replace")
+
+    def test_a_background_box_that_cuts_the_outlet_off_is_refused(self):
+        need_openfoam(self)
+        case = self.prepared_copy()
+        block = os.path.join(case, "openfoam-coarse", "system", "blockMeshDict")
+        with open(block) as f:
+            text = f.read()
+        x_max = re.search(r"\(\S+ \S+ \S+\) \((\S+) ", text).group(1)  # the second vertex's x
+        with open(block, "w") as f:
+            f.write(text.replace(x_max, "0.3"))  # the discharge pipe reaches x = 0.54 m
+        code, err = self.launch_one_step(case)
+        self.assertEqual(code, 1, err[-2000:])
+        self.assertIn("reaches the background box", err)
+        self.assertIn("block patch 'background'", err)
+        self.assertEqual(os.listdir(os.path.join(self.tmp, "mesh-cache")) if os.path.isdir(
+            os.path.join(self.tmp, "mesh-cache")) else [], [])  # not cached
+
+    def test_a_fluid_that_cannot_set_up_exits_non_zero_with_openfoams_message(self):
+        need_openfoam(self)
+        case = self.prepared_copy()
+        p = os.path.join(case, "openfoam-coarse", "0", "p")
+        with open(p) as f:
+            text = f.read()
+        with open(p, "w") as f:  # no fixed pressure anywhere: the pressure needs a reference cell
+            f.write(text.replace("outlet { type fixedValue; value uniform 0; }", "outlet { type zeroGradient; }"))
+        code, err = self.launch_one_step(case)
+        self.assertEqual(code, 1, err[-2000:])
+        self.assertIn("OpenFOAM could not set up the case", err)
+        self.assertIn("Unable to set reference cell for field p", err)
 
 
 class RagSettling(CaseTest):

@@ -1,0 +1,94 @@
+#!/usr/bin/python3
+"""Generates this case's geometry from its design: geometry/ (impeller.stl, casing.stl,
+geometry.yaml, geometry_checks.yaml, geometry.png) by `fsi-pump-design pump.yaml --write`, when
+it is missing or was made from another pump.yaml or another build of the generator. A stamp,
+geometry/generated-from, holds the hashes of both and of the STL files written. STL files the
+stamp does not name (your own: docs/pump-own-geometry.md) are never overwritten. The generator
+is deterministic: a regenerated geometry has the same bytes, and the cached snappyHexMesh meshes
+stay valid. After a generation it rewrites the OpenFOAM cases' files (make_case.py,
+make_ami_case.py), which follow the geometry. It takes about 5 s.
+
+    prepare.py CASE_DIR BIN_DIR     (scripts/fsi_launch.py runs it before every run of the case)
+
+To run the case on your own STL files instead, see docs/pump-own-geometry.md.
+"""
+
+import fcntl
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+STLS = ("impeller.stl", "casing.stl")
+
+
+def sha256(path):
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def stl_lines(digests):
+    return "".join("%s sha256 %s\n" % (name, digests[name]) for name in STLS if name in digests)
+
+
+def main(argv):
+    if len(argv) != 3:
+        sys.exit("usage: prepare.py CASE_DIR BIN_DIR")
+    case_dir, bin_dir = argv[1], argv[2]
+    design = os.path.join(case_dir, "pump.yaml")
+    generator = os.path.join(bin_dir, "fsi-pump-design")
+    if not os.path.isfile(generator):
+        sys.exit("prepare.py: the pump generator %s is not built (./fsi build)" % generator)
+    geometry = os.path.join(case_dir, "geometry")
+    # One generation at a time per case (two runs of the same case may start together).
+    lock = open(os.path.join(case_dir, ".geometry.lock"), "w")
+    fcntl.flock(lock, fcntl.LOCK_EX)
+    stamp_file = os.path.join(geometry, "generated-from")
+    inputs = "pump.yaml sha256 %s\nfsi-pump-design sha256 %s\n" % (sha256(design), sha256(generator))
+    stamp = open(stamp_file).read() if os.path.isfile(stamp_file) else ""
+    stamped = dict(line.split(" sha256 ") for line in stamp.splitlines() if " sha256 " in line)
+    present = {name: sha256(os.path.join(geometry, name)) for name in STLS
+               if os.path.isfile(os.path.join(geometry, name))}
+    if any(stamped.get(name) != digest for name, digest in present.items()):
+        return 0  # files this script did not write: the user's own geometry, left alone
+    if stamp == inputs + stl_lines(present) and len(present) == len(STLS):
+        return 0  # up to date
+    # Written next to geometry/ and swapped in whole: a failed or interrupted run leaves the old one.
+    partial = geometry + ".partial-%d" % os.getpid()
+    shutil.rmtree(partial, ignore_errors=True)
+    start = time.time()
+    made = subprocess.run([generator, design, "--write", partial], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT)
+    if made.returncode != 0:
+        lines = made.stdout.decode(errors="replace").strip().splitlines()
+        shutil.rmtree(partial, ignore_errors=True)
+        sys.exit("prepare.py: %s %s --write failed (exit %d):\n%s"
+                 % (generator, design, made.returncode, "\n".join(lines[-15:])))
+    with open(os.path.join(partial, "generate.log"), "wb") as f:
+        f.write(made.stdout)
+    with open(os.path.join(partial, "generated-from"), "w") as f:
+        f.write(inputs + stl_lines({name: sha256(os.path.join(partial, name)) for name in STLS}))
+    old = geometry + ".old-%d" % os.getpid()
+    if os.path.isdir(geometry):
+        os.rename(geometry, old)
+    os.rename(partial, geometry)
+    shutil.rmtree(old, ignore_errors=True)
+    # The OpenFOAM cases' files follow the geometry (the background box around the casing, the
+    # rotor cylinder of the AMI reference): unchanged bytes when the geometry is.
+    for script in ("make_case.py", "make_ami_case.py"):
+        made = subprocess.run([sys.executable, os.path.join(case_dir, script)], stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT)
+        if made.returncode != 0:
+            sys.exit("prepare.py: %s failed:\n%s" % (script, made.stdout.decode(errors="replace").strip()))
+    print("generated %s from %s in %.1f s (log: %s)"
+          % (geometry, design, time.time() - start, os.path.join(geometry, "generate.log")))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
