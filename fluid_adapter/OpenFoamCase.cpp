@@ -149,6 +149,33 @@ std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_di
   return target;
 }
 
+double map_initial_fields(const std::filesystem::path &foam_case, const std::filesystem::path &source) {
+  if (!fs::is_directory(source / "constant" / "polyMesh"))
+    throw common::ConfigError(source.string() + ": fluid.openfoam.initial_fields_from must be an OpenFOAM case "
+                                                "with its mesh (constant/polyMesh), e.g. an earlier run's "
+                                                "<output>/openfoam.");
+  // The latest time folder (a number > 0) holding U.
+  double latest = 0.0;
+  std::string latest_name;
+  for (const auto &entry : fs::directory_iterator(source)) {
+    const std::string name = entry.path().filename().string();
+    char *end = nullptr;
+    const double t = std::strtod(name.c_str(), &end);
+    if (end != name.c_str() && *end == '\0' && t > latest && fs::exists(entry.path() / "U")) {
+      latest = t;
+      latest_name = name;
+    }
+  }
+  if (latest_name.empty())
+    throw common::ConfigError(source.string() + ": fluid.openfoam.initial_fields_from has no time folder after 0 "
+                                                "with fields (U): run it first, to its end.");
+  run_tool("mapFields", foam_case, " -consistent -sourceTime " + latest_name + " '" + source.string() + "'");
+  // The fields a run must not inherit: the forcing of the source run is recomputed each step.
+  for (const char *stale : {"fsiAcceleration", "phi"})
+    fs::remove(foam_case / "0" / stale);
+  return latest;
+}
+
 void decompose(const std::filesystem::path &foam_case, int n) {
   std::ofstream(foam_case / "system" / "decomposeParDict")
       << "FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\n"

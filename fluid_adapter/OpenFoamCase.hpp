@@ -19,6 +19,13 @@ namespace fsi::fluid {
 std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const std::string &template_dir,
                                             const std::filesystem::path &out);
 
+/// A warm start: maps the latest fields of the OpenFOAM case `source` onto foam_case's mesh as
+/// its initial fields (mapFields -consistent -sourceTime latestTime, log in
+/// foam_case/log.mapFields). Returns the source time mapped (s). Throws common::ConfigError
+/// when source is not an OpenFOAM case with a time folder after 0, std::runtime_error when
+/// mapFields fails.
+double map_initial_fields(const std::filesystem::path &foam_case, const std::filesystem::path &source);
+
 /// decomposePar into n subdomains, cut along x (Debian's scotch is a stub).
 void decompose(const std::filesystem::path &foam_case, int n);
 

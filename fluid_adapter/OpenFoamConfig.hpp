@@ -19,6 +19,7 @@ struct OpenFoamConfig {
   int mpi_ranks = 1;
   double precursor_time_s = 0.0;
   double precursor_time_step_s = 0.0;
+  std::string initial_fields_from;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -46,6 +47,12 @@ struct OpenFoamConfig {
              "time before the coupled run starts; its last fields (U, p, phi, turbulence) are the coupled run's "
              "initial fields. Kept in <output>/precursor and reused while the fluid, the collision surfaces and the "
              "OpenFOAM case are unchanged. 0: none.");
+    v.text("initial_fields_from", initial_fields_from,
+           "A warm start: an OpenFOAM case folder (e.g. an earlier run's <output>/openfoam, of this case at another "
+           "resolution), relative to the case folder or absolute, whose latest fields are mapped onto this mesh "
+           "(OpenFOAM's mapFields -consistent: the same patches) as the initial fields. The run still starts at t = "
+           "0, so a rotating body should be where it was: end the source run after whole revolutions. Empty: the "
+           "case's own 0/ fields.");
     v.number("precursor_time_step_s", precursor_time_step_s, common::Range::non_negative("s"),
              "Time step of the precursor run (no structure, so only the flow's Courant number limits it). 0: "
              "run.time_step_s.");

@@ -67,6 +67,14 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
   if (process.role == Role::precursor)
     precursor.invalidate();
   const fs::path foam_case = fsi::fluid::prepare_openfoam_case(case_dir, foam.case_directory, base);
+  if (!foam.initial_fields_from.empty() && process.role != Role::precursor) {
+    fs::path source = foam.initial_fields_from;
+    if (source.is_relative())
+      source = fs::path(case_dir) / source;
+    spdlog::info("warm start: the fields of t = {} s of {} mapped onto this mesh (log: {})",
+                 fsi::fluid::map_initial_fields(foam_case, source), source.string(),
+                 (foam_case / "log.mapFields").string());
+  }
   if (process.role == Role::coupled && precursor.wanted() && !precursor.is_current()) {
     spdlog::info("precursor: running the flow alone for {} s first (fsi-openfoam-fluid --precursor)",
                  precursor.end_time_s());

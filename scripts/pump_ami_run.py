@@ -299,10 +299,40 @@ def case_folder(case_dir, resolution):
     return os.path.join(case_dir, "openfoam-ami-" + resolution)
 
 
-def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse"):
+MAP_FIELDS = """FoamFile { version 2.0; format ascii; class dictionary; object mapFieldsDict; }
+// Written by pump_ami_run.py: a warm start from a run of the penalized case (the same casing
+// patches; the AMI case's impeller walls and AMI pair are not in the source and keep their
+// conditions).
+patchMap ( %s );
+cuttingPatches ( );
+"""
+
+
+def map_initial_fields(foam_case, logs, source):
+    """Maps the latest fields of the OpenFOAM case `source` (a penalized run's output/openfoam,
+    ended after whole revolutions) onto the AMI mesh as its initial fields."""
+    times = [d for d in os.listdir(source) if re.fullmatch(r"[0-9.eE+-]+", d) and float(d) > 0
+             and os.path.isfile(os.path.join(source, d, "U"))]
+    if not times:
+        raise SystemExit("pump-ami: %s has no time folder after 0 with fields to start from" % source)
+    latest = max(times, key=float)
+    with open(os.path.join(source, "constant", "polyMesh", "boundary")) as f:
+        patches = re.findall(r"^\s*(\w+)\s*\n\s*\{", f.read(), re.M)
+    with open(os.path.join(foam_case, "system", "mapFieldsDict"), "w") as f:
+        f.write(MAP_FIELDS % " ".join("%s %s" % (p, p) for p in patches))
+    run_tool("mapFields", foam_case, logs, ["-sourceTime", latest, source])
+    for stale in ("phi", "fsiAcceleration"):
+        path = os.path.join(foam_case, "0", stale)
+        if os.path.exists(path):
+            os.remove(path)
+    say("warm start: the fields of t = %s s of %s mapped onto the AMI mesh" % (latest, source))
+
+
+def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", initial_fields_from=None):
     """Runs the AMI reference at `flow_rate` (m^3/s) to `end_time` (s) in out_dir; returns the
     operating point (pump_point.operating_point) and writes out_dir/{forces.csv,
-    operating_point.yaml, cost.yaml}."""
+    operating_point.yaml, cost.yaml}. initial_fields_from: an OpenFOAM case whose latest fields
+    are the initial ones (a warm start; see map_initial_fields)."""
     source = case_folder(os.path.abspath(case_dir), resolution)
     if not os.path.isfile(os.path.join(source, "constant", "dynamicMeshDict")):
         raise SystemExit("pump-ami: %s is not an AMI case folder (make_ami_case.py writes them)" % source)
@@ -328,6 +358,8 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse"):
     t0 = time.monotonic()
     mesh(foam_case, logs)
     mesh_s = time.monotonic() - t0
+    if initial_fields_from:
+        map_initial_fields(foam_case, logs, os.path.abspath(initial_fields_from))
     with open(os.path.join(logs, "log.checkMesh")) as f:
         check = f.read()
     cells = int(re.search(r"^\s+cells:\s+(\d+)", check, re.M).group(1))
@@ -384,6 +416,9 @@ def main(argv):
     parser.add_argument("--resolution", default="coarse")
     parser.add_argument("--flow-rate", type=float, default=0.0, help="m^3/s (default: the design flow rate, pump.yaml)")
     parser.add_argument("--end-time", type=float, default=0.0, help="s (default: case.yaml run.end_time_s)")
+    parser.add_argument("--initial-fields-from", default="",
+                        help="an OpenFOAM case (a penalized run's output/openfoam, ended after whole revolutions) "
+                             "whose latest fields start this run")
     parser.add_argument("-o", "--output", required=True)
     parser.add_argument("case_dir")
     args = parser.parse_args(argv)
@@ -396,7 +431,7 @@ def main(argv):
     if not end:
         with open(os.path.join(pump_dir, "case.yaml")) as f:
             end = float(yaml.safe_load(f)["run"]["end_time_s"])
-    run_ami_point(args.case_dir, q, args.output, end, args.resolution)
+    run_ami_point(args.case_dir, q, args.output, end, args.resolution, args.initial_fields_from or None)
     return 0
 
 

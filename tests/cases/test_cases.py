@@ -111,7 +111,9 @@ class CentrifugalPump(CaseTest):
     patches, the mesh is cached and reused, the imposed flow rate leaves through the outlet
     (mass conservation to 1e-6 of Q: the outlet sum of phi against constant/operatingPoint),
     and forces.csv has the fluid's torque on the impeller every step, opposing the rotation
-    (positive shaft torque) and finite. The operating point itself needs revolutions: ./fsi
+    (positive shaft torque) and finite; a warm start from the run's last fields
+    (fluid.openfoam.initial_fields_from, mapFields) continues that flow: its first torque is
+    nearer the source's last than a start from rest's. The operating point itself needs revolutions: ./fsi
     pump-curve and ./fsi report, not the suite."""
 
     STEPS = 12
@@ -152,6 +154,26 @@ class CentrifugalPump(CaseTest):
                                     stderr=subprocess.PIPE, timeout=600)
             self.assertEqual(result.returncode, 0, result.stderr.decode()[-3000:])
             self.assertFalse(os.path.exists(os.path.join(again, "openfoam", "log.snappyHexMesh")))
+            # A warm start from the first run's last fields (fluid.openfoam.initial_fields_from):
+            # its first step continues that flow, where a start from rest jerks the water.
+            warm_case = self.copy_case("centrifugal-pump")
+            with open(os.path.join(warm_case, "case.yaml")) as f:
+                text = f.read()
+            with open(os.path.join(warm_case, "case.yaml"), "w") as f:
+                f.write(text.replace("  openfoam:\n", "  openfoam:\n    initial_fields_from: %s\n"
+                                     % os.path.join(out, "openfoam"), 1))
+            warm = os.path.join(self.tmp, "warm")
+            command[command.index(again)] = warm
+            command[-1] = warm_case
+            result = subprocess.run(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, timeout=600)
+            self.assertEqual(result.returncode, 0, result.stderr.decode()[-3000:])
+            self.assertIn("warm start: the fields of t = ", result.stderr.decode())
+            warm_shaft = -(np.loadtxt(os.path.join(warm, "forces.csv"), delimiter=",", skiprows=1,
+                                      ndmin=2)[:, 4:7] @ axis)
+            self.assertLess(abs(warm_shaft[0] - shaft[-1]), 0.5 * abs(shaft[0] - shaft[-1]),
+                            "first step warm %g N m, cold %g N m, the source's last %g N m"
+                            % (warm_shaft[0], shaft[0], shaft[-1]))
         finally:
             del os.environ["FSI_MESH_CACHE"]
 
