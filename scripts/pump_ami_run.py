@@ -31,6 +31,7 @@ import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import pump_head_budget  # noqa: E402
 import pump_point  # noqa: E402
 from fsi_launch import OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
@@ -404,6 +405,14 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
         except ValueError as error:
             say("no operating point: %s" % error)
     if point:
+        try:  # where the head is made and lost, as postprocess.py does for the penalized runs
+            with open(pump_yaml) as f:
+                rows = pump_head_budget.head_budget(foam_case, yaml.safe_load(f))
+            point["head_budget_of_the_last_fields"] = {
+                "euler_head_of_the_mean_torque_m": point["shaft_power_w"] / (1000.0 * 9.81 * float(flow_rate)),
+                "stations": [{k: round(v, 5) if isinstance(v, float) else v for k, v in row.items()} for row in rows]}
+        except (ImportError, ValueError) as error:
+            say("no head budget: %s" % error)
         with open(os.path.join(out_dir, "operating_point.yaml"), "w") as f:
             f.write("# The operating point of this AMI run (scripts/pump_point.py), SI units.\n")
             yaml.safe_dump(point, f, sort_keys=False)

@@ -4,7 +4,10 @@ operating point averaged over the last whole revolutions (scripts/pump_point.py:
 torque T, efficiency, psi, phi, the once-per-revolution pulsation), written to
 operating_point.yaml, and operating_point.png: T and H against revolutions with the averaged
 window, and the spectrum of T in multiples of the rotation frequency (24 Hz), where a single
-blade shows its once-per-revolution pulsation.
+blade shows its once-per-revolution pulsation. With ParaView's Python, also the head budget of
+the last fields (scripts/pump_head_budget.py: the total head at the suction pipe, the
+impeller's outlet, the volute and the discharge pipe, beside the Euler head T omega / (rho g Q)
+the shaft puts in): where the head is made and lost.
 Usage: postprocess.py RESULTS_DIR CASE_DIR"""
 
 import math
@@ -20,6 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import pump_head_budget  # noqa: E402
 import pump_point  # noqa: E402
 
 
@@ -73,12 +77,27 @@ def picture(out, omega, axis, point, path):
     plt.close(fig)
 
 
+def budget(out, design, point):
+    """The head budget of the last fields, or nothing without ParaView's Python or fields."""
+    try:
+        rows = pump_head_budget.head_budget(os.path.join(out, "openfoam"), design)
+    except (ImportError, ValueError) as error:
+        sys.stderr.write("postprocess.py: no head budget (%s)\n" % error)
+        return {}
+    euler = point["shaft_power_w"] / (pump_head_budget.RHO * pump_head_budget.G * point["flow_rate_m3_per_s"])
+    return {"head_budget_of_the_last_fields": {
+        "euler_head_of_the_mean_torque_m": euler,
+        "stations": [{k: round(v, 5) if isinstance(v, float) else v for k, v in row.items()} for row in rows]}}
+
+
 def main():
     out, case_dir = sys.argv[1], sys.argv[2]
     omega, axis = rotation(case_dir)
     with open(os.path.join(case_dir, "pump.yaml")) as f:
-        radius = 0.5 * yaml.safe_load(f)["impeller"]["outer_diameter_m"]
+        design = yaml.safe_load(f)
+    radius = 0.5 * design["impeller"]["outer_diameter_m"]
     point = pump_point.operating_point(out, omega, axis, radius, flow_rate(out))
+    point.update(budget(out, design, point))
     with open(os.path.join(out, "operating_point.yaml"), "w") as f:
         f.write("# The operating point of this run (scripts/pump_point.py), SI units.\n")
         yaml.safe_dump(point, f, sort_keys=False)
