@@ -44,7 +44,7 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
   double end = 0.0;
   for (const double dt : steps)
     end += dt;
-  std::ofstream forces, timings;
+  std::ofstream forces, timings, switching;
   const auto start = Clock::now();
   auto last_report = start;
   double t = 0.0;
@@ -65,6 +65,10 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
     if (step == 0) {
       timings.open(schedule.folder / "timings.csv");
       timings << "time_s,penalization_s,fluid_solve_s,loads_s\n";
+      if (!loads.empty()) {
+        switching.open(schedule.folder / "penalization.csv");
+        switching << "time_s,cells_switched_on,cells_switched_off,switching_power_w\n";
+      }
     }
     const auto &split = model.last_step_timings();
     timings << flow.time_s() << "," << split.penalization_s << "," << split.fluid_solve_s << "," << split.loads_s
@@ -75,12 +79,16 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
         forces << "," << load.force_n.x() << "," << load.force_n.y() << "," << load.force_n.z() << ","
                << load.torque_n_m.x() << "," << load.torque_n_m.y() << "," << load.torque_n_m.z();
       forces << "\n";
+      const auto &sw = model.last_step_switching();
+      switching << flow.time_s() << "," << sw.cells_switched_on << "," << sw.cells_switched_off << "," << sw.power_w
+                << "\n";
     }
     const auto now = Clock::now();
     if (now - last_report > std::chrono::seconds(5) || step + 1 == n_steps) {
       last_report = now;
       forces.flush();
       timings.flush();
+      switching.flush();
       const double wall = std::chrono::duration<double>(now - start).count();
       const double eta = wall / static_cast<double>(step + 1) * static_cast<double>(n_steps - step - 1);
       spdlog::info("{}: t = {:.4g} of {:.4g} s, step {}/{}, {:.1f} ms/step, ETA {}", schedule.label, flow.time_s(), end,

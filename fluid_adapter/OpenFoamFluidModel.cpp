@@ -242,7 +242,7 @@ void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid
   auto start = Clock::now();
   timings_ = {};
   if (!bodies_.empty())
-    penalize_rigid_bodies(t_next);
+    penalize_rigid_bodies(t_next, dt_s);
   timings_.penalization_s = seconds_since(start);
   start = Clock::now();
   flow_.advance(dt_s);
@@ -265,10 +265,11 @@ std::vector<rigid::BodyLoad> OpenFoamFluidModel::advance_without_structure(doubl
   return loads;
 }
 
-void OpenFoamFluidModel::penalize_rigid_bodies(double time_s) {
+void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
   // Section 2.3, first bullet: the rigid surfaces move first. chi and u_rib at t^{n+1}, where
   // the implicit penalization enforces u = u_rib.
   const Eigen::Index n = cells_.n_cells();
+  const Eigen::VectorXd covered_before = penalization_rate_; // empty on the first step
   penalization_rate_.setZero(n);
   rigid_velocity_.setZero(n, 3);
   for (auto &indicator : indicators_) {
@@ -285,6 +286,24 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s) {
     wall_distance_->update(time_s);
     flow_.set_immersed_walls(wall_distance_->distance_m(), penalization_rate_);
   }
+  double switching[3] = {0.0, 0.0, 0.0}; // cells on, cells off, energy destroyed (J)
+  if (covered_before.size() == n) {
+    PointArray u_now;
+    flow_.cell_velocities(u_now); // u^n, before this step's penalization
+    for (Eigen::Index c = 0; c < n; ++c) {
+      const bool now = penalization_rate_[c] > 0.0, before = covered_before[c] > 0.0;
+      if (now && !before) {
+        switching[0] += 1.0;
+        const Vec3 u_rib = rigid_velocity_.row(c).transpose() / penalization_rate_[c];
+        switching[2] += 0.5 * config_.density_kg_per_m3 * cells_.volumes_m3()[c] *
+                        (u_now.row(c).transpose() - u_rib).squaredNorm();
+      } else if (before && !now) {
+        switching[1] += 1.0;
+      }
+    }
+  }
+  flow_.sum_over_ranks(switching, 3);
+  switching_ = {switching[0], switching[1], switching[2] / dt_s};
   penalization_rate_ /= config_.penalization_time_s;
   flow_.set_penalization(penalization_rate_, rigid_velocity_);
 }

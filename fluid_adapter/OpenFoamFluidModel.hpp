@@ -35,6 +35,17 @@ struct FlowStepTimings {
   double loads_s = 0.0;        ///< rigid bodies: the penalization force and the loads (sums over ranks)
 };
 
+/// The cells a moving sharp body switches in the last step, over all ranks: newly covered ones
+/// (chi 0 -> > 0) have their water set to the body's velocity at once, which destroys the kinetic
+/// energy of the difference, 1/2 rho V |u - u_rib|^2: a dissipation of the immersed boundary,
+/// not of the flow, that a body-fitted mesh does not have. A blade sliding along its own
+/// surface switches its whole staircase each time it advances by a cell.
+struct PenalizationSwitching {
+  double cells_switched_on = 0.0;  ///< newly covered cells
+  double cells_switched_off = 0.0; ///< newly uncovered cells
+  double power_w = 0.0;            ///< the kinetic energy destroyed in the newly covered cells over dt (W)
+};
+
 class OpenFoamFluidModel final : public proto::FluidModel {
 public:
   OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &flow,
@@ -56,9 +67,12 @@ public:
   std::vector<rigid::BodyLoad> advance_without_structure(double time_s, double dt_s);
   /// The split of the last step's wall time (the flow alone, the pump's cost per revolution).
   const FlowStepTimings &last_step_timings() const { return timings_; }
+  /// The cells the rigid bodies switched in the last step (collective over the ranks).
+  const PenalizationSwitching &last_step_switching() const { return switching_; }
 
 private:
   FlowStepTimings timings_;
+  PenalizationSwitching switching_;
   enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
   void broadcast(Command command, std::vector<double> &payload) const;
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
@@ -71,7 +85,7 @@ private:
   void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void kernel_widths(Eigen::VectorXd &widths_m) const;
-  void penalize_rigid_bodies(double time_s);
+  void penalize_rigid_bodies(double time_s, double dt_s);
   rigid::BodyLoad rigid_body_load(std::size_t body, double time_s);
 
   OpenFoamConfig config_;

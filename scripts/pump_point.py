@@ -7,6 +7,8 @@ and scripts/pump_curve.py. Inputs, all in the run's output folder:
   openfoam/postProcessing/{inlet,outlet}TotalPressure/*/surfaceFieldValue.dat
                         the mass-flow-averaged total pressure p + rho |U|^2 / 2 (Pa) of the patches
   openfoam/postProcessing/outletFlowRate/*/surfaceFieldValue.dat   sum(phi) on the outlet (m^3/s)
+  penalization.csv      (penalized runs) the kinetic energy per second the moving impeller
+                        destroys in the cells it newly covers (W): switching_power_w, its mean
 Definitions (SI): H = (p_t,out - p_t,in) / (rho g) (m); T = -a . T_fluid (N m, the torque the
 shaft supplies, a the rotation axis); eta = rho g Q H / (T omega); psi = g H / (omega R2)^2 and
 phi = Q / (omega R2^3) (the issue's coefficients); the pulsation is the amplitude of the Fourier
@@ -91,6 +93,12 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         q_out = float(np.mean(window(t_q, q[:, 0])[1]))
     except FileNotFoundError:
         pass
+    switching = None  # the penalized runs: the energy their moving impeller destroys as it covers cells
+    path = os.path.join(folder, "penalization.csv")
+    if os.path.isfile(path):
+        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        if len(data):
+            switching = float(np.mean(window(data[:, 0], data[:, 3])[1]))
     power = torque_mean * omega
     u2 = omega * radius_m
     point = {
@@ -101,6 +109,7 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         "shaft_torque_n_m": torque_mean,
         "shaft_power_w": power,
         "hydraulic_power_w": rho * G * flow_rate * head,
+        "switching_power_w": switching,
         "efficiency": rho * G * flow_rate * head / power if power > 0 else float("nan"),
         "head_coefficient_psi": G * head / u2 ** 2,
         "flow_coefficient_phi": flow_rate / (omega * radius_m ** 3),
