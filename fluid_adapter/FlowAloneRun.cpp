@@ -67,7 +67,8 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
       timings << "time_s,penalization_s,fluid_solve_s,loads_s\n";
       if (!loads.empty()) {
         switching.open(schedule.folder / "penalization.csv");
-        switching << "time_s,cells_switched_on,cells_switched_off,switching_power_w\n";
+        switching << "time_s,cells_switched_on,cells_switched_off,switching_power_w,transpiration_m3_per_s,"
+                     "transpiration_power_w\n";
       }
     }
     const auto &split = model.last_step_timings();
@@ -81,7 +82,7 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
       forces << "\n";
       const auto &sw = model.last_step_switching();
       switching << flow.time_s() << "," << sw.cells_switched_on << "," << sw.cells_switched_off << "," << sw.power_w
-                << "\n";
+                << "," << sw.transpiration_m3_per_s << "," << sw.transpiration_power_w << "\n";
     }
     const auto now = Clock::now();
     if (now - last_report > std::chrono::seconds(5) || step + 1 == n_steps) {

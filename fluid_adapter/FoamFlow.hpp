@@ -43,6 +43,12 @@ public:
   virtual void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib_m_per_s) = 0;
   /// After advance(): the penalization source per unit density, -rate (u - u_rib) (m/s^2).
   virtual void penalization_acceleration(PointArray &a_m_per_s2) const = 0;
+  /// After advance(): the water crossing into penalized cells through the faces they share with
+  /// free cells (m^3/s, from phi; this rank's internal faces), and the kinetic energy per
+  /// second destroyed as the penalization sets it to the body's velocity, 1/2 sum |phi_in|
+  /// |u_free - u_rib|^2 (m^5/s^3: times rho, W). A staircase body whose velocity is not along
+  /// its faces (a blade turning along itself) swallows and returns water all over its surface.
+  virtual void immersed_transpiration(double &inflow_m3_per_s, double &power_per_density) const = 0;
   /// True when the turbulence model uses the wall distance (Spalart-Allmaras RAS/DES/DDES).
   virtual bool uses_wall_distance() const = 0;
   /// Immersed rigid bodies as walls for the turbulence model (section 2.6): the wall distance

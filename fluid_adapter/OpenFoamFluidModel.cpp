@@ -247,6 +247,13 @@ void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid
   start = Clock::now();
   flow_.advance(dt_s);
   timings_.fluid_solve_s = seconds_since(start);
+  if (!bodies_.empty()) {
+    double transpiration[2] = {0.0, 0.0};
+    flow_.immersed_transpiration(transpiration[0], transpiration[1]);
+    flow_.sum_over_ranks(transpiration, 2);
+    switching_.transpiration_m3_per_s = transpiration[0];
+    switching_.transpiration_power_w = config_.density_kg_per_m3 * transpiration[1];
+  }
   if (bodies_.empty())
     return;
   start = Clock::now();

@@ -44,6 +44,10 @@ struct PenalizationSwitching {
   double cells_switched_on = 0.0;  ///< newly covered cells
   double cells_switched_off = 0.0; ///< newly uncovered cells
   double power_w = 0.0;            ///< the kinetic energy destroyed in the newly covered cells over dt (W)
+  /// After the step: the water crossing into penalized cells through their faces with free ones
+  /// (m^3/s) and the kinetic energy per second destroyed there (W): FoamFlow::immersed_transpiration.
+  double transpiration_m3_per_s = 0.0;
+  double transpiration_power_w = 0.0;
 };
 
 class OpenFoamFluidModel final : public proto::FluidModel {

@@ -8,7 +8,9 @@ and scripts/pump_curve.py. Inputs, all in the run's output folder:
                         the mass-flow-averaged total pressure p + rho |U|^2 / 2 (Pa) of the patches
   openfoam/postProcessing/outletFlowRate/*/surfaceFieldValue.dat   sum(phi) on the outlet (m^3/s)
   penalization.csv      (penalized runs) the kinetic energy per second the moving impeller
-                        destroys in the cells it newly covers (W): switching_power_w, its mean
+                        destroys in the cells it newly covers (W): switching_power_w, its mean;
+                        and the water its cells swallow through their faces with free cells
+                        (m^3/s) with the energy destroyed there (W): transpiration_*
 Definitions (SI): H = (p_t,out - p_t,in) / (rho g) (m); T = -a . T_fluid (N m, the torque the
 shaft supplies, a the rotation axis); eta = rho g Q H / (T omega); psi = g H / (omega R2)^2 and
 phi = Q / (omega R2^3) (the issue's coefficients); the pulsation is the amplitude of the Fourier
@@ -94,11 +96,14 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
     except FileNotFoundError:
         pass
     switching = None  # the penalized runs: the energy their moving impeller destroys as it covers cells
+    transpiration = [None, None]  # and the water its staircase swallows through its faces
     path = os.path.join(folder, "penalization.csv")
     if os.path.isfile(path):
         data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
         if len(data):
             switching = float(np.mean(window(data[:, 0], data[:, 3])[1]))
+            if data.shape[1] >= 6:
+                transpiration = [float(np.mean(window(data[:, 0], data[:, k])[1])) for k in (4, 5)]
     power = torque_mean * omega
     u2 = omega * radius_m
     point = {
@@ -110,6 +115,8 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         "shaft_power_w": power,
         "hydraulic_power_w": rho * G * flow_rate * head,
         "switching_power_w": switching,
+        "transpiration_m3_per_s": transpiration[0],
+        "transpiration_power_w": transpiration[1],
         "efficiency": rho * G * flow_rate * head / power if power > 0 else float("nan"),
         "head_coefficient_psi": G * head / u2 ** 2,
         "flow_coefficient_phi": flow_rate / (omega * radius_m ** 3),

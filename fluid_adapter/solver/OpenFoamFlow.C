@@ -42,6 +42,7 @@ public:
   void set_fsi_acceleration(const PointArray &a) override;
   void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) override;
   void penalization_acceleration(PointArray &a) const override;
+  void immersed_transpiration(double &inflow_m3_per_s, double &power_per_density) const override;
   bool uses_wall_distance() const override;
   void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) override;
   void advance(double dt_s) override;
@@ -220,6 +221,30 @@ void OpenFoamFlow::set_penalization(const Eigen::VectorXd &rate_per_s, const Poi
   forAll(rate, c) {
     rate[c] = rate_per_s[c];
     velocity[c] = vector(u_rib(c, 0), u_rib(c, 1), u_rib(c, 2));
+  }
+}
+
+void OpenFoamFlow::immersed_transpiration(double &inflow, double &power) const {
+  inflow = power = 0.0;
+  if (!penalizationRate_)
+    return;
+  const auto &rate = penalizationRate_->primitiveField();
+  const auto &u = U_->primitiveField();
+  const auto &u_rib = rigidVelocity_->primitiveField();
+  const auto &owner = mesh_->owner();
+  const auto &neighbour = mesh_->neighbour();
+  const auto &phi = phi_->primitiveField(); // owner -> neighbour
+  forAll(neighbour, f) {
+    const Foam::label o = owner[f], n = neighbour[f];
+    const bool in_o = rate[o] > 0.0, in_n = rate[n] > 0.0;
+    if (in_o == in_n)
+      continue;
+    const Foam::label body = in_o ? o : n, free = in_o ? n : o;
+    const double into_body = in_o ? -phi[f] : phi[f];
+    if (into_body <= 0.0)
+      continue;
+    inflow += into_body;
+    power += 0.5 * into_body * Foam::magSqr(u[free] - u_rib[body]);
   }
 }
 
