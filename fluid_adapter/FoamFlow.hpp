@@ -43,6 +43,11 @@ public:
   virtual void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib_m_per_s) = 0;
   /// After advance(): the penalization source per unit density, -rate (u - u_rib) (m/s^2).
   virtual void penalization_acceleration(PointArray &a_m_per_s2) const = 0;
+  /// InterfaceFlux::body_normal: per cell the velocity whose flux the faces of a penalized cell
+  /// with free cells carry (m/s: the body velocity's component along its surface normal); the
+  /// penalized cells become holes of the pressure equation (their pressure extrapolated from the
+  /// free neighbours). Until called, the faces carry the solver's interpolated flux.
+  virtual void set_interface_velocity(const PointArray &u_m_per_s) = 0;
   /// After advance(): the water crossing into penalized cells through the faces they share with
   /// free cells (m^3/s, from phi; this rank's internal faces), and the kinetic energy per
   /// second destroyed as the penalization sets it to the body's velocity, 1/2 sum |phi_in|

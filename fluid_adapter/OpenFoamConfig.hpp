@@ -9,6 +9,7 @@
 namespace fsi::fluid {
 
 enum class InterpolationChoice { kernel, closest_cell_linear };
+enum class InterfaceFlux { interpolated, body_normal };
 
 struct OpenFoamConfig {
   std::string case_directory = "openfoam";
@@ -20,6 +21,7 @@ struct OpenFoamConfig {
   double precursor_time_s = 0.0;
   double precursor_time_step_s = 0.0;
   std::string initial_fields_from;
+  InterfaceFlux interface_flux = InterfaceFlux::interpolated;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -53,6 +55,15 @@ struct OpenFoamConfig {
            "(OpenFOAM's mapFields -consistent: the same patches) as the initial fields. The run still starts at t = "
            "0, so a rotating body should be where it was: end the source run after whole revolutions. Empty: the "
            "case's own 0/ fields.");
+    v.choice("interface_flux", interface_flux,
+             {{"interpolated", InterfaceFlux::interpolated}, {"body_normal", InterfaceFlux::body_normal}},
+             "Rigid bodies: the flux through the faces between penalized and free cells. interpolated (the "
+             "paper's): the solver's, from the velocities on both sides, with the penalized cells in the pressure "
+             "equation; a staircase body moving along its own surface (a turning impeller) then swallows and "
+             "returns water through its faces (penalization.csv's transpiration). body_normal (experimental, "
+             "one MPI rank): the penalized cells are holes of the pressure equation and those faces carry the "
+             "flux of the body velocity's component along the surface normal, so that only the true surface's "
+             "normal motion moves water through the staircase.");
     v.number("precursor_time_step_s", precursor_time_step_s, common::Range::non_negative("s"),
              "Time step of the precursor run (no structure, so only the flow's Courant number limits it). 0: "
              "run.time_step_s.");

@@ -309,6 +309,23 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
       }
     }
   }
+  if (config_.interface_flux == InterfaceFlux::body_normal) {
+    // The body velocity's component along the surface normal at each penalized cell (the
+    // closest point's normal): the velocity of the flux through its faces with free cells.
+    PointArray u_normal = PointArray::Zero(n, 3);
+    for (auto &indicator : indicators_) {
+      const auto &body = indicator->body();
+      const Eigen::Isometry3d pose = body.motion().pose_at(time_s);
+      const Eigen::Isometry3d to_body = pose.inverse();
+      for (const auto c : indicator->inside_cells()) {
+        const Vec3 x = cells_.centres_m().row(c).transpose();
+        const Vec3 normal = pose.linear() * body.surface().distance(to_body * x).normal_into_fluid;
+        const Vec3 u = indicator->body_velocity_m_per_s().row(c).transpose();
+        u_normal.row(c) = (u.dot(normal) * normal).transpose();
+      }
+    }
+    flow_.set_interface_velocity(u_normal);
+  }
   flow_.sum_over_ranks(switching, 3);
   switching_ = {switching[0], switching[1], switching[2] / dt_s};
   penalization_rate_ /= config_.penalization_time_s;

@@ -43,6 +43,7 @@ public:
   void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) override;
   void penalization_acceleration(PointArray &a) const override;
   void immersed_transpiration(double &inflow_m3_per_s, double &power_per_density) const override;
+  void set_interface_velocity(const PointArray &u) override;
   bool uses_wall_distance() const override;
   void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) override;
   void advance(double dt_s) override;
@@ -79,6 +80,9 @@ private:
   std::unique_ptr<Foam::volVectorField> fsiAcceleration_;
   std::unique_ptr<Foam::volScalarField> penalizationRate_; ///< chi / tau (1/s); null: no rigid bodies
   std::unique_ptr<Foam::volVectorField> rigidVelocity_;    ///< u_rib (m/s)
+  std::unique_ptr<Foam::vectorField> interfaceVelocity_;   ///< null: interpolated interface fluxes
+  /// body_normal: the pressure of the penalized cells next to free ones, the mean of those.
+  void extrapolate_pressure_into_bodies();
   std::unique_ptr<Foam::scalarField> patchWallDistance_;   ///< y from the mesh's walls alone
   std::vector<Foam::label> insideCells_;                   ///< cells inside immersed bodies
   void zero_turbulence_inside_bodies();
@@ -222,6 +226,34 @@ void OpenFoamFlow::set_penalization(const Eigen::VectorXd &rate_per_s, const Poi
     rate[c] = rate_per_s[c];
     velocity[c] = vector(u_rib(c, 0), u_rib(c, 1), u_rib(c, 2));
   }
+}
+
+void OpenFoamFlow::set_interface_velocity(const PointArray &u) {
+  if (Foam::Pstream::parRun())
+    throw std::runtime_error("fluid.openfoam.interface_flux: body_normal runs on one MPI rank only (mpi_ranks: 1)");
+  if (!interfaceVelocity_)
+    interfaceVelocity_ = std::make_unique<Foam::vectorField>(mesh_->nCells(), Foam::Zero);
+  auto &field = *interfaceVelocity_;
+  forAll(field, c) field[c] = Foam::vector(u(c, 0), u(c, 1), u(c, 2));
+}
+
+void OpenFoamFlow::extrapolate_pressure_into_bodies() {
+  const auto &rate = penalizationRate_->primitiveField();
+  auto &p = p_->primitiveFieldRef();
+  Foam::scalarField sum(p.size(), 0.0), count(p.size(), 0.0);
+  const auto &owner = mesh_->owner();
+  const auto &neighbour = mesh_->neighbour();
+  forAll(neighbour, f) {
+    const Foam::label o = owner[f], n = neighbour[f];
+    const bool in_o = rate[o] > 0.0, in_n = rate[n] > 0.0;
+    if (in_o == in_n)
+      continue;
+    const Foam::label body = in_o ? o : n, free = in_o ? n : o;
+    sum[body] += p[free];
+    count[body] += 1.0;
+  }
+  forAll(p, c) if (count[c] > 0.0) p[c] = sum[c] / count[c];
+  p_->correctBoundaryConditions();
 }
 
 void OpenFoamFlow::immersed_transpiration(double &inflow, double &power) const {
@@ -400,13 +432,55 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
       HbyA -= (rAU - rAtU()) * fvc::grad(p);
     }
     constrainPressure(p, U, phiHbyA, rAtU());
+    surfaceScalarField rAtUf("rAtUf", fvc::interpolate(rAtU()));
+    labelList holes;
+    scalarField hole_values;
+    if (interfaceVelocity_ && penalizationRate_) {
+      // InterfaceFlux::body_normal: the faces between penalized and free cells carry the flux
+      // of the body's normal velocity and no pressure coupling (a moving wall for the free
+      // cells); the penalized cells are holes, their pressure held.
+      const auto &rate = penalizationRate_->primitiveField();
+      const auto &owner = mesh.owner();
+      const auto &neighbour = mesh.neighbour();
+      const auto &Sf = mesh.Sf();
+      // Out of the bodies: the flux of the normal velocity, less its net over all the faces
+      // spread by area (the staircase's sum of a rigid motion's normal flux is not zero, and
+      // the free water must keep its volume).
+      double net_out = 0.0, area = 0.0;
+      forAll(neighbour, f) {
+        const bool in_o = rate[owner[f]] > 0.0, in_n = rate[neighbour[f]] > 0.0;
+        if (in_o == in_n)
+          continue;
+        const Foam::vector &u = (*interfaceVelocity_)[in_o ? owner[f] : neighbour[f]];
+        net_out += in_o ? (u & Sf[f]) : -(u & Sf[f]);
+        area += mag(Sf[f]);
+      }
+      const double correction = area > 0.0 ? net_out / area : 0.0;
+      forAll(neighbour, f) {
+        const bool in_o = rate[owner[f]] > 0.0, in_n = rate[neighbour[f]] > 0.0;
+        if (in_o == in_n)
+          continue;
+        const Foam::vector &u = (*interfaceVelocity_)[in_o ? owner[f] : neighbour[f]];
+        const double out = (in_o ? (u & Sf[f]) : -(u & Sf[f])) - correction * mag(Sf[f]);
+        phiHbyA[f] = in_o ? out : -out;
+        rAtUf[f] *= 1e-9;
+      }
+      DynamicList<label> cells;
+      forAll(rate, c) if (rate[c] > 0.0) cells.append(c);
+      holes.transfer(cells);
+      hole_values = scalarField(p.primitiveField(), holes);
+    }
     while (pimple.correctNonOrthogonal()) {
-      fvScalarMatrix pEqn(fvm::laplacian(rAtU(), p) == fvc::div(phiHbyA));
+      fvScalarMatrix pEqn(fvm::laplacian(rAtUf, p) == fvc::div(phiHbyA));
+      if (holes.size())
+        pEqn.setValues(holes, hole_values);
       pEqn.setReference(pRefCell_, pRefValue_);
       pEqn.solve(mesh.solver(p.select(pimple.finalInnerIter())));
       if (pimple.finalNonOrthogonalIter())
         phi = phiHbyA - pEqn.flux();
     }
+    if (holes.size())
+      extrapolate_pressure_into_bodies();
     p.relax();
     U = HbyA - rAtU * fvc::grad(p);
     U.correctBoundaryConditions();
