@@ -12,6 +12,7 @@
 //                                     table, and as YAML in FILE
 // Exit codes: 0 valid, 2 bad input (a failed geometry check included).
 
+#include "pump/BladeInlet.hpp"
 #include "pump/DutyEstimate.hpp"
 #include "pump/GeometryChecks.hpp"
 #include "pump/PhysicalConstants.hpp"
@@ -65,6 +66,17 @@ int report(const fsi::pump::PumpDesign &design) {
                volute.angular_momentum_m2_per_s(), radii);
   spdlog::info("  throat area {:.4g} cm^2 ({} cm^2 for this duty)", 1e4 * volute.throat_area_m2(),
                band(1e4 * volute.throat_area_m2(), 80.0, 115.0));
+  const auto inlet = fsi::pump::blade_inlet_at(design, op.design_flow_rate_m3_per_s);
+  spdlog::info("blade inlet at Q = {:.4g} m^3/s: r1 = {:.4g} m, u1 = {:.3g} m/s, c1m = {:.3g} m/s (b1 = b2); flow angle "
+               "beta_1 = {:.1f} deg against the blade's {:.4g} deg: incidence {:.1f} deg ({} deg)",
+               op.design_flow_rate_m3_per_s, inlet.radius_m, inlet.blade_speed_m_per_s, inlet.meridional_m_per_s,
+               inlet.flow_angle_deg, imp.inlet_blade_angle_deg, inlet.incidence_deg,
+               band(inlet.incidence_deg, 0.0, 6.0));
+  spdlog::info("  inlet throat {:.3g} cm^2, w1 = {:.3g} m/s = {:.2g} u1; no incidence at Q = {:.3g} m^3/s "
+               "({:.2g} Q_design)",
+               1e4 * inlet.throat_area_m2, inlet.throat_velocity_m_per_s,
+               inlet.throat_velocity_m_per_s / inlet.blade_speed_m_per_s, inlet.shockless_flow_rate_m3_per_s,
+               inlet.shockless_flow_rate_m3_per_s / op.design_flow_rate_m3_per_s);
   return fsi::common::exit_code_success;
 }
 

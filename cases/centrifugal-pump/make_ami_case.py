@@ -18,7 +18,7 @@ and the casing's chamber (the volute's base width, centred on the impeller chann
 faceZone and cellZone `rotor`. createBaffles turns the faceZone into the cyclicAMI pair and
 mergeOrSplitBaffles -split gives the two sides their own points, so the rotor can turn
 (constant/dynamicMeshDict: solidBody rotatingMotion of the cellZone, case.yaml's axis and rate).
-The gaps between impeller and casing (5 mm radially, 7 mm axially) are thinner than a coarse
+The gaps between impeller and casing (5 mm radially and axially) are thinner than a coarse
 cell (8 mm): the cells within GAP_BAND of the rotor cylinder are refined to GAP_CELL (2 mm, the
 paper's cell size) so that each half-gap has a cell between wall and interface; elsewhere the
 cells are the penalized mesh's h (the impeller surface one level finer, IMPELLER_LEVELS).

@@ -8,7 +8,7 @@ both before a run whenever the geometry is (re)generated; by hand:
 
 One OpenFOAM case folder per resolution (openfoam-coarse, -medium, -fine: h = D2/25, D2/50,
 D2/100), openfoam-coarse-rans (k-omega SST, for cheap curves) and openfoam-coarse-gaps (the coarse
-mesh with 2 mm cells within 4 mm of the impeller, so that the 5-7 mm side gaps are resolved as
+mesh with 2 mm cells within 4 mm of the impeller, so that the 5 mm gaps are resolved as
 in the AMI reference). Each meshes the casing (the
 fluid domain) body-fitted: a background block mesh of cube cells of size h around it, carved
 and snapped by snappyHexMesh to constant/triSurface/casing.stl (a link to geometry/casing.stl),

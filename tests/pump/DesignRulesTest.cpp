@@ -2,6 +2,7 @@
 // is expected to reach, against the plausibility bands of issue 11 (from Gülich's fits), and
 // the constant-angular-momentum volute against its own defining integral.
 
+#include "pump/BladeInlet.hpp"
 #include "pump/DutyEstimate.hpp"
 #include "pump/PumpDesign.hpp"
 #include "pump/VoluteSizing.hpp"
@@ -111,6 +112,38 @@ std::string load_error(const std::string &yaml) {
     return e.what();
   }
   return "";
+}
+
+TEST(BladeInlet, TheVelocityTriangleAndThroatFollowTheirDefinitions) {
+  // A hand-made inlet: r1 = 0.04 m, b1 = 0.05 m, omega = 100 rad/s (u1 = 4 m/s), beta_1B = 45 deg,
+  // Q chosen so that c1m = u1: the flow meets the blade at 45 deg, no incidence, and w1 through
+  // the throat (2 pi r1 b1 sin 45) is c1m / sin 45 = the relative speed sqrt(2) u1.
+  PumpDesign design;
+  design.impeller.blade_inlet_diameter_m = 0.08;
+  design.impeller.outlet_width_m = 0.05;
+  design.impeller.inlet_blade_angle_deg = 45.0;
+  design.operation.rotation_rate_rad_per_s = 100.0;
+  const double circle = 2.0 * M_PI * 0.04 * 0.05, q = 4.0 * circle;
+  const BladeInlet in = blade_inlet_at(design, q);
+  EXPECT_NEAR(in.blade_speed_m_per_s, 4.0, 1e-12);
+  EXPECT_NEAR(in.meridional_m_per_s, 4.0, 1e-12);
+  EXPECT_NEAR(in.flow_angle_deg, 45.0, 1e-12);
+  EXPECT_NEAR(in.incidence_deg, 0.0, 1e-12);
+  EXPECT_NEAR(in.throat_area_m2, circle * std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(in.throat_velocity_m_per_s, 4.0 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(in.shockless_flow_rate_m3_per_s, q, 1e-15);
+  // Twice the flow: the flow angle steepens to atan(2) and the incidence goes negative.
+  EXPECT_NEAR(blade_inlet_at(design, 2.0 * q).incidence_deg, 45.0 - std::atan(2.0) * 180.0 / M_PI, 1e-12);
+}
+
+TEST(BladeInlet, TheDefaultDesignsInletIsMadeForAFifthOfItsFlowRate) {
+  // Measured and kept as the known flaw of the default design (cases/centrifugal-pump/README.md):
+  // D1 = 0.05 m and beta_1B = 15 deg meet the flow without incidence at 7.9 L/s, 0.18 Q_design;
+  // at Q_design the incidence is -41.7 deg and w1 = 22.1 m/s = 5.9 u1.
+  const PumpDesign design;
+  const BladeInlet in = blade_inlet_at(design, design.operation.design_flow_rate_m3_per_s);
+  EXPECT_NEAR(in.shockless_flow_rate_m3_per_s / design.operation.design_flow_rate_m3_per_s, 0.176, 0.001);
+  EXPECT_NEAR(in.incidence_deg, -41.7, 0.05);
 }
 
 TEST(PumpDesign, TheDefaultsAreAValidDesignAndBadValuesNameTheirKeys) {
