@@ -137,8 +137,13 @@ def prepare_case(case_dir, bin_dir):
     script = os.path.join(case_dir, "prepare.py")
     if not os.path.isfile(script):
         return
+    # The case's generators import this folder's helpers (foam_case.py) also from a copy of the
+    # case elsewhere (a pump-curve point).
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.abspath(__file__)),
+                                                      env.get("PYTHONPATH")]))
     made = subprocess.run([sys.executable, script, case_dir, bin_dir], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT)
+                          stderr=subprocess.STDOUT, env=env)
     text = made.stdout.decode(errors="replace").strip()
     if made.returncode != 0:
         raise UserError("preparing the case failed (%s):\n%s" % (script, text), EXIT_RUN_FAILED)

@@ -89,11 +89,13 @@ def copy_case(case_dir, point, template):
 
 
 def case_fingerprint(case_dir):
-    """A hash of every file of the case folder but its results: a point reruns when it changes."""
+    """A hash of every file of the case folder but its results and logs: a point reruns when it changes."""
     digest = hashlib.sha256()
     for root, dirs, files in os.walk(case_dir, followlinks=False):
         dirs[:] = sorted(d for d in dirs if d not in ("output", "__pycache__"))
         for name in sorted(files):
+            if name in ("generate.log", ".geometry.lock"):  # the generator's log (its timings), the lock
+                continue
             path = os.path.join(root, name)
             digest.update(os.path.relpath(path, case_dir).encode() + b"\0")
             with open(path, "rb") as f:
