@@ -6,6 +6,10 @@ cylinder halfway between D2 / 2 and the volute's base circle), the volute (the c
 times the base radius) and the discharge pipe's middle (plane normal to x). Each is the slab of
 cells within half a cell of the section, weighted by u_n V / h (its volume flow): an estimate,
 not an exact surface integral, which the flow rate it finds (beside the imposed one) shows.
+It is the budget of one instant, not a time average: where the suction side's pressure swings
+from step to step (on the pump with body_normal interfaces by +-31 kPa at the inlet, with the
+AMI reference by +-16 kPa) one instant says where the head goes, not how much there is; the
+operating point's H (the function objects, every step, averaged) is the measure.
 Reads the case with ParaView's OpenFOAM reader (python3-paraview; no display needed).
 
     pump_head_budget.py FOAM_CASE PUMP_YAML [--time T]     (default: the latest time after 0)
