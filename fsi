@@ -140,7 +140,13 @@ cmd_run() {
 
 cmd_check() {
   [ $# -ge 1 ] || die "usage: ./fsi check CASE_DIR"
-  prepare fsi-structure
+  prepare fsi-structure fsi-pump-design
+  # A case's generated inputs first (cases/<case>/prepare.py: the pump's geometry), as ./fsi run.
+  local case_dir=${!#}
+  if [ -f "$case_dir/prepare.py" ]; then
+    PYTHONPATH="$ROOT/scripts${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 "$case_dir/prepare.py" "$case_dir" "$BUILD/bin" ||
+      die "preparing $case_dir failed (see above)"
+  fi
   "$BUILD/bin/fsi-structure" --check "$@"
 }
 
