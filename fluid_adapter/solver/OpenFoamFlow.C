@@ -22,6 +22,20 @@ namespace fsi::fluid {
 
 namespace {
 
+/// Calls visit(face, body_cell, free_cell, body_is_owner) for every internal face between a
+/// penalized cell (rate > 0) and a free one (this rank's faces).
+template <class Visit>
+void for_each_interface_face(const Foam::fvMesh &mesh, const Foam::scalarField &rate, Visit visit) {
+  const auto &owner = mesh.owner();
+  const auto &neighbour = mesh.neighbour();
+  forAll(neighbour, f) {
+    const Foam::label o = owner[f], n = neighbour[f];
+    const bool in_o = rate[o] > 0.0, in_n = rate[n] > 0.0;
+    if (in_o != in_n)
+      visit(f, in_o ? o : n, in_o ? n : o, in_o);
+  }
+}
+
 /// OpenFOAM reports fatal errors by throwing Foam::error when asked to (instead of aborting).
 struct ThrowOnFatalError {
   ThrowOnFatalError() {
@@ -83,8 +97,8 @@ private:
   std::unique_ptr<Foam::vectorField> interfaceVelocity_;   ///< null: interpolated interface fluxes
   /// body_normal: the pressure of the penalized cells next to free ones, the mean of those.
   void extrapolate_pressure_into_bodies();
-  std::unique_ptr<Foam::scalarField> patchWallDistance_;   ///< y from the mesh's walls alone
-  std::vector<Foam::label> insideCells_;                   ///< cells inside immersed bodies
+  std::unique_ptr<Foam::scalarField> patchWallDistance_; ///< y from the mesh's walls alone
+  std::vector<Foam::label> insideCells_;                 ///< cells inside immersed bodies
   void zero_turbulence_inside_bodies();
   std::unique_ptr<Foam::singlePhaseTransportModel> laminarTransport_;
   Foam::autoPtr<Foam::incompressible::turbulenceModel> turbulence_;
@@ -112,8 +126,8 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   runTime_ = std::make_unique<Time>(Time::controlDictName, *args_);
   runTime_->setDeltaT(settings.time_step_s, false);
   runTime_->setEndTime(settings.end_time_s);
-  mesh_ = std::make_unique<fvMesh>(
-      IOobject(fvMesh::defaultRegion, runTime_->timeName(), *runTime_, IOobject::MUST_READ));
+  mesh_ =
+      std::make_unique<fvMesh>(IOobject(fvMesh::defaultRegion, runTime_->timeName(), *runTime_, IOobject::MUST_READ));
   fvMesh &mesh = *mesh_;
   pimple_ = std::make_unique<pimpleControl>(mesh);
   p_ = std::make_unique<volScalarField>(
@@ -150,8 +164,7 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   text << "OpenFOAM v1912 PIMPLE, " << returnReduce(n, sumOp<label>()) << " cells";
   if (Pstream::parRun())
     text << " on " << Pstream::nProcs() << " MPI ranks";
-  text << ", turbulence " << turbulence_->type() << ", case "
-       << settings.case_directory.string();
+  text << ", turbulence " << turbulence_->type() << ", case " << settings.case_directory.string();
   description_ = text.str();
   // The case's own function objects (controlDict `functions`: surfaceFieldValue, probes, ...)
   // run as in OpenFOAM's solvers; the time loop here is ++runTime, which does not call them.
@@ -241,17 +254,10 @@ void OpenFoamFlow::extrapolate_pressure_into_bodies() {
   const auto &rate = penalizationRate_->primitiveField();
   auto &p = p_->primitiveFieldRef();
   Foam::scalarField sum(p.size(), 0.0), count(p.size(), 0.0);
-  const auto &owner = mesh_->owner();
-  const auto &neighbour = mesh_->neighbour();
-  forAll(neighbour, f) {
-    const Foam::label o = owner[f], n = neighbour[f];
-    const bool in_o = rate[o] > 0.0, in_n = rate[n] > 0.0;
-    if (in_o == in_n)
-      continue;
-    const Foam::label body = in_o ? o : n, free = in_o ? n : o;
+  for_each_interface_face(*mesh_, rate, [&](Foam::label, Foam::label body, Foam::label free, bool) {
     sum[body] += p[free];
     count[body] += 1.0;
-  }
+  });
   forAll(p, c) if (count[c] > 0.0) p[c] = sum[c] / count[c];
   p_->correctBoundaryConditions();
 }
@@ -263,21 +269,14 @@ void OpenFoamFlow::immersed_transpiration(double &inflow, double &power) const {
   const auto &rate = penalizationRate_->primitiveField();
   const auto &u = U_->primitiveField();
   const auto &u_rib = rigidVelocity_->primitiveField();
-  const auto &owner = mesh_->owner();
-  const auto &neighbour = mesh_->neighbour();
   const auto &phi = phi_->primitiveField(); // owner -> neighbour
-  forAll(neighbour, f) {
-    const Foam::label o = owner[f], n = neighbour[f];
-    const bool in_o = rate[o] > 0.0, in_n = rate[n] > 0.0;
-    if (in_o == in_n)
-      continue;
-    const Foam::label body = in_o ? o : n, free = in_o ? n : o;
-    const double into_body = in_o ? -phi[f] : phi[f];
+  for_each_interface_face(*mesh_, rate, [&](Foam::label f, Foam::label body, Foam::label free, bool body_is_owner) {
+    const double into_body = body_is_owner ? -phi[f] : phi[f];
     if (into_body <= 0.0)
-      continue;
+      return;
     inflow += into_body;
     power += 0.5 * into_body * Foam::magSqr(u[free] - u_rib[body]);
-  }
+  });
 }
 
 void OpenFoamFlow::penalization_acceleration(PointArray &a) const {
@@ -339,8 +338,8 @@ void OpenFoamFlow::advance(double dt_s) {
   try {
     step(dt_s);
   } catch (const Foam::error &e) {
-    throw std::runtime_error("OpenFOAM failed at t = " + std::to_string(runTime_->value()) + " s: " +
-                             std::string(e.message()));
+    throw std::runtime_error("OpenFOAM failed at t = " + std::to_string(runTime_->value()) +
+                             " s: " + std::string(e.message()));
   }
   if (const std::string problem = find_divergence(dt_s); !problem.empty()) {
     *U_ = U_good;
@@ -377,8 +376,8 @@ std::string OpenFoamFlow::find_divergence(double dt_s) const {
   const Foam::vector &x = mesh_->C()[worst];
   const double h = std::cbrt(mesh_->V()[worst]);
   std::ostringstream text;
-  text << "the fluid diverged at t = " << runTime_->value() << " s: cell " << worst << " at (" << x.x() << ", "
-       << x.y() << ", " << x.z() << ") m has |U| = " << worst_speed << " m/s (limit " << speed_limit_
+  text << "the fluid diverged at t = " << runTime_->value() << " s: cell " << worst << " at (" << x.x() << ", " << x.y()
+       << ", " << x.z() << ") m has |U| = " << worst_speed << " m/s (limit " << speed_limit_
        << " m/s, 100 times the largest speed at the start); its Courant number |U| dt / h would be "
        << (std::isfinite(worst_speed) ? worst_speed * dt_s / h : worst_speed)
        << ". Likely cause: the time step is too large for the flow (keep the Courant number below 1) or for a "
@@ -440,31 +439,25 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
       // of the body's normal velocity and no pressure coupling (a moving wall for the free
       // cells); the penalized cells are holes, their pressure held.
       const auto &rate = penalizationRate_->primitiveField();
-      const auto &owner = mesh.owner();
-      const auto &neighbour = mesh.neighbour();
       const auto &Sf = mesh.Sf();
+      const auto outward = [&](label f, label body, bool body_is_owner) { // the body's normal flux out of it
+        const double flux = (*interfaceVelocity_)[body] & Sf[f];
+        return body_is_owner ? flux : -flux;
+      };
       // Out of the bodies: the flux of the normal velocity, less its net over all the faces
       // spread by area (the staircase's sum of a rigid motion's normal flux is not zero, and
       // the free water must keep its volume).
       double net_out = 0.0, area = 0.0;
-      forAll(neighbour, f) {
-        const bool in_o = rate[owner[f]] > 0.0, in_n = rate[neighbour[f]] > 0.0;
-        if (in_o == in_n)
-          continue;
-        const Foam::vector &u = (*interfaceVelocity_)[in_o ? owner[f] : neighbour[f]];
-        net_out += in_o ? (u & Sf[f]) : -(u & Sf[f]);
+      for_each_interface_face(mesh, rate, [&](label f, label body, label, bool body_is_owner) {
+        net_out += outward(f, body, body_is_owner);
         area += mag(Sf[f]);
-      }
+      });
       const double correction = area > 0.0 ? net_out / area : 0.0;
-      forAll(neighbour, f) {
-        const bool in_o = rate[owner[f]] > 0.0, in_n = rate[neighbour[f]] > 0.0;
-        if (in_o == in_n)
-          continue;
-        const Foam::vector &u = (*interfaceVelocity_)[in_o ? owner[f] : neighbour[f]];
-        const double out = (in_o ? (u & Sf[f]) : -(u & Sf[f])) - correction * mag(Sf[f]);
-        phiHbyA[f] = in_o ? out : -out;
+      for_each_interface_face(mesh, rate, [&](label f, label body, label, bool body_is_owner) {
+        const double out = outward(f, body, body_is_owner) - correction * mag(Sf[f]);
+        phiHbyA[f] = body_is_owner ? out : -out;
         rAtUf[f] *= 1e-9;
-      }
+      });
       DynamicList<label> cells;
       forAll(rate, c) if (rate[c] > 0.0) cells.append(c);
       holes.transfer(cells);
