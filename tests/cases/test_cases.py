@@ -68,6 +68,14 @@ class CaseTest(TempDirTest):
             status = f.attrs["status"]
         self.assertEqual(status.decode() if isinstance(status, bytes) else str(status), "completed")
 
+    def edit(self, path, old, new):
+        """Replaces `old` (which must be in the file) by `new` in the file at `path`."""
+        with open(path) as f:
+            text = f.read()
+        self.assertIn(old, text, path)
+        with open(path, "w") as f:
+            f.write(text.replace(old, new))
+
     def copy_case(self, name, folder=None):
         """cases/<name> without its output/ and generated geometry (the launcher's prepare hook makes
         it again in the copy, while another test may be making the source's), into the test's
@@ -160,11 +168,8 @@ class CentrifugalPump(CaseTest):
             # whole velocity, several times more (measured over these steps: 3.8 times; settled,
             # 0.174 against 0.034 m^3/s).
             interpolated_case = self.copy_case("centrifugal-pump", "interpolated-case")
-            with open(os.path.join(interpolated_case, "case.yaml")) as f:
-                text = f.read()
-            self.assertIn("interface_flux: body_normal", text)
-            with open(os.path.join(interpolated_case, "case.yaml"), "w") as f:
-                f.write(text.replace("interface_flux: body_normal", "interface_flux: interpolated"))
+            self.edit(os.path.join(interpolated_case, "case.yaml"), "interface_flux: body_normal",
+                      "interface_flux: interpolated")
             interpolated = os.path.join(self.tmp, "interpolated")
             result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", interpolated, "--end-time",
                                      repr(self.STEPS * dt), interpolated_case], stdin=subprocess.DEVNULL,
@@ -194,11 +199,8 @@ class CentrifugalPump(CaseTest):
             # A warm start from the first run's last fields (fluid.openfoam.initial_fields_from):
             # its first step continues that flow, where a start from rest jerks the water.
             warm_case = self.copy_case("centrifugal-pump", "warm-case")
-            with open(os.path.join(warm_case, "case.yaml")) as f:
-                text = f.read()
-            with open(os.path.join(warm_case, "case.yaml"), "w") as f:
-                f.write(text.replace("  openfoam:\n", "  openfoam:\n    initial_fields_from: %s\n"
-                                     % os.path.join(out, "openfoam"), 1))
+            self.edit(os.path.join(warm_case, "case.yaml"), "  openfoam:\n",
+                      "  openfoam:\n    initial_fields_from: %s\n" % os.path.join(out, "openfoam"))
             warm = os.path.join(self.tmp, "warm")
             command[command.index(again)] = warm
             command[-1] = warm_case
@@ -244,10 +246,8 @@ class CentrifugalPumpRefusals(CaseTest):
         case = self.prepared_copy()
         block = os.path.join(case, "openfoam-coarse", "system", "blockMeshDict")
         with open(block) as f:
-            text = f.read()
-        x_max = re.search(r"\(\S+ \S+ \S+\) \((\S+) ", text).group(1)  # the second vertex's x
-        with open(block, "w") as f:
-            f.write(text.replace(x_max, "0.3"))  # the discharge pipe reaches x = 0.54 m
+            x_max = re.search(r"\(\S+ \S+ \S+\) \((\S+) ", f.read()).group(1)  # the second vertex's x
+        self.edit(block, x_max, "0.3")  # the discharge pipe reaches x = 0.54 m
         code, err = self.launch_one_step(case)
         self.assertEqual(code, 1, err[-2000:])
         self.assertIn("reaches the background box", err)
@@ -258,11 +258,9 @@ class CentrifugalPumpRefusals(CaseTest):
     def test_a_fluid_that_cannot_set_up_exits_non_zero_with_openfoams_message(self):
         need_openfoam(self)
         case = self.prepared_copy()
-        p = os.path.join(case, "openfoam-coarse", "0", "p")
-        with open(p) as f:
-            text = f.read()
-        with open(p, "w") as f:  # no fixed pressure anywhere: the pressure needs a reference cell
-            f.write(text.replace("outlet { type fixedValue; value uniform 0; }", "outlet { type zeroGradient; }"))
+        # No fixed pressure anywhere: the pressure needs a reference cell.
+        self.edit(os.path.join(case, "openfoam-coarse", "0", "p"), "outlet { type fixedValue; value uniform 0; }",
+                  "outlet { type zeroGradient; }")
         code, err = self.launch_one_step(case)
         self.assertEqual(code, 1, err[-2000:])
         self.assertIn("OpenFOAM could not set up the case", err)
