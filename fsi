@@ -129,7 +129,8 @@ cmd_run() {
   local case_dir=${!#}
   if [ -n "$out" ] && { [ -f "$results" ] || [ -f "$out/forces.csv" ]; } && [ -f "$case_dir/postprocess.py" ]; then
     local made
-    if made=$(/usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
+    # scripts/ on PYTHONPATH: a copy of the case away from the repository imports its helpers too
+    if made=$(PYTHONPATH="$ROOT/scripts${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
       say "case quantities: $made (in $out)"
     else
       say "warning: $case_dir/postprocess.py failed: $(echo "$made" | tail -1)"
