@@ -54,7 +54,15 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
       flow.write_now();
       return common::exit_code_interrupted;
     }
-    const auto loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
+    std::vector<rigid::BodyLoad> loads;
+    try {
+      loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
+    } catch (const std::exception &) {
+      // A diverged step has put the last good fields back (FoamFlow::advance): they go to disk,
+      // as its message promises, before the error ends the run.
+      flow.write_now();
+      throw;
+    }
     t += steps[static_cast<std::size_t>(step)];
     if (flow.rank() != 0)
       continue;

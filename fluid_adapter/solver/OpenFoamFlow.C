@@ -335,19 +335,25 @@ void OpenFoamFlow::advance(double dt_s) {
   const Foam::surfaceScalarField phi_good("phi_good", *phi_);
   const Foam::scalar t_good = runTime_->value();
   const Foam::label index_good = runTime_->timeIndex();
-  try {
-    step(dt_s);
-  } catch (const Foam::error &e) {
-    throw std::runtime_error("OpenFOAM failed at t = " + std::to_string(runTime_->value()) +
-                             " s: " + std::string(e.message()));
-  }
-  if (const std::string problem = find_divergence(dt_s); !problem.empty()) {
+  const auto restore_good_state = [&] {
     *U_ = U_good;
     *p_ = p_good;
     *phi_ = phi_good;
     runTime_->setTime(t_good, index_good);
-    throw std::runtime_error(problem + "; the last good state (t = " + std::to_string(t_good) +
-                             " s) is written when the run stops");
+  };
+  const std::string kept = "; the last good state (t = " + std::to_string(t_good) + " s) is written when the run stops";
+  try {
+    step(dt_s);
+  } catch (const Foam::error &e) {
+    // OpenFOAM's own failures mid-step (a NaN read back as a token, a solver that breaks down)
+    // leave fields half-updated: the last good ones go back, as for a divergence.
+    const std::string when = std::to_string(runTime_->value());
+    restore_good_state();
+    throw std::runtime_error("OpenFOAM failed at t = " + when + " s: " + std::string(e.message()) + kept);
+  }
+  if (const std::string problem = find_divergence(dt_s); !problem.empty()) {
+    restore_good_state();
+    throw std::runtime_error(problem + kept);
   }
   runTime_->write();
   runTime_->functionObjects().execute();

@@ -220,7 +220,8 @@ class CentrifugalPump(CaseTest):
 class CentrifugalPumpRefusals(CaseTest):
     """What a broken OpenFOAM case of the pump gives: a clear error and a non-zero exit, not a
     silent exit 0 (argList's destructor used to end the process with status 0 when the fluid's
-    set-up threw), and no mesh cut off by a background box that misses the outlet."""
+    set-up threw), no mesh cut off by a background box that misses the outlet, and a step that
+    fails stops the run with the last good fields on disk (not the failed step's)."""
 
     def prepared_copy(self):
         """A copy of the case away from the repository, its geometry generated anew there (as a
@@ -231,11 +232,11 @@ class CentrifugalPumpRefusals(CaseTest):
         self.assertTrue(os.path.isfile(os.path.join(case, "geometry", "generated-from")))
         return case
 
-    def launch_one_step(self, case):
+    def launch_one_step(self, case, end_time="0.00025"):
         os.environ["FSI_MESH_CACHE"] = os.path.join(self.tmp, "mesh-cache")
         try:
             result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", os.path.join(self.tmp, "out"),
-                                     "--end-time", "0.00025", case], stdin=subprocess.DEVNULL,
+                                     "--end-time", end_time, case], stdin=subprocess.DEVNULL,
                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=600)
         finally:
             del os.environ["FSI_MESH_CACHE"]
@@ -265,6 +266,22 @@ class CentrifugalPumpRefusals(CaseTest):
         self.assertEqual(code, 1, err[-2000:])
         self.assertIn("OpenFOAM could not set up the case", err)
         self.assertIn("Unable to set reference cell for field p", err)
+
+
+    def test_a_failing_step_stops_the_run_and_keeps_the_last_good_fields(self):
+        need_openfoam(self)
+        case = self.prepared_copy()
+        # 20 times the case's step: the blade tip crosses 10 cells a step and the second step
+        # breaks down inside OpenFOAM (a NaN read back as a token); the first one is still finite.
+        self.edit(os.path.join(case, "case.yaml"), "time_step_s: 2.5e-4 ", "time_step_s: 5.0e-3 ")
+        code, err = self.launch_one_step(case, end_time="0.05")
+        self.assertEqual(code, 1, err[-2000:])
+        self.assertIn("the last good state (t = 0.005000 s) is written when the run stops", err)
+        foam = os.path.join(self.tmp, "out", "openfoam")
+        times = sorted(d for d in os.listdir(foam) if re.fullmatch(r"[0-9.]+", d) and float(d) > 0)
+        self.assertEqual(times, ["0.005"], "written time folders")  # the good one, not the failed step's
+        for field in ("U", "p", "phi"):
+            self.assertTrue(os.path.isfile(os.path.join(foam, "0.005", field)), field)
 
 
 class RagSettling(CaseTest):
