@@ -97,6 +97,15 @@ private:
   std::unique_ptr<Foam::vectorField> interfaceVelocity_;   ///< null: interpolated interface fluxes
   /// body_normal: the pressure of the penalized cells next to free ones, the mean of those.
   void extrapolate_pressure_into_bodies();
+  /// grad(p) of the momentum equation and the velocity correction. With body_normal interfaces
+  /// the faces between penalized and free cells are walls of the free water (a fixed flux, no
+  /// pressure coupling), so their pressure is the free cell's, as at the mesh's walls (Gauss
+  /// linear elsewhere). The extrapolated pressure of a body cell is no value of the free side:
+  /// a one-cell disc between two waters (the pump's hub disc) would feed the pressure
+  /// difference across it into the velocity of the cells on either side, which their fixed
+  /// fluxes never feel back (the coarse two-blade pump's gap cells ran away to 100 m/s across
+  /// the disc). Otherwise fvc::grad(p).
+  Foam::tmp<Foam::volVectorField> pressure_gradient() const;
   std::unique_ptr<Foam::scalarField> patchWallDistance_; ///< y from the mesh's walls alone
   std::vector<Foam::label> insideCells_;                 ///< cells inside immersed bodies
   void zero_turbulence_inside_bodies();
@@ -262,6 +271,19 @@ void OpenFoamFlow::extrapolate_pressure_into_bodies() {
   p_->correctBoundaryConditions();
 }
 
+Foam::tmp<Foam::volVectorField> OpenFoamFlow::pressure_gradient() const {
+  using namespace Foam;
+  const volScalarField &p = *p_;
+  if (!(interfaceVelocity_ && penalizationRate_))
+    return fvc::grad(p);
+  surfaceScalarField pf(fvc::interpolate(p));
+  for_each_interface_face(*mesh_, penalizationRate_->primitiveField(),
+                          [&](label f, label, label free, bool) { pf[f] = p[free]; });
+  tmp<volVectorField> gradient(new volVectorField("grad(p)", fvc::surfaceIntegrate(mesh_->Sf() * pf)));
+  gradient.ref().correctBoundaryConditions();
+  return gradient;
+}
+
 void OpenFoamFlow::immersed_transpiration(double &inflow, double &power) const {
   inflow = power = 0.0;
   if (!penalizationRate_)
@@ -421,7 +443,7 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
   fvVectorMatrix &UEqn = tUEqn.ref();
   UEqn.relax();
   if (pimple.momentumPredictor())
-    solve(UEqn == -fvc::grad(p));
+    solve(UEqn == -pressure_gradient());
 
   // pEqn.H of pimpleFoam (static mesh, no MRF).
   while (pimple.correct()) {
@@ -434,7 +456,7 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
     if (pimple.consistent()) {
       rAtU = 1.0 / max(1.0 / rAU - UEqn.H1(), 0.1 / rAU);
       phiHbyA += fvc::interpolate(rAtU() - rAU) * fvc::snGrad(p) * mesh.magSf();
-      HbyA -= (rAU - rAtU()) * fvc::grad(p);
+      HbyA -= (rAU - rAtU()) * pressure_gradient();
     }
     constrainPressure(p, U, phiHbyA, rAtU());
     surfaceScalarField rAtUf("rAtUf", fvc::interpolate(rAtU()));
@@ -481,7 +503,7 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
     if (holes.size())
       extrapolate_pressure_into_bodies();
     p.relax();
-    U = HbyA - rAtU * fvc::grad(p);
+    U = HbyA - rAtU * pressure_gradient();
     U.correctBoundaryConditions();
   }
 }
