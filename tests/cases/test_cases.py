@@ -284,6 +284,34 @@ class CentrifugalPumpRefusals(CaseTest):
             self.assertTrue(os.path.isfile(os.path.join(foam, "0.005", field)), field)
 
 
+class CentrifugalPumpTwoBlades(CaseTest):
+    """The generated two-blade pump (impeller.n_blades: 2, wrap 180 deg) at 0.36 Q_design, coarse,
+    body_normal interfaces, past t = 0.0755 s, where it diverged when the momentum equation took
+    the pressure of the faces between the hub disc's cells and the gap above it from the disc's
+    extrapolated pressure: the gap cells ran away to 100 m/s across the one-cell disc."""
+
+    def test_runs_past_where_it_diverged(self):
+        need_openfoam(self)
+        case = self.copy_case("centrifugal-pump")
+        self.edit(os.path.join(case, "pump.yaml"), "  n_blades: 1\n", "  n_blades: 2\n")
+        self.edit(os.path.join(case, "pump.yaml"), "  wrap_angle_deg: 360\n", "  wrap_angle_deg: 180\n")
+        fsi_launch.prepare_case(case, BIN_DIR)  # the two-blade geometry and its OpenFOAM files
+        self.edit(os.path.join(case, "openfoam-coarse", "constant", "operatingPoint"), "flowRate        0.045;",
+                  "flowRate        0.0162;")
+        os.environ["FSI_MESH_CACHE"] = os.path.join(self.tmp, "mesh-cache")
+        try:
+            out = os.path.join(self.tmp, "out")
+            result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, "--end-time", "0.08", case],
+                                    stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                    timeout=900)
+        finally:
+            del os.environ["FSI_MESH_CACHE"]
+        self.assertEqual(result.returncode, 0, result.stderr.decode("utf-8", "replace")[-3000:])
+        data = np.loadtxt(os.path.join(out, "forces.csv"), delimiter=",", skiprows=1, ndmin=2)
+        self.assertAlmostEqual(data[-1, 0], 0.08, delta=1e-9)
+        self.assertTrue(np.all(np.isfinite(data)))
+
+
 class RagSettling(CaseTest):
     """cases/rag-settling-in-still-water, coarse: the rag's mean velocity is the discrete
     solution of the penalty drag, V^n = -V_t (1 - (1 - a)^n) e_z, V_t = rho_1 g / (K dt),
