@@ -13,6 +13,7 @@
 // Exit codes: 0 valid, 2 bad input (a failed geometry check included).
 
 #include "pump/BladeInlet.hpp"
+#include "pump/BladeOutlet.hpp"
 #include "pump/DutyEstimate.hpp"
 #include "pump/GeometryChecks.hpp"
 #include "pump/PhysicalConstants.hpp"
@@ -77,6 +78,13 @@ int report(const fsi::pump::PumpDesign &design) {
                1e4 * inlet.throat_area_m2, inlet.throat_velocity_m_per_s,
                inlet.throat_velocity_m_per_s / inlet.blade_speed_m_per_s, inlet.shockless_flow_rate_m3_per_s,
                inlet.shockless_flow_rate_m3_per_s / op.design_flow_rate_m3_per_s);
+  const auto outlet = fsi::pump::blade_outlet_at(design, op.design_flow_rate_m3_per_s);
+  spdlog::info("blade outlet at Q = {:.4g} m^3/s: {} blade(s), Wiesner's slip factor {:.3g}, c2m = {:.3g} m/s, "
+               "c_u2 = {:.3g} m/s: Euler head {:.3g} m, torque {:.3g} N m; the duty above needs H / eta_h = {:.3g} m "
+               "({:.2g} times; Gülich's psi_opt is for 5-7 blades)",
+               op.design_flow_rate_m3_per_s, imp.n_blades, outlet.slip_factor, outlet.meridional_m_per_s,
+               outlet.swirl_m_per_s, outlet.euler_head_m, outlet.torque_n_m, duty.head_m / op.hydraulic_efficiency,
+               duty.head_m / op.hydraulic_efficiency / outlet.euler_head_m);
   return fsi::common::exit_code_success;
 }
 
