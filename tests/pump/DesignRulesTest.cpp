@@ -201,13 +201,19 @@ TEST(PumpDesign, TheDefaultsAreAValidDesignAndBadValuesNameTheirKeys) {
             std::string::npos);
 }
 
-TEST(PumpDesign, TheDesignFilesWrittenOutAreTheDefaultsAndTheReferenceIsCurrent) {
+TEST(PumpDesign, TheShippedDesignFilesLoadAndTheReferenceIsCurrent) {
   // pump/designs/single-blade.yaml writes the defaults out: it parses to the same numbers.
   const PumpDesign file = PumpDesign::load(std::string(FSI_SOURCE_DIR) + "/pump/designs/single-blade.yaml");
   const PumpDesign defaults;
   EXPECT_EQ(file.impeller.outer_diameter_m, defaults.impeller.outer_diameter_m);
   EXPECT_EQ(file.volute.base_width_m, defaults.volute.base_width_m);
   EXPECT_EQ(file.operation.design_flow_rate_m3_per_s, defaults.operation.design_flow_rate_m3_per_s);
+  // pump/designs/two-blade.yaml: the same pump with two blades of half the wrap.
+  const PumpDesign two = PumpDesign::load(std::string(FSI_SOURCE_DIR) + "/pump/designs/two-blade.yaml");
+  EXPECT_EQ(two.impeller.n_blades, 2);
+  EXPECT_EQ(two.impeller.wrap_angle_deg, 180.0);
+  EXPECT_EQ(two.impeller.outlet_blade_angle_deg, defaults.impeller.outlet_blade_angle_deg);
+  EXPECT_EQ(two.volute.base_width_m, defaults.volute.base_width_m);
   std::ifstream doc(std::string(FSI_SOURCE_DIR) + "/docs/pump-design.md");
   std::stringstream text;
   text << doc.rdbuf();
