@@ -78,6 +78,13 @@ def copy_case(case_dir, point, template):
         shutil.rmtree(point.case)
     shutil.copytree(case_dir, point.case, symlinks=True,
                     ignore=shutil.ignore_patterns("output", "__pycache__"))
+    # The fraction, for the case's make_case.py: the launcher's prepare hook rewrites the
+    # OpenFOAM files of the copy when it regenerates its geometry (the generator rebuilt since
+    # the source case was prepared), and the edit below would be lost: the point ran at the
+    # design flow rate.
+    with open(os.path.join(point.case, "pump_curve_point.yaml"), "w") as f:
+        f.write("# Written by ./fsi pump-curve: this copy's flow rate (make_case.py reads it).\n"
+                "fraction_of_design_flow_rate: %r\n" % point.fraction)
     operating = os.path.join(point.case, template, "constant", "operatingPoint")
     with open(operating) as f:
         text = f.read()
@@ -117,6 +124,11 @@ def postprocess(args, point):
         return
     with open(os.path.join(point.folder, "operating_point.yaml")) as f:
         point.result = yaml.safe_load(f)
+    ran_at = point.result.get("flow_rate_m3_per_s")
+    if ran_at is None or abs(ran_at - point.flow_rate) > 1e-9 * point.flow_rate:
+        point.state, point.error = "failed", ("ran at Q = %s m^3/s instead of this point's %r m^3/s (its OpenFOAM case "
+                                              "files were rewritten after its flow rate was set)" % (ran_at, point.flow_rate))
+        return
     point.state = "done"
 
 

@@ -363,6 +363,26 @@ def link_surface(folder, source):
     os.symlink(os.path.relpath(source, os.path.dirname(link)), link)
 
 
+# In a pump-curve point's copy of the case (scripts/pump_curve.py writes it): the point's flow
+# rate as a fraction of the design flow rate, so that a regeneration of these files in the copy
+# (the generator rebuilt while the curve runs) keeps the point's flow rate.
+POINT_FILE = "pump_curve_point.yaml"
+
+
+def operating_point(folder, design):
+    """constant/operatingPoint: the imposed volume flow rate at the inlet (m^3/s), the design
+    point of pump.yaml or, in a pump-curve point's copy, its fraction of it."""
+    q = design["operation"]["design_flow_rate_m3_per_s"]
+    point = os.path.join(os.path.dirname(os.path.abspath(folder)), POINT_FILE)
+    if os.path.isfile(point):
+        with open(point) as f:
+            fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
+        return ("// The imposed volume flow rate at the inlet (m^3/s): %.3g of the design flow rate (%s).\n"
+                "flowRate        %r;\n" % (fraction, POINT_FILE, fraction * q))
+    return ("// The imposed volume flow rate at the inlet (m^3/s): the design point of pump.yaml.\n"
+            "flowRate        %r;\n" % q)
+
+
 def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     lo, hi = stl_bounds(casing)
     pad = 2.0 * h
@@ -392,9 +412,7 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     write_foam_file(folder, "constant/transportProperties", "dictionary",
                     "transportModel  Newtonian;\nnu              %r;   // water\n" % NU)
     write_foam_file(folder, "constant/turbulenceProperties", "dictionary", TURBULENCE[turbulence])
-    write_foam_file(folder, "constant/operatingPoint", "dictionary",
-                    "// The imposed volume flow rate at the inlet (m^3/s): the design point of pump.yaml.\n"
-                    "flowRate        %r;\n" % design["operation"]["design_flow_rate_m3_per_s"])
+    write_foam_file(folder, "constant/operatingPoint", "dictionary", operating_point(folder, design))
     link_surface(folder, casing)
     if refine_gaps:
         link_surface(folder, os.path.join(os.path.dirname(casing), "impeller.stl"))

@@ -284,6 +284,26 @@ class CentrifugalPumpRefusals(CaseTest):
             self.assertTrue(os.path.isfile(os.path.join(foam, "0.005", field)), field)
 
 
+class PumpCurvePoint(CaseTest):
+    """A pump-curve point's copy of the pump case keeps its flow rate when the launcher's prepare
+    hook regenerates the copy's geometry and OpenFOAM files (the generator was rebuilt since the
+    source was prepared): the copy's pump_curve_point.yaml gives make_case.py the fraction of
+    the design flow rate. Before, the regeneration wrote the design flow rate back and the
+    point ran at Q_design in silence."""
+
+    def test_a_regenerated_point_keeps_its_flow_rate(self):
+        case = self.copy_case("centrifugal-pump")  # no geometry: the hook generates it and rewrites the files
+        with open(os.path.join(case, "pump_curve_point.yaml"), "w") as f:
+            f.write("fraction_of_design_flow_rate: 0.36\n")
+        fsi_launch.prepare_case(case, BIN_DIR)
+        with open(os.path.join(case, "pump.yaml")) as f:
+            q = yaml.safe_load(f)["operation"]["design_flow_rate_m3_per_s"]
+        for resolution in ("coarse", "medium", "coarse-rans", "ami-coarse"):
+            with open(os.path.join(case, "openfoam-" + resolution, "constant", "operatingPoint")) as f:
+                flow = float(re.search(r"^flowRate\s+([^;]+);", f.read(), re.M).group(1))
+            self.assertAlmostEqual(flow, 0.36 * q, delta=1e-12, msg=resolution)
+
+
 class CentrifugalPumpTwoBlades(CaseTest):
     """The generated two-blade pump (impeller.n_blades: 2, wrap 180 deg) at 0.36 Q_design, coarse,
     body_normal interfaces, past t = 0.0755 s, where it diverged when the momentum equation took
