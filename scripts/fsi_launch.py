@@ -131,19 +131,24 @@ def output_args(args):
     return extra + (["--end-time", repr(args.end_time)] if args.end_time else [])
 
 
+def case_script_env():
+    """The environment for a case's own scripts (prepare.py, postprocess.py): this folder on
+    PYTHONPATH, so that they import its helpers also from a copy of the case elsewhere (a
+    pump-curve point, a case copied away from the repository)."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.abspath(__file__)),
+                                                      env.get("PYTHONPATH")]))
+    return env
+
+
 def prepare_case(case_dir, bin_dir):
     """A case's generated inputs: cases/<case>/prepare.py CASE_DIR BIN_DIR, when the case has one
     (the centrifugal pump generates its geometry from pump.yaml). Quiet when there is nothing to do."""
     script = os.path.join(case_dir, "prepare.py")
     if not os.path.isfile(script):
         return
-    # The case's generators import this folder's helpers (foam_case.py) also from a copy of the
-    # case elsewhere (a pump-curve point).
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.abspath(__file__)),
-                                                      env.get("PYTHONPATH")]))
     made = subprocess.run([sys.executable, script, case_dir, bin_dir], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, env=env)
+                          stderr=subprocess.STDOUT, env=case_script_env())
     text = made.stdout.decode(errors="replace").strip()
     if made.returncode != 0:
         raise UserError("preparing the case failed (%s):\n%s" % (script, text), EXIT_RUN_FAILED)

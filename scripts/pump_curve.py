@@ -114,10 +114,8 @@ def postprocess(args, point):
     """The case's own postprocess.py (the source case's: the copy's relative imports would not
     resolve) on the point's results, with this folder on PYTHONPATH (the source case may itself
     be a copy away from the repository)."""
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, [HERE, env.get("PYTHONPATH")]))
     made = subprocess.run([sys.executable, os.path.join(args.case_dir, "postprocess.py"), point.folder, point.case],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env)
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=fsi_launch.case_script_env())
     if made.returncode != 0:
         lines = made.stdout.decode().strip().splitlines() or ["(no output)"]
         point.state, point.error = "failed", "postprocess: %s" % lines[-1]
