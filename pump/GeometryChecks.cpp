@@ -188,12 +188,12 @@ void measure_throat(GeometryCheckReport &report, const Part &casing, const PumpG
                               geometry::HalfPlaneLimit{frame.volute_base_radius_m * radial, radial});
   report.throat_area_m2 = section.area_m2;
   report.design_throat_area_m2 = frame.design_throat_area_m2;
-  report.throat_band_min_m2 = limits.throat_band_min_m2;
-  report.throat_band_max_m2 = limits.throat_band_max_m2;
+  report.throat_band_min_m2 = frame.throat_band_min_m2;
+  report.throat_band_max_m2 = frame.throat_band_max_m2;
   const double angle_deg = frame.cut_water_angle_rad * 180.0 / M_PI;
   const std::string value =
-      fmt::format("{:.4g} cm^2 (band {:g}-{:g}, design rule {:.4g})", 1e4 * section.area_m2,
-                  1e4 * limits.throat_band_min_m2, 1e4 * limits.throat_band_max_m2, 1e4 * frame.design_throat_area_m2);
+      fmt::format("{:.4g} cm^2 (band {:.4g}-{:.4g}, design rule {:.4g})", 1e4 * section.area_m2,
+                  1e4 * frame.throat_band_min_m2, 1e4 * frame.throat_band_max_m2, 1e4 * frame.design_throat_area_m2);
   if (!(section.area_m2 > 0.0)) {
     report.add("volute throat", CheckStatus::fail, value,
                fmt::format("{}: the half-plane at the cut-water angle {:g} deg does not cut the casing beyond r3 = "
@@ -201,13 +201,13 @@ void measure_throat(GeometryCheckReport &report, const Part &casing, const PumpG
                            casing.file, angle_deg, frame.volute_base_radius_m));
     return;
   }
-  if (section.area_m2 < limits.throat_band_min_m2 || section.area_m2 > limits.throat_band_max_m2) {
+  if (section.area_m2 < frame.throat_band_min_m2 || section.area_m2 > frame.throat_band_max_m2) {
     report.add("volute throat", CheckStatus::fail, value,
                fmt::format("{}: the volute's throat (the section at the cut-water angle {:g} deg beyond r3 = {:.4g} "
-                           "m) is {:.4g} cm^2, outside the design rules' {:g}-{:g} cm^2 for this duty (the "
+                           "m) is {:.4g} cm^2, outside the design rules' {:.4g}-{:.4g} cm^2 for this duty (the "
                            "constant-angular-momentum rule gives {:.4g} cm^2); check the spiral's outer radius.",
                            casing.file, angle_deg, frame.volute_base_radius_m, 1e4 * section.area_m2,
-                           1e4 * limits.throat_band_min_m2, 1e4 * limits.throat_band_max_m2,
+                           1e4 * frame.throat_band_min_m2, 1e4 * frame.throat_band_max_m2,
                            1e4 * frame.design_throat_area_m2));
     return;
   }
@@ -273,6 +273,9 @@ PumpGeometryFrame PumpGeometryFrame::from_design(const PumpDesign &design) {
   // x = 0 on the side -sense y: +y for rotation about -z, -y about +z.
   frame.cut_water_angle_rad = -design.rotation_sense() * M_PI / 2;
   frame.design_throat_area_m2 = volute.throat_area_m2();
+  const ThroatBand band = throat_band(design);
+  frame.throat_band_min_m2 = band.min_area_m2;
+  frame.throat_band_max_m2 = band.max_area_m2;
   return frame;
 }
 

@@ -30,6 +30,8 @@ struct PumpGeometryFrame {
   double volute_base_radius_m = 0.105; ///< r3
   double cut_water_angle_rad = 0.0;    ///< the throat's half-plane, from +x towards +y
   double design_throat_area_m2 = 0.0;  ///< VoluteSizing's throat area
+  double throat_band_min_m2 = 80e-4;   ///< the design rules' band for the duty (ThroatBand)
+  double throat_band_max_m2 = 115e-4;
 
   /// From the design file. The design has no disc thickness and no cut-water angle yet:
   /// t = the blade thickness, the cut-water on +x (the generator's conventions).
@@ -40,8 +42,6 @@ struct PumpGeometryFrame {
 struct GeometryCheckLimits {
   double unit_scale = 1.0;           ///< metres per file unit (0.001: millimetres)
   double min_clearance_m = 0.001;    ///< closer than this the impeller touches the casing
-  double throat_band_min_m2 = 80e-4; ///< design rules' throat band for this duty
-  double throat_band_max_m2 = 115e-4;
   double passage_spacing_m = 0.0015; ///< voxel spacing h of the free passage
   double radius_tolerance = 0.1;     ///< impeller radius within R2 (1 +- this)
 };

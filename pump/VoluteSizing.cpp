@@ -55,4 +55,21 @@ VoluteSizing size_volute(const PumpDesign &design) {
                       0.5 * d2, vol.base_radius_m, vol.base_width_m, vol.flank_angle_deg * M_PI / 180.0);
 }
 
+ThroatBand throat_band(double flow_rate_m3_per_s, double head_m) {
+  if (!(flow_rate_m3_per_s > 0.0 && head_m > 0.0))
+    throw std::invalid_argument("throat_band: the flow rate and the head must be positive");
+  const double jet = std::sqrt(2.0 * g_m_per_s2 * head_m);
+  ThroatBand band;
+  band.min_area_m2 = flow_rate_m3_per_s / (ThroatBand::max_velocity_ratio * jet);
+  band.max_area_m2 = flow_rate_m3_per_s / (ThroatBand::min_velocity_ratio * jet);
+  return band;
+}
+
+ThroatBand throat_band(const PumpDesign &design) {
+  const auto &op = design.operation;
+  const DutyEstimate duty =
+      estimate_duty_for_flow(op.rotation_rate_rad_per_s, design.impeller.outer_diameter_m, op.design_flow_rate_m3_per_s);
+  return throat_band(op.design_flow_rate_m3_per_s, duty.head_m);
+}
+
 } // namespace fsi::pump

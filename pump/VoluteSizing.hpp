@@ -37,4 +37,17 @@ struct PumpDesign;
 /// The volute of a design: sized for the duty its impeller reaches at the design flow rate.
 VoluteSizing size_volute(const PumpDesign &design);
 
+/// The design rules' band of the throat area for a duty, as a band of the volute velocity ratio
+/// k3 = c3 / sqrt(2 g H) with c3 = Q / A_throat the throat's mean velocity: 0.30 <= k3 <= 0.43.
+/// That is issue 11's 80-115 cm^2 for the paper's duty (Q = 45 L/s, H = 8.88 m: 79-114 cm^2)
+/// said so that it holds for another flow rate and head (A = Q / (k3 sqrt(2 g H))).
+struct ThroatBand {
+  static constexpr double min_velocity_ratio = 0.30;
+  static constexpr double max_velocity_ratio = 0.43;
+  double min_area_m2 = 0.0, max_area_m2 = 0.0;
+};
+ThroatBand throat_band(double flow_rate_m3_per_s, double head_m);
+/// The band for the duty of a design at its design flow rate (Gülich's head, DutyEstimate).
+ThroatBand throat_band(const PumpDesign &design);
+
 } // namespace fsi::pump

@@ -38,8 +38,8 @@
 namespace {
 
 std::string band(double value, double lo, double hi) {
-  return value >= lo && value <= hi ? "within " + fmt::format("{:g}-{:g}", lo, hi)
-                                    : "OUTSIDE " + fmt::format("{:g}-{:g}", lo, hi);
+  return value >= lo && value <= hi ? "within " + fmt::format("{:.4g}-{:.4g}", lo, hi)
+                                    : "OUTSIDE " + fmt::format("{:.4g}-{:.4g}", lo, hi);
 }
 
 int report(const fsi::pump::PumpDesign &design) {
@@ -65,8 +65,11 @@ int report(const fsi::pump::PumpDesign &design) {
     radii += fmt::format("{}{:.4g}", radii.empty() ? "" : ", ", volute.outer_radius_m(deg * M_PI / 180.0));
   spdlog::info("volute (constant angular momentum, c_u2 r2 = {:.4g} m^2/s): outer radius every 45 deg {} m",
                volute.angular_momentum_m2_per_s(), radii);
-  spdlog::info("  throat area {:.4g} cm^2 ({} cm^2 for this duty)", 1e4 * volute.throat_area_m2(),
-               band(1e4 * volute.throat_area_m2(), 80.0, 115.0));
+  const fsi::pump::ThroatBand throat = fsi::pump::throat_band(op.design_flow_rate_m3_per_s, duty.head_m);
+  spdlog::info("  throat area {:.4g} cm^2 ({:.4g} cm^2 for this duty: throat velocity c3 = {:.3g}-{:.3g} sqrt(2 g H))",
+               1e4 * volute.throat_area_m2(),
+               band(1e4 * volute.throat_area_m2(), 1e4 * throat.min_area_m2, 1e4 * throat.max_area_m2),
+               fsi::pump::ThroatBand::min_velocity_ratio, fsi::pump::ThroatBand::max_velocity_ratio);
   const auto inlet = fsi::pump::blade_inlet_at(design, op.design_flow_rate_m3_per_s);
   spdlog::info("blade inlet at Q = {:.4g} m^3/s: r1 = {:.4g} m, u1 = {:.3g} m/s, c1m = {:.3g} m/s (b1 = b2); flow angle "
                "beta_1 = {:.1f} deg against the blade's {:.4g} deg: incidence {:.1f} deg ({} deg)",

@@ -5,6 +5,7 @@
 #include "pump/BladeInlet.hpp"
 #include "pump/BladeOutlet.hpp"
 #include "pump/DutyEstimate.hpp"
+#include "pump/PhysicalConstants.hpp"
 #include "pump/PumpDesign.hpp"
 #include "pump/VoluteSizing.hpp"
 
@@ -97,6 +98,34 @@ TEST(VoluteSizing, TheDefaultDesignsThroatIsInTheDesignRulesBand) {
                        design.volute.base_width_m, 0.0);
   EXPECT_GT(v.throat_area_m2(), 80e-4);
   EXPECT_LT(v.throat_area_m2(), 115e-4);
+}
+
+TEST(ThroatBand, IsTheIssuesBandAtItsDutyAndScalesWithQOverSqrtH) {
+  // At the paper's duty (45 L/s, Gülich's H = 8.88 m) the velocity-ratio band k3 = 0.30-0.43 is
+  // issue 11's 80-115 cm^2 to within 1.5 %: A = Q / (k3 sqrt(2 g H)).
+  const PumpDesign design;
+  const ThroatBand at_duty = throat_band(design);
+  EXPECT_NEAR(at_duty.min_area_m2, 80e-4, 0.015 * 80e-4);
+  EXPECT_NEAR(at_duty.max_area_m2, 115e-4, 0.015 * 115e-4);
+  const double q = 0.03, h = 12.0;
+  const ThroatBand band = throat_band(q, h);
+  EXPECT_NEAR(band.max_area_m2, q / (0.30 * std::sqrt(2.0 * g_m_per_s2 * h)), 1e-15);
+  const ThroatBand doubled = throat_band(2.0 * q, 4.0 * h); // twice Q, twice sqrt(H): the same areas
+  EXPECT_NEAR(doubled.min_area_m2, band.min_area_m2, 1e-15);
+  EXPECT_NEAR(doubled.max_area_m2, band.max_area_m2, 1e-15);
+  EXPECT_THROW(throat_band(0.0, h), std::invalid_argument);
+}
+
+TEST(ThroatBand, ASmallerDutysRuleThroatIsInItsOwnBand) {
+  // The two-blade pump sized for 27 L/s: the rule's throat (46 cm^2) is outside the paper's duty's
+  // 80-115 cm^2, inside its own band (Gülich's H = 10.2 m: 44-64 cm^2).
+  PumpDesign design;
+  design.operation.design_flow_rate_m3_per_s = 0.027;
+  const ThroatBand band = throat_band(design);
+  const double area = size_volute(design).throat_area_m2();
+  EXPECT_LT(area, 80e-4);
+  EXPECT_GT(area, band.min_area_m2);
+  EXPECT_LT(area, band.max_area_m2);
 }
 
 std::filesystem::path write_design(const std::string &yaml) {

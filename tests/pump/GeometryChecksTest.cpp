@@ -9,6 +9,7 @@
 #include "geometry/MeshGenerators.hpp"
 #include "geometry/StlIo.hpp"
 #include "pump/GeometryChecks.hpp"
+#include "pump/VoluteSizing.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -166,6 +167,9 @@ TEST(GeometryChecks, TheFrameOfTheDefaultDesignHasTheRulesThroat) {
   EXPECT_DOUBLE_EQ(f.eye_radius_m, 0.05);
   EXPECT_GT(f.design_throat_area_m2, 80e-4); // 111 cm^2 (DesignRulesTest)
   EXPECT_LT(f.design_throat_area_m2, 115e-4);
+  const ThroatBand band = throat_band(PumpDesign{}); // the checks' band is the duty's
+  EXPECT_DOUBLE_EQ(f.throat_band_min_m2, band.min_area_m2);
+  EXPECT_DOUBLE_EQ(f.throat_band_max_m2, band.max_area_m2);
 }
 
 } // namespace
