@@ -10,6 +10,7 @@ namespace fsi::fluid {
 
 enum class InterpolationChoice { kernel, closest_cell_linear };
 enum class InterfaceFlux { interpolated, body_normal };
+enum class BodyIndicatorChoice { sharp, inside_smoothed };
 
 struct OpenFoamConfig {
   std::string case_directory = "openfoam";
@@ -22,6 +23,8 @@ struct OpenFoamConfig {
   double precursor_time_step_s = 0.0;
   std::string initial_fields_from;
   InterfaceFlux interface_flux = InterfaceFlux::interpolated;
+  BodyIndicatorChoice body_indicator = BodyIndicatorChoice::sharp;
+  double body_indicator_depth_cells = 1.0;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -64,6 +67,15 @@ struct OpenFoamConfig {
              "one MPI rank): the penalized cells are holes of the pressure equation and those faces carry the "
              "flux of the body velocity's component along the surface normal, so that only the true surface's "
              "normal motion moves water through the staircase.");
+    v.choice("body_indicator", body_indicator,
+             {{"sharp", BodyIndicatorChoice::sharp}, {"inside_smoothed", BodyIndicatorChoice::inside_smoothed}},
+             "Rigid bodies: chi of Eq. (10) at the cell centres. sharp (the paper's): 1 strictly inside the STL "
+             "surface, else 0. inside_smoothed: a ramp from 0 at the surface to 1 at body_indicator_depth_cells cell "
+             "sizes inside it, 0 everywhere outside (the body never grows): a moving body switches the cells it "
+             "sweeps over on gradually, which spares the pressure solver (docs/model.md).");
+    v.number("body_indicator_depth_cells", body_indicator_depth_cells, common::Range::positive("cells"),
+             "inside_smoothed only: depth of chi's ramp inside the surface, in cell sizes (cube root of the cell "
+             "volume).");
     v.number("precursor_time_step_s", precursor_time_step_s, common::Range::non_negative("s"),
              "Time step of the precursor run (no structure, so only the flow's Courant number limits it). 0: "
              "run.time_step_s.");

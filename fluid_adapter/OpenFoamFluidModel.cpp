@@ -21,10 +21,19 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
   if (flow_.n_ranks() > 1 && config_.interpolation == InterpolationChoice::closest_cell_linear)
     throw std::runtime_error("fluid.openfoam.interpolation: closest_cell_linear is not available with MPI yet; use "
                              "kernel");
+  rigid::IndicatorOptions indicator_options;
+  if (config_.body_indicator == BodyIndicatorChoice::inside_smoothed) {
+    indicator_options.sampling = rigid::IndicatorOptions::Sampling::inside_smoothed;
+    indicator_options.smoothing_depth_cells = config_.body_indicator_depth_cells;
+  }
   for (const auto &body : bodies_) {
-    indicators_.push_back(std::make_unique<rigid::BodyIndicator>(*body, cells_.centres_m()));
-    spdlog::info("rigid body '{}': {} candidate cells of {} (swept region)", body->name(),
-                 indicators_.back()->candidate_cells().size(), cells_.n_cells());
+    indicators_.push_back(
+        std::make_unique<rigid::BodyIndicator>(*body, cells_.centres_m(), indicator_options, cells_.sizes_m()));
+    spdlog::info("rigid body '{}': {} candidate cells of {} (swept region), indicator {}", body->name(),
+                 indicators_.back()->candidate_cells().size(), cells_.n_cells(),
+                 config_.body_indicator == BodyIndicatorChoice::sharp
+                     ? std::string("sharp")
+                     : fmt::format("inside_smoothed over {:g} cells", config_.body_indicator_depth_cells));
   }
   if (!bodies_.empty() && flow_.uses_wall_distance()) {
     // Section 2.6: immersed bodies are walls for Spalart-Allmaras. Beyond C_DES Delta from every

@@ -2,6 +2,7 @@
 
 #include "fluid_adapter/rigid/ParallelFor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,12 +22,15 @@ BodyIndicator::BodyIndicator(const RigidBody &body, const PointArray &cell_centr
     : body_(body), options_(options) {
   const Eigen::Index n_cells = cell_centres_m.rows();
   const bool fraction = options_.sampling == IndicatorOptions::Sampling::cell_fraction;
-  if (fraction && cell_sizes_m.size() != n_cells)
-    throw std::invalid_argument("body '" + body.name() + "': cell_fraction sampling needs one cell size per cell (" +
-                                std::to_string(n_cells) + " cells, " +
+  const bool sized = needs_sizes();
+  if (sized && cell_sizes_m.size() != n_cells)
+    throw std::invalid_argument("body '" + body.name() + "': " + (fraction ? "cell_fraction" : "inside_smoothed") +
+                                " sampling needs one cell size per cell (" + std::to_string(n_cells) + " cells, " +
                                 std::to_string(cell_sizes_m.size()) + " sizes)");
   if (fraction && options_.samples_per_direction < 2)
     throw std::invalid_argument("body '" + body.name() + "': samples_per_direction must be >= 2");
+  if (options_.sampling == IndicatorOptions::Sampling::inside_smoothed && !(options_.smoothing_depth_cells > 0.0))
+    throw std::invalid_argument("body '" + body.name() + "': smoothing_depth_cells must be > 0");
   // A cut cell may have its centre outside the body but sub-points inside: widen by its half diagonal.
   const double margin_m = kRoundOffFraction * body.body_box_m().diagonal().norm() +
                           (fraction ? 0.5 * std::sqrt(3.0) * largest(cell_sizes_m) : 0.0);
@@ -36,10 +40,10 @@ BodyIndicator::BodyIndicator(const RigidBody &body, const PointArray &cell_centr
       candidate_cells_.push_back(static_cast<std::int32_t>(c));
   const auto n_candidates = static_cast<Eigen::Index>(candidate_cells_.size());
   candidate_centres_m_.resize(n_candidates, 3);
-  candidate_sizes_m_.resize(fraction ? n_candidates : 0);
+  candidate_sizes_m_.resize(sized ? n_candidates : 0);
   for (Eigen::Index k = 0; k < n_candidates; ++k) {
     candidate_centres_m_.row(k) = cell_centres_m.row(candidate_cells_[static_cast<std::size_t>(k)]);
-    if (fraction)
+    if (sized)
       candidate_sizes_m_(k) = cell_sizes_m(candidate_cells_[static_cast<std::size_t>(k)]);
   }
   candidate_chi_ = Eigen::VectorXd::Zero(n_candidates);
@@ -78,18 +82,38 @@ double BodyIndicator::fraction_value(const Eigen::Isometry3d &world_to_body,
   return static_cast<double>(n_inside) / (n * n * n);
 }
 
+double BodyIndicator::smoothed_value(const Vec3 &centre_body_m, double cell_size_m) const {
+  if (!body_.contains_body_point(centre_body_m))
+    return 0.0;
+  const double depth_m = options_.smoothing_depth_cells * cell_size_m;
+  if (!body_.surface().may_be_within(centre_body_m, depth_m))
+    return 1.0;
+  const double d = std::abs(body_.surface().distance(centre_body_m).signed_distance_m);
+  return std::min(1.0, d / depth_m);
+}
+
 void BodyIndicator::update(double time_s) {
   if (evaluated_ && body_.motion().is_static())
     return;
   const Eigen::Isometry3d world_to_body = body_.motion().pose_at(time_s).inverse();
   rigid_velocity_ = RigidVelocity::of(body_.motion(), time_s);
-  const bool fraction = options_.sampling == IndicatorOptions::Sampling::cell_fraction;
+  using Sampling = IndicatorOptions::Sampling;
   parallel_for(candidate_cells_.size(), options_.n_threads, [&](std::size_t begin, std::size_t end) {
     for (auto k = static_cast<Eigen::Index>(begin); k < static_cast<Eigen::Index>(end); ++k) {
       const Vec3 centre_m = candidate_centres_m_.row(k).transpose();
       const Vec3 centre_body_m = world_to_body * centre_m;
-      const double value = fraction ? fraction_value(world_to_body, centre_body_m, candidate_sizes_m_(k))
-                                    : sharp_value(centre_body_m);
+      double value = 0.0;
+      switch (options_.sampling) {
+      case Sampling::sharp:
+        value = sharp_value(centre_body_m);
+        break;
+      case Sampling::cell_fraction:
+        value = fraction_value(world_to_body, centre_body_m, candidate_sizes_m_(k));
+        break;
+      case Sampling::inside_smoothed:
+        value = smoothed_value(centre_body_m, candidate_sizes_m_(k));
+        break;
+      }
       candidate_chi_(k) = value;
       const auto cell = candidate_cells_[static_cast<std::size_t>(k)];
       chi_(cell) = value;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -112,6 +113,59 @@ TEST(SphereIndicator, CellFractionIsTheSharpIndicatorOfTheSubCellLattice) {
                 std::abs(fraction_m3 - reference_m3) / reference_m3);
     EXPECT_NEAR(fraction_m3, fine_m3, 1e-12 * reference_m3);
   }
+}
+
+// Inside-smoothed: at every centre chi = min(1, (R - r) / (n h)) inside the sphere (r < R) and
+// exactly 0 outside, up to the icosphere's distance from the true sphere (its largest sagitta,
+// R minus the closest face plane's distance from the centre: 2.9e-4 R with 5 subdivisions): the
+// ramp lies wholly inside, so the body never grows.
+TEST(SphereIndicator, InsideSmoothedRampsFromZeroAtTheSurfaceAndIsZeroOutside) {
+  const auto body = make_sphere();
+  constexpr int n = 48;
+  const double h = 2 * kDomainHalf_m / n;
+  const PointArray centres = testing::uniform_centres(-kDomainHalf_m, kDomainHalf_m, n);
+  const std::vector<int> inside = testing::brute_force_inside(body->soup(), Eigen::Isometry3d::Identity(), centres);
+  double sagitta_m = 0.0;
+  const auto &soup = body->soup();
+  for (Eigen::Index t = 0; t < soup.triangles.rows(); ++t) {
+    const Vec3 a = soup.vertices_m.row(soup.triangles(t, 0)).transpose();
+    const Vec3 b = soup.vertices_m.row(soup.triangles(t, 1)).transpose();
+    const Vec3 c = soup.vertices_m.row(soup.triangles(t, 2)).transpose();
+    sagitta_m = std::max(sagitta_m, kRadius_m - std::abs((b - a).cross(c - a).normalized().dot(a - kCentre_m)));
+  }
+  std::printf("  icosphere: largest sagitta %.2e R\n", sagitta_m / kRadius_m);
+  for (const double depth_cells : {1.0, 2.0}) {
+    IndicatorOptions options;
+    options.sampling = IndicatorOptions::Sampling::inside_smoothed;
+    options.smoothing_depth_cells = depth_cells;
+    BodyIndicator indicator(*body, centres, options, Eigen::VectorXd::Constant(centres.rows(), h));
+    indicator.update(0.0);
+    const double width = depth_cells * h, tolerance = sagitta_m / width + 1e-12;
+    double worst = 0.0, sum_chi = 0.0;
+    int ramp_cells = 0;
+    for (Eigen::Index c = 0; c < centres.rows(); ++c) {
+      const double chi = indicator.chi()(c);
+      if (!inside[static_cast<std::size_t>(c)]) {
+        ASSERT_EQ(chi, 0.0) << "cell " << c << " outside the body";
+        continue;
+      }
+      const double r = (centres.row(c).transpose() - kCentre_m).norm();
+      const double expected = std::min(1.0, (kRadius_m - r) / width);
+      worst = std::max(worst, std::abs(chi - expected));
+      ramp_cells += chi < 1.0 ? 1 : 0;
+      sum_chi += chi;
+    }
+    const double sharp_volume = indicator_volume(*body, n, IndicatorOptions::Sampling::sharp);
+    std::printf("  depth %g cells: %d cells on the ramp, largest |chi - min(1, (R - r)/w)| %.2e (tolerance %.2e), "
+                "volume %.4f of the sharp indicator's\n",
+                depth_cells, ramp_cells, worst, tolerance, sum_chi * h * h * h / sharp_volume);
+    EXPECT_LT(worst, tolerance);
+    EXPECT_GT(ramp_cells, 0);
+    EXPECT_LT(sum_chi * h * h * h, sharp_volume);
+  }
+  IndicatorOptions bad;
+  bad.sampling = IndicatorOptions::Sampling::inside_smoothed;
+  EXPECT_THROW(BodyIndicator(*body, centres, bad), std::invalid_argument); // no cell sizes
 }
 
 } // namespace
