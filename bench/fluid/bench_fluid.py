@@ -280,6 +280,7 @@ def run_ours(bin_dir, case_dir, run_dir, warmup):
         status = f.attrs["status"]
         status = status.decode() if isinstance(status, bytes) else str(status)
         timings = {k: np.asarray(f["timings"][k])[warmup:] for k in f["timings"].keys()}
+        force = np.asarray(f["total_force_on_fluid_n"])[warmup:] if "total_force_on_fluid_n" in f else None
     if status != "completed":
         raise RuntimeError("coupled run status %r: see %s" % (status, run_dir))
     with open(os.path.join(run_dir, "logs", "fluid.console"), errors="replace") as f:
@@ -289,7 +290,27 @@ def run_ours(bin_dir, case_dir, run_dir, warmup):
             "interpolation_s": timings["interpolation_s"].tolist(),
             "structure_solve_s": timings["structure_solve_s"].tolist(),
             "step_wall_s": timings["step_wall_s"].tolist(), "total_wall_s": total, "iterations": solver_iterations(text),
-            "step_iterations": iterations_per_step(text, warmup)}
+            "step_iterations": iterations_per_step(text, warmup),
+            "total_force_on_fluid_n": force.tolist() if force is not None else []}
+
+
+def force_chatter(run):
+    """The total force the structure spreads into the fluid (coupling.h5 total_force_on_fluid_n), per
+    step: its mean magnitude (N), the RMS of its second difference F^{n+1} - 2 F^n + F^{n-1} over that
+    mean (a smooth force: ~0; one flipping sign every step: ~4 x its amplitude), and the correlation
+    of |second difference| with the step's p iterations."""
+    force = np.asarray(run.get("total_force_on_fluid_n", []))
+    if force.ndim != 2 or len(force) < 4:
+        return None
+    mean = float(np.linalg.norm(force, axis=1).mean())
+    d2 = force[2:] - 2.0 * force[1:-1] + force[:-2]
+    d2_norm = np.linalg.norm(d2, axis=1)
+    rms = float(np.sqrt((d2_norm ** 2).mean()))
+    p_its = np.asarray([row[0] for row in run["step_iterations"]], dtype=float)
+    corr = float("nan")
+    if len(p_its) == len(force) and np.std(p_its[1:-1]) > 0 and np.std(d2_norm) > 0:
+        corr = float(np.corrcoef(d2_norm, p_its[1:-1])[0, 1])
+    return mean, rms / mean if mean > 0 else float("nan"), corr
 
 
 # ---- report -------------------------------------------------------------------------------------
@@ -364,6 +385,14 @@ def report(results, variants, args, n_cells, n_triangles, out):
             pool("cpu_per_step_s"), u_its, its.get("p", 0.0),
             ", ".join("%.0f" % r["total_wall_s"] for r in runs)))
     lines += adjusted_for_solver_work(results, variants)
+    chatter = [(v, force_chatter(results[v][0])) for v in variants if v != "stock"]
+    chatter = [(v, c) for v, c in chatter if c is not None and c[0] > 0]
+    if chatter:
+        lines += ["", "The structure's force on the fluid, per step (round 1; coupling.h5 total_force_on_fluid_n): "
+                  "step-to-step chatter of the coupling shows as a large second difference:", "",
+                  "| variant | mean \\|F\\| (N) | RMS \\|F^{n+1} - 2F^n + F^{n-1}\\| / mean \\|F\\| | "
+                  "correlation with p iterations |", "|---|---|---|---|"]
+        lines += ["| %s | %.3g | %.3g | %.2f |" % (v, c[0], c[1], c[2]) for v, c in chatter]
     lines += ["", "stock: wall time between its `ExecutionTime` lines (time-stamped as they arrive); ours: "
               "coupling.h5 /timings/fluid_solve_s + interpolation_s (inside the fluid process, no coupling). "
               "Load average at the end: %s." % " ".join("%.2f" % x for x in os.getloadavg())]
