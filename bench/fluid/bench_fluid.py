@@ -3,7 +3,7 @@
 (issue 4, "Speed"; run by `./fsi bench fluid`).
 
     bench_fluid.py [--bin-dir DIR] [-o DIR] [--cells NX NY NZ] [--steps N] [--warmup W]
-                   [--rounds R] [--dt S] [--variants stock,a,b,c,b0,c0,c1,c2,cs]
+                   [--rounds R] [--dt S] [--variants stock,a,b,c,b0,c0,c1,c2,cs,cn]
 
 One mesh (a 0.4 x 0.1 x 0.1 m channel, blockMesh, 168 x 42 x 42 = 296,352 cubic cells by
 default), one set of PIMPLE settings and schemes (those of cases/sheet-in-openfoam-channel:
@@ -22,6 +22,8 @@ Euler, linearUpwind, GAMG p, smoothSolver U, 1 outer x 2 pressure correctors), a
   c1, c2 (c) with fluid.openfoam.body_indicator inside_smoothed over 1 and 2 cells (chi ramps from 0 at the
          surface to 1 at that depth inside, 0 outside: the body does not grow)
   cs     (c) with the torus static (same place, no rotation): what the body alone costs the pressure
+  cn     (c) with fluid.openfoam.interface_flux body_normal (the penalized cells are holes of the pressure
+         equation; the faces to free cells carry the body velocity's normal component)
 What the numbers contain (per time step, the first W steps of each run dropped):
   stock  wall time between consecutive `ExecutionTime = ...` lines of its log, time-stamped as
          they arrive through a pipe (OpenFOAM flushes each): Courant number, the PIMPLE loop
@@ -67,8 +69,9 @@ LABELS = {"stock": "stock pimpleFoam", "a": "(a) ours, no structure (3x3 sheet f
           "c0": "(c0) = (c), penalization time 1e3 s: penalization work, flow undisturbed",
           "c1": "(c1) = (c), indicator smoothed 1 cell inside the surface",
           "c2": "(c2) = (c), indicator smoothed 2 cells inside the surface",
-          "cs": "(cs) = (c), the torus static"}
-TORUS_VARIANTS = ("c", "c0", "c1", "c2", "cs")
+          "cs": "(cs) = (c), the torus static",
+          "cn": "(cn) = (c), interface_flux body_normal"}
+TORUS_VARIANTS = ("c", "c0", "c1", "c2", "cs", "cn")
 
 
 # ---- the OpenFOAM case (written once, meshed once, copied for every run) ----------------------
@@ -207,6 +210,8 @@ def write_our_case(folder, variant, template, stl, dt, n_steps):
             surface["motion"] = {"rotation": {"axis_point_m": [0.2, 0.05, 0.05], "axis_direction": [0.0, 0.0, 1.0],
                                               "rate_rad_per_s": 10.0}}
         case["collisions"] = {"threshold_m": 5.0e-4, "target_distance_m": 5.0e-4, "surfaces": [surface]}
+    if variant == "cn":
+        case["fluid"]["openfoam"]["interface_flux"] = "body_normal"
     if variant in ("c1", "c2"):
         case["fluid"]["openfoam"].update({"body_indicator": "inside_smoothed",
                                           "body_indicator_depth_cells": 1.0 if variant == "c1" else 2.0})
