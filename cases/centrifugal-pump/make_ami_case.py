@@ -273,9 +273,9 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt):
     path = os.path.join(folder, "system", "fvSolution")
     with open(path) as f:
         text = f.read()
-    text = text.replace("    pFinal { $p; relTol 0; }\n",
-                        "    pFinal { $p; relTol 0; }\n"
-                        "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n")
+    pfinal = "    pFinal { $p; tolerance 1e-5; relTol 0; }\n"
+    assert pfinal in text, "make_case.SOLUTION changed: its pFinal line is not found"
+    text = text.replace(pfinal, pfinal + "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n")
     # The rotor's cells at the gaps are 2 mm: the mesh moves up to 2 cells per step there
     # (Courant number ~2 relative to the mesh), where LUST's implicit part is no longer
     # diagonally dominant and Gauss-Seidel diverges (U to 1e268 in the first step). A Krylov
