@@ -63,8 +63,8 @@ struct OpenFoamConfig {
              "Rigid bodies: the flux through the faces between penalized and free cells. interpolated (the "
              "paper's): the solver's, from the velocities on both sides, with the penalized cells in the pressure "
              "equation; a staircase body moving along its own surface (a turning impeller) then swallows and "
-             "returns water through its faces (penalization.csv's transpiration). body_normal (experimental, "
-             "one MPI rank): the penalized cells are holes of the pressure equation and those faces carry the "
+             "returns water through its faces (penalization.csv's transpiration). body_normal (not the "
+             "paper's; any number of MPI ranks): the penalized cells are holes of the pressure equation and those faces carry the "
              "flux of the body velocity's component along the surface normal, so that only the true surface's "
              "normal motion moves water through the staircase.");
     v.choice("body_indicator", body_indicator,

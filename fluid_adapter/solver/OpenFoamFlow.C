@@ -36,6 +36,44 @@ void for_each_interface_face(const Foam::fvMesh &mesh, const Foam::scalarField &
   }
 }
 
+/// The same across the coupled patches (MPI ranks' processor patches): calls
+/// visit(patch, patch_face, cell, cell_is_body) for every face of a coupled patch between a
+/// penalized cell and a free one, with this rank's cell. Each such face is visited once on
+/// either rank; its patch Sf points out of this rank's cell. `rate`'s coupled patch values must
+/// be current (correctBoundaryConditions).
+template <class Visit>
+void for_each_coupled_interface_face(const Foam::volScalarField &rate, Visit visit) {
+  const auto &boundary = rate.boundaryField();
+  forAll(boundary, patch) {
+    const auto &patch_field = boundary[patch];
+    if (!patch_field.coupled())
+      continue;
+    const Foam::scalarField other(patch_field.patchNeighbourField());
+    const Foam::labelUList &cells = patch_field.patch().faceCells();
+    forAll(cells, i) {
+      const bool in_here = rate[cells[i]] > 0.0, in_there = other[i] > 0.0;
+      if (in_here != in_there)
+        visit(patch, i, cells[i], in_here);
+    }
+  }
+}
+
+/// The other rank's cell values on the coupled patches of a field, fetched once per patch.
+template <class Type> class NeighbourValues {
+public:
+  explicit NeighbourValues(const Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh> &field)
+      : field_(field), values_(field.boundaryField().size()) {}
+  const Type &at(Foam::label patch, Foam::label i) {
+    if (!values_[patch].valid())
+      values_[patch] = field_.boundaryField()[patch].patchNeighbourField();
+    return values_[patch]()[i];
+  }
+
+private:
+  const Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh> &field_;
+  std::vector<Foam::tmp<Foam::Field<Type>>> values_;
+};
+
 /// OpenFOAM reports fatal errors by throwing Foam::error when asked to (instead of aborting).
 struct ThrowOnFatalError {
   ThrowOnFatalError() {
@@ -94,7 +132,7 @@ private:
   std::unique_ptr<Foam::volVectorField> fsiAcceleration_;
   std::unique_ptr<Foam::volScalarField> penalizationRate_; ///< chi / tau (1/s); null: no rigid bodies
   std::unique_ptr<Foam::volVectorField> rigidVelocity_;    ///< u_rib (m/s)
-  std::unique_ptr<Foam::vectorField> interfaceVelocity_;   ///< null: interpolated interface fluxes
+  std::unique_ptr<Foam::volVectorField> interfaceVelocity_; ///< null: interpolated interface fluxes
   /// body_normal: the pressure of the penalized cells next to free ones, the mean of those.
   void extrapolate_pressure_into_bodies();
   /// grad(p) of the momentum equation and the velocity correction. With body_normal interfaces
@@ -248,15 +286,19 @@ void OpenFoamFlow::set_penalization(const Eigen::VectorXd &rate_per_s, const Poi
     rate[c] = rate_per_s[c];
     velocity[c] = vector(u_rib(c, 0), u_rib(c, 1), u_rib(c, 2));
   }
+  penalizationRate_->correctBoundaryConditions(); // the other ranks' values on the processor patches
+  rigidVelocity_->correctBoundaryConditions();
 }
 
 void OpenFoamFlow::set_interface_velocity(const PointArray &u) {
-  if (Foam::Pstream::parRun())
-    throw std::runtime_error("fluid.openfoam.interface_flux: body_normal runs on one MPI rank only (mpi_ranks: 1)");
+  using namespace Foam;
   if (!interfaceVelocity_)
-    interfaceVelocity_ = std::make_unique<Foam::vectorField>(mesh_->nCells(), Foam::Zero);
-  auto &field = *interfaceVelocity_;
-  forAll(field, c) field[c] = Foam::vector(u(c, 0), u(c, 1), u(c, 2));
+    interfaceVelocity_ = std::make_unique<volVectorField>(
+        IOobject("interfaceVelocity", runTime_->timeName(), *mesh_, IOobject::NO_READ, IOobject::NO_WRITE), *mesh_,
+        dimensionedVector(dimVelocity, Zero));
+  auto &field = interfaceVelocity_->primitiveFieldRef();
+  forAll(field, c) field[c] = vector(u(c, 0), u(c, 1), u(c, 2));
+  interfaceVelocity_->correctBoundaryConditions(); // the other ranks' values on the processor patches
 }
 
 void OpenFoamFlow::extrapolate_pressure_into_bodies() {
@@ -266,6 +308,14 @@ void OpenFoamFlow::extrapolate_pressure_into_bodies() {
   for_each_interface_face(*mesh_, rate, [&](Foam::label, Foam::label body, Foam::label free, bool) {
     sum[body] += p[free];
     count[body] += 1.0;
+  });
+  NeighbourValues<Foam::scalar> p_across(*p_);
+  for_each_coupled_interface_face(*penalizationRate_, [&](Foam::label patch, Foam::label i, Foam::label cell,
+                                                          bool cell_is_body) {
+    if (!cell_is_body)
+      return;
+    sum[cell] += p_across.at(patch, i);
+    count[cell] += 1.0;
   });
   forAll(p, c) if (count[c] > 0.0) p[c] = sum[c] / count[c];
   p_->correctBoundaryConditions();
@@ -279,6 +329,11 @@ Foam::tmp<Foam::volVectorField> OpenFoamFlow::pressure_gradient() const {
   surfaceScalarField pf(fvc::interpolate(p));
   for_each_interface_face(*mesh_, penalizationRate_->primitiveField(),
                           [&](label f, label, label free, bool) { pf[f] = p[free]; });
+  auto &pf_boundary = pf.boundaryFieldRef();
+  NeighbourValues<scalar> p_across(p);
+  for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label cell, bool cell_is_body) {
+    pf_boundary[patch][i] = cell_is_body ? p_across.at(patch, i) : p[cell];
+  });
   tmp<volVectorField> gradient(new volVectorField("grad(p)", fvc::surfaceIntegrate(mesh_->Sf() * pf)));
   gradient.ref().correctBoundaryConditions();
   return gradient;
@@ -298,6 +353,18 @@ void OpenFoamFlow::immersed_transpiration(double &inflow, double &power) const {
       return;
     inflow += into_body;
     power += 0.5 * into_body * Foam::magSqr(u[free] - u_rib[body]);
+  });
+  // Across the ranks, on the body's side only (the sum over ranks counts each face once).
+  NeighbourValues<Foam::vector> u_across(*U_);
+  for_each_coupled_interface_face(*penalizationRate_, [&](Foam::label patch, Foam::label i, Foam::label body,
+                                                          bool cell_is_body) {
+    if (!cell_is_body)
+      return;
+    const double into_body = -phi_->boundaryField()[patch][i]; // the patch's phi points out of this cell
+    if (into_body <= 0.0)
+      return;
+    inflow += into_body;
+    power += 0.5 * into_body * Foam::magSqr(u_across.at(patch, i) - u_rib[body]);
   });
 }
 
@@ -468,23 +535,49 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
       // cells); the penalized cells are holes, their pressure held.
       const auto &rate = penalizationRate_->primitiveField();
       const auto &Sf = mesh.Sf();
+      const auto &u_normal = interfaceVelocity_->primitiveField();
       const auto outward = [&](label f, label body, bool body_is_owner) { // the body's normal flux out of it
-        const double flux = (*interfaceVelocity_)[body] & Sf[f];
+        const double flux = u_normal[body] & Sf[f];
         return body_is_owner ? flux : -flux;
+      };
+      // A face of a processor patch: the body's normal flux out of this rank's cell, whichever
+      // side the body is on (the patch's Sf points out of this rank's cell).
+      NeighbourValues<vector> u_normal_across(*interfaceVelocity_);
+      const auto coupled_out_of_cell = [&](label patch, label i, label cell, bool cell_is_body) {
+        const vector &sf = Sf.boundaryField()[patch][i];
+        return cell_is_body ? (u_normal[cell] & sf) : (u_normal_across.at(patch, i) & sf);
       };
       // Out of the bodies: the flux of the normal velocity, less its net over all the faces
       // spread by area (the staircase's sum of a rigid motion's normal flux is not zero, and
-      // the free water must keep its volume).
-      double net_out = 0.0, area = 0.0;
+      // the free water must keep its volume). Over all ranks, each processor face counted on
+      // its body's side.
+      double sums[2] = {0.0, 0.0}; // net flux out of the bodies (m^3/s), interface area (m^2)
       for_each_interface_face(mesh, rate, [&](label f, label body, label, bool body_is_owner) {
-        net_out += outward(f, body, body_is_owner);
-        area += mag(Sf[f]);
+        sums[0] += outward(f, body, body_is_owner);
+        sums[1] += mag(Sf[f]);
       });
-      const double correction = area > 0.0 ? net_out / area : 0.0;
+      for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label cell, bool cell_is_body) {
+        if (!cell_is_body)
+          return;
+        sums[0] += coupled_out_of_cell(patch, i, cell, true);
+        sums[1] += mag(Sf.boundaryField()[patch][i]);
+      });
+      sum_over_ranks(sums, 2);
+      const double correction = sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
       for_each_interface_face(mesh, rate, [&](label f, label body, label, bool body_is_owner) {
         const double out = outward(f, body, body_is_owner) - correction * mag(Sf[f]);
         phiHbyA[f] = body_is_owner ? out : -out;
         rAtUf[f] *= 1e-9;
+      });
+      auto &phi_boundary = phiHbyA.boundaryFieldRef();
+      auto &rAtUf_boundary = rAtUf.boundaryFieldRef();
+      for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label cell, bool cell_is_body) {
+        // Out of this cell: the body's outward flux (less the correction) if the body is here,
+        // minus it if the body is across; both ranks then hold the same face flux.
+        const double body_out = (cell_is_body ? 1.0 : -1.0) * coupled_out_of_cell(patch, i, cell, cell_is_body) -
+                                correction * mag(Sf.boundaryField()[patch][i]);
+        phi_boundary[patch][i] = cell_is_body ? body_out : -body_out;
+        rAtUf_boundary[patch][i] *= 1e-9;
       });
       DynamicList<label> cells;
       forAll(rate, c) if (rate[c] > 0.0) cells.append(c);
