@@ -66,7 +66,7 @@ int report(const fsi::pump::PumpDesign &design) {
   spdlog::info("volute (constant angular momentum, c_u2 r2 = {:.4g} m^2/s): outer radius every 45 deg {} m",
                volute.angular_momentum_m2_per_s(), radii);
   const fsi::pump::ThroatBand throat = fsi::pump::throat_band(op.design_flow_rate_m3_per_s, duty.head_m);
-  spdlog::info("  throat area {:.4g} cm^2 ({:.4g} cm^2 for this duty: throat velocity c3 = {:.3g}-{:.3g} sqrt(2 g H))",
+  spdlog::info("  throat area {:.4g} cm^2 ({} cm^2 for this duty: throat velocity c3 = {:.3g}-{:.3g} sqrt(2 g H))",
                1e4 * volute.throat_area_m2(),
                band(1e4 * volute.throat_area_m2(), 1e4 * throat.min_area_m2, 1e4 * throat.max_area_m2),
                fsi::pump::ThroatBand::min_velocity_ratio, fsi::pump::ThroatBand::max_velocity_ratio);
