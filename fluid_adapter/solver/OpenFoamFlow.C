@@ -572,11 +572,11 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
       auto &phi_boundary = phiHbyA.boundaryFieldRef();
       auto &rAtUf_boundary = rAtUf.boundaryFieldRef();
       for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label cell, bool cell_is_body) {
-        // Out of this cell: the body's outward flux (less the correction) if the body is here,
-        // minus it if the body is across; both ranks then hold the same face flux.
-        const double body_out = (cell_is_body ? 1.0 : -1.0) * coupled_out_of_cell(patch, i, cell, cell_is_body) -
-                                correction * mag(Sf.boundaryField()[patch][i]);
-        phi_boundary[patch][i] = cell_is_body ? body_out : -body_out;
+        // Out of this cell: the body's normal flux less the correction out of the body, so that
+        // both ranks hold the same face flux.
+        const double body_side = cell_is_body ? 1.0 : -1.0;
+        phi_boundary[patch][i] = coupled_out_of_cell(patch, i, cell, cell_is_body) -
+                                 body_side * correction * mag(Sf.boundaryField()[patch][i]);
         rAtUf_boundary[patch][i] *= 1e-9;
       });
       DynamicList<label> cells;
