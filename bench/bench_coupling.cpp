@@ -152,10 +152,10 @@ proto::SessionSettings settings_for(const std::string &endpoint, proto::Role rol
 
 /// Structure participant: its positions never change (the trivial solve).
 void run_structure(const std::string &endpoint, const std::string &fingerprint, const Size &size) {
-  proto::ParticipantSession session(settings_for(endpoint, proto::v1::ROLE_STRUCTURE, fingerprint));
+  proto::ParticipantSession session(settings_for(endpoint, proto::v2::ROLE_STRUCTURE, fingerprint));
   const long n = size.points();
   const PointArray x = sheet_positions(size);
-  proto::v1::StructureTopology topology;
+  proto::v2::StructureTopology topology;
   topology.set_name("sheet");
   topology.set_model("membrane");
   topology.set_n1(static_cast<std::uint32_t>(size.n1));
@@ -165,23 +165,24 @@ void run_structure(const std::string &endpoint, const std::string &fingerprint, 
   topology.set_mass_per_measure(mass_per_area);
   session.handshake({topology});
 
-  proto::Envelope reply;
-  auto *body = reply.mutable_advance_reply();
-  proto::resize_points(*body->mutable_position_m(), n) = x;
-  proto::resize_points(*body->mutable_velocity_m_per_s(), n).setZero();
-  reply.set_step(0);
+  proto::Message reply;
+  auto *body = reply.envelope().mutable_advance_reply();
+  reply.add_points(*body->mutable_position_m(), n) = x;
+  reply.add_points(*body->mutable_velocity_m_per_s(), n).setZero();
+  reply.envelope().set_step(0);
   session.send(reply); // X^0, V^0
-  proto::resize_points(*body->mutable_velocity_m_per_s(), 0);
+  body->clear_velocity_m_per_s();
   while (true) {
-    const proto::Envelope &request = session.next_request();
+    const proto::Message &message = session.next_request();
+    const proto::Envelope &request = message.envelope();
     if (request.has_shutdown())
       return;
     if (!request.has_structure_advance())
       throw std::runtime_error("bench structure: unexpected " + std::string(proto::body_name(request)));
-    proto::view_points(request.structure_advance().load_density_n_per_measure(), n, "load_density_n_per_measure");
+    message.points(request.structure_advance().load_density_n_per_measure(), n, "load_density_n_per_measure");
     body->set_time_s(request.structure_advance().time_s() + request.structure_advance().dt_s());
-    proto::resize_points(*body->mutable_position_m(), n) = x;
-    reply.set_step(request.step());
+    reply.add_points(*body->mutable_position_m(), n) = x;
+    reply.envelope().set_step(request.step());
     session.send(reply);
   }
 }
@@ -189,26 +190,27 @@ void run_structure(const std::string &endpoint, const std::string &fingerprint, 
 /// Fluid participant: zero velocity everywhere; notes when each InterpolateRequest arrived.
 void run_fluid(const std::string &endpoint, const std::string &fingerprint, long n,
                std::vector<Clock::time_point> &arrivals) {
-  proto::ParticipantSession session(settings_for(endpoint, proto::v1::ROLE_FLUID, fingerprint));
+  proto::ParticipantSession session(settings_for(endpoint, proto::v2::ROLE_FLUID, fingerprint));
   session.handshake();
   const PointArray zero = PointArray::Zero(n, 3);
-  proto::Envelope interpolated, advanced;
-  auto *velocity = interpolated.mutable_interpolate_reply();
-  auto *done = advanced.mutable_advance_reply();
+  proto::Message interpolated, advanced;
+  auto *velocity = interpolated.envelope().mutable_interpolate_reply();
+  auto *done = advanced.envelope().mutable_advance_reply();
   while (true) {
-    const proto::Envelope &request = session.next_request();
+    const proto::Message &message = session.next_request();
+    const proto::Envelope &request = message.envelope();
     if (request.has_shutdown())
       return;
     if (request.has_interpolate_request()) {
       arrivals.push_back(Clock::now());
-      proto::view_points(request.interpolate_request().position_m(), n, "position_m");
-      proto::write_points(zero, *velocity->mutable_velocity_m_per_s());
-      interpolated.set_step(request.step());
+      message.points(request.interpolate_request().position_m(), n, "position_m");
+      interpolated.add_points(*velocity->mutable_velocity_m_per_s(), zero);
+      interpolated.envelope().set_step(request.step());
       session.send(interpolated);
     } else if (request.has_fluid_advance()) {
-      proto::view_points(request.fluid_advance().force_density_n_per_measure(), n, "force_density_n_per_measure");
+      message.points(request.fluid_advance().force_density_n_per_measure(), n, "force_density_n_per_measure");
       done->set_time_s(request.fluid_advance().time_s() + request.fluid_advance().dt_s());
-      advanced.set_step(request.step());
+      advanced.envelope().set_step(request.step());
       session.send(advanced);
     } else {
       throw std::runtime_error("bench fluid: unexpected " + std::string(proto::body_name(request)));

@@ -3,16 +3,17 @@
 // densities; AdvanceReply: positions + velocities), for N = 10^2 .. 10^5. Side by side, in the
 // same iteration, a raw ZeroMQ round trip of the same number of bytes without Protobuf.
 // Both paths start and end in PointArrays, so both pay the copies any transport needs (arrays
-// into a message, message into arrays); the Envelope path adds the Protobuf fields.
-// reuse:1 keeps the Envelopes from step to step (receive_into, fields refilled in place), as a
-// coupler should; reuse:0 builds and receives fresh ones, the simplest code.
+// into a message, message into arrays); the protocol path adds the Envelope header frame (its
+// arrays travel as frames of their own, protocol version 2).
+// reuse:1 keeps the Messages from step to step (receive_into, headers refilled in place), as a
+// coupler does; reuse:0 builds and receives fresh ones, the simplest code.
 // Participant and raw echo run in threads of this process (one ZeroMQ context, one I/O thread
 // shared by both ends: a little pessimistic next to separate processes).
 // Time column: the Envelope round trip. Counters: envelope_us, raw_us, ratio (target: <= 3),
 // MB_per_trip (both directions).
 
 #include "proto/CouplerChannel.hpp"
-#include "proto/PackedPoints.hpp"
+#include "proto/Message.hpp"
 #include "proto/ParticipantChannel.hpp"
 #include "proto/ZmqContext.hpp"
 
@@ -44,42 +45,43 @@ struct StepArrays {
 class EnvelopeEcho {
 public:
   EnvelopeEcho(const Endpoint &coupler, Eigen::Index n_points, bool reuse)
-      : channel_(coupler, v1::ROLE_FLUID, "bench"), arrays_(n_points), n_points_(n_points),
+      : channel_(coupler, v2::ROLE_FLUID, "bench"), arrays_(n_points), n_points_(n_points),
         reuse_(reuse) {}
 
   void run() {
-    Envelope hello = make_envelope(v1::ROLE_FLUID, 0);
+    Envelope hello = make_envelope(v2::ROLE_FLUID, 0);
     hello.mutable_hello()->set_participant_name("bench");
     channel_.send(hello);
-    for (receive(); !request_.has_shutdown(); receive()) {
+    for (receive(); !request_.envelope().has_shutdown(); receive()) {
       // Two arrays each way: the request reuses the AdvanceReply layout (the transport does
       // not look at meanings).
-      read_points(request_.advance_reply().position_m(), n_points_, "position_m", arrays_.first);
-      read_points(request_.advance_reply().velocity_m_per_s(), n_points_, "velocity",
-                  arrays_.second);
-      channel_.send(reply(request_.step()));
+      const auto &body = request_.envelope().advance_reply();
+      arrays_.first = request_.points(body.position_m(), n_points_, "position_m");
+      arrays_.second = request_.points(body.velocity_m_per_s(), n_points_, "velocity");
+      channel_.send(reply(request_.envelope().step()));
     }
   }
 
 private:
   void receive() {
     if (!reuse_) {
-      request_ = Envelope();
+      request_ = Message();
     }
     if (!channel_.receive_into(request_, patience)) {
       throw std::runtime_error("bench participant: nothing from the coupler for 10 s");
     }
   }
 
-  const Envelope &reply(std::uint64_t step) {
+  Message &reply(std::uint64_t step) {
     if (!reuse_) {
-      reply_ = Envelope();
+      reply_ = Message();
     }
-    reply_.set_protocol_version(current_protocol_version);
-    reply_.set_sender_role(v1::ROLE_FLUID);
-    reply_.set_step(step);
-    write_points(arrays_.first, *reply_.mutable_advance_reply()->mutable_position_m());
-    write_points(arrays_.second, *reply_.mutable_advance_reply()->mutable_velocity_m_per_s());
+    Envelope &header = reply_.envelope();
+    header.set_protocol_version(current_protocol_version);
+    header.set_sender_role(v2::ROLE_FLUID);
+    header.set_step(step);
+    reply_.add_points(*header.mutable_advance_reply()->mutable_position_m(), arrays_.first);
+    reply_.add_points(*header.mutable_advance_reply()->mutable_velocity_m_per_s(), arrays_.second);
     return reply_;
   }
 
@@ -87,8 +89,8 @@ private:
   StepArrays arrays_;
   Eigen::Index n_points_;
   bool reuse_;
-  Envelope request_;
-  Envelope reply_;
+  Message request_;
+  Message reply_;
 };
 
 void copy_into(const StepArrays &arrays, zmq::message_t &message) {
@@ -141,11 +143,12 @@ public:
     receive_envelope();
     envelope_peer_ = incoming_.peer();
     raw_peer_ = receive_raw().front().to_string();
-    raw_bytes_ = fill_advance(0).ByteSizeLong(); // the same bytes as the Envelope
+    // The same bytes as the message: its header and its two arrays.
+    raw_bytes_ = fill_advance(0).envelope().ByteSizeLong() + 2 * sizeof(double) * out_.first.size();
   }
 
   ~RoundTrips() {
-    Envelope shutdown = make_envelope(v1::ROLE_COUPLER, 0);
+    Envelope shutdown = make_envelope(v2::ROLE_COUPLER, 0);
     shutdown.mutable_shutdown()->set_success(true);
     coupler_.send(envelope_peer_, shutdown);
     send_raw(zmq::message_t());
@@ -157,8 +160,8 @@ public:
     coupler_.send(envelope_peer_, fill_advance(step));
     receive_envelope();
     const auto &reply = incoming_.envelope().advance_reply();
-    read_points(reply.position_m(), n_points_, "position_m", in_.first);
-    read_points(reply.velocity_m_per_s(), n_points_, "velocity_m_per_s", in_.second);
+    in_.first = incoming_.message().points(reply.position_m(), n_points_, "position_m");
+    in_.second = incoming_.message().points(reply.velocity_m_per_s(), n_points_, "velocity_m_per_s");
   }
 
   void raw_round_trip() {
@@ -172,16 +175,17 @@ public:
   std::size_t bytes_per_message() const { return raw_bytes_; }
 
 private:
-  const Envelope &fill_advance(std::uint64_t step) {
+  Message &fill_advance(std::uint64_t step) {
     if (!reuse_) {
-      advance_ = Envelope();
+      advance_ = Message();
     }
-    advance_.set_protocol_version(current_protocol_version);
-    advance_.set_sender_role(v1::ROLE_COUPLER);
-    advance_.set_step(step);
-    auto *body = advance_.mutable_advance_reply();
-    write_points(out_.first, *body->mutable_position_m());
-    write_points(out_.second, *body->mutable_velocity_m_per_s());
+    Envelope &header = advance_.envelope();
+    header.set_protocol_version(current_protocol_version);
+    header.set_sender_role(v2::ROLE_COUPLER);
+    header.set_step(step);
+    auto *body = header.mutable_advance_reply();
+    advance_.add_points(*body->mutable_position_m(), out_.first);
+    advance_.add_points(*body->mutable_velocity_m_per_s(), out_.second);
     return advance_;
   }
 
@@ -216,7 +220,7 @@ private:
   std::unique_ptr<EnvelopeEcho> echo_;
   std::thread envelope_echo_;
   std::thread raw_echo_;
-  Envelope advance_;
+  Message advance_;
   Incoming incoming_;
   std::string envelope_peer_;
   std::string raw_peer_;

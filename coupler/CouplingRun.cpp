@@ -20,13 +20,13 @@ namespace fsi::coupler {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-using proto::v1::Envelope;
+using proto::v2::Envelope;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
 
-void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v1::RigidBodyPose &out) {
+void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v2::RigidBodyPose &out) {
   proto::BodyPose pose;
   pose.name = name;
   pose.pose = motion.pose_at(t);
@@ -171,8 +171,8 @@ bool CouplingRun::accept_hello(const proto::Incoming &incoming) {
     refuse(peer, "participant " + peer + " was started with another case (fingerprint " + hello.case_fingerprint() +
                      ", the coupler's is " + config_.case_fingerprint +
                      "): give every process the same case folder (copy it to every machine)");
-  const bool is_fluid = hello.role() == proto::v1::ROLE_FLUID;
-  if (!is_fluid && hello.role() != proto::v1::ROLE_STRUCTURE)
+  const bool is_fluid = hello.role() == proto::v2::ROLE_FLUID;
+  if (!is_fluid && hello.role() != proto::v2::ROLE_STRUCTURE)
     refuse(peer, "participant " + peer + " has role " + std::string(proto::role_name(hello.role())) +
                      "; a coupled run takes one fluid and one structure participant");
   std::string &slot = is_fluid ? fluid_id_ : structure_id_;
@@ -211,8 +211,8 @@ void CouplingRun::refuse(const std::string &peer, const std::string &message) {
 }
 
 void CouplingRun::welcome(const std::string &id, bool with_structures) {
-  Envelope envelope = proto::make_envelope(proto::v1::ROLE_COUPLER, 0);
-  auto *w = envelope.mutable_welcome();
+  proto::Message envelope(proto::make_envelope(proto::v2::ROLE_COUPLER, 0));
+  auto *w = envelope.envelope().mutable_welcome();
   w->set_time_step_s(dt_);
   w->set_n_steps(static_cast<std::uint64_t>(n_steps_));
   w->set_heartbeat_interval_s(config_.coupling.heartbeat_interval_s);
@@ -226,11 +226,11 @@ void CouplingRun::welcome(const std::string &id, bool with_structures) {
 void CouplingRun::receive_initial_state() {
   // The structure's first AdvanceReply, right after Welcome: X^0 and V^0. Eq. (4) keeps
   // V^n = (X^n - X^{n-1}) / dt, so X^{-1} = X^0 - V^0 dt is the structure's own X^{n-1}.
-  const auto &reply = await(structure_id_, Envelope::kAdvanceReply, 0, "initial state (AdvanceReply)").advance_reply();
+  const proto::Message &message = await(structure_id_, Envelope::kAdvanceReply, 0, "initial state (AdvanceReply)");
+  const auto &reply = message.envelope().advance_reply();
   const Eigen::Index n = measures_.size();
-  proto::read_points(reply.position_m(), n, "AdvanceReply.position_m", x_now_);
-  PointArray v0;
-  proto::read_points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s", v0);
+  x_now_ = message.points(reply.position_m(), n, "AdvanceReply.position_m");
+  const PointArray v0 = message.points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s");
   x_prev_ = x_now_ - dt_ * v0;
   spdlog::info("initial state received: {} Lagrangian points in {} structure(s)", n, topology_.size());
 }
@@ -247,7 +247,7 @@ void CouplingRun::advance_one_step(long n) {
 
 void CouplingRun::interpolate_fluid_velocity(long n) {
   // Section 2.3, first bullet: rigid surfaces move before the fluid forces are computed.
-  auto *request = request_.mutable_interpolate_request();
+  auto *request = request_.envelope().mutable_interpolate_request();
   const double t = static_cast<double>(n) * dt_;
   request->set_time_s(t);
   request->mutable_rigid_bodies()->Clear();
@@ -255,10 +255,11 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
     write_pose(name, *motion, t, *request->add_rigid_bodies());
   // The immersed-boundary points are the structure points at the start of the step,
   // X_ib^n = X^n (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5).
-  proto::write_points(x_now_, *request->mutable_position_m());
+  request_.add_points(*request->mutable_position_m(), x_now_);
   participants_->send(fluid_id_, request_, static_cast<std::uint64_t>(n));
-  const auto &reply = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply").interpolate_reply();
-  proto::read_points(reply.velocity_m_per_s(), x_now_.rows(), "InterpolateReply.velocity_m_per_s", u_ib_);
+  const proto::Message &message = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply");
+  const auto &reply = message.envelope().interpolate_reply();
+  u_ib_ = message.points(reply.velocity_m_per_s(), x_now_.rows(), "InterpolateReply.velocity_m_per_s");
   timings_.interpolation_s = reply.solve_wall_s();
 }
 
@@ -277,18 +278,18 @@ void CouplingRun::apply_coupling_law() {
 
 void CouplingRun::advance_fluid_and_structure(long n) {
   const double t = static_cast<double>(n) * dt_;
-  auto *fluid = fluid_advance_.mutable_fluid_advance();
+  auto *fluid = fluid_advance_.envelope().mutable_fluid_advance();
   fluid->set_time_s(t);
   fluid->set_dt_s(dt_);
   // The fluid has X^n (= X_ib^n) from this step's InterpolateRequest: not sent again.
   const PointArray &force = coupled_.force_density_n_per_measure;
-  proto::write_points(force, *fluid->mutable_force_density_n_per_measure());
-  auto *structure = structure_advance_.mutable_structure_advance();
+  fluid_advance_.add_points(*fluid->mutable_force_density_n_per_measure(), force);
+  auto *structure = structure_advance_.envelope().mutable_structure_advance();
   structure->set_time_s(t);
   structure->set_dt_s(dt_);
   // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
   // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
-  proto::resize_points(*structure->mutable_load_density_n_per_measure(), force.rows()) = -force;
+  structure_advance_.add_points(*structure->mutable_load_density_n_per_measure(), force.rows()) = -force;
   // Section 2.3: the rigid surfaces move; both participants use them at the end of the step.
   fluid->mutable_rigid_bodies()->Clear();
   structure->mutable_rigid_bodies()->Clear();
@@ -326,7 +327,7 @@ void CouplingRun::advance_fluid_and_structure(long n) {
     timings_.structure_solve_s = reply.solve_wall_s();
     x_prev_.swap(x_now_);
     try {
-      proto::read_points(reply.position_m(), x_prev_.rows(), "AdvanceReply.position_m", x_now_);
+      x_now_ = incoming.message().points(reply.position_m(), x_prev_.rows(), "AdvanceReply.position_m");
     } catch (const proto::MalformedMessageError &e) {
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad AdvanceReply at step " +
                                                  std::to_string(n) + ": " + e.what());
@@ -336,14 +337,14 @@ void CouplingRun::advance_fluid_and_structure(long n) {
 
 // ---- helpers ------------------------------------------------------------------------------
 
-proto::Envelope &CouplingRun::await(const std::string &peer, Envelope::BodyCase body, long step,
-                                    const std::string &what) {
+proto::Message &CouplingRun::await(const std::string &peer, Envelope::BodyCase body, long step,
+                                   const std::string &what) {
   const auto deadline = Clock::now() + to_ms(config_.coupling.step_timeout_s);
   while (true) {
     auto &incoming = participants_->next(deadline, peer, what, static_cast<std::uint64_t>(step));
     auto &envelope = incoming.envelope();
     if (incoming.peer() == peer && envelope.body_case() == body)
-      return envelope;
+      return incoming.message();
     participants_->answer_error(incoming.peer(),
                                 "unexpected " + std::string(proto::body_name(envelope)) + " at step " +
                                     std::to_string(step) + "; the coupler waits for " + what + " from " + peer,
@@ -375,7 +376,7 @@ void CouplingRun::record_step(long n) {
   ++timings_count_;
 }
 
-void CouplingRun::record_rigid_body_loads(const proto::v1::AdvanceReply &reply) {
+void CouplingRun::record_rigid_body_loads(const proto::v2::AdvanceReply &reply) {
   for (const auto &load : reply.rigid_body_loads()) {
     try {
       const Vec3 force = proto::read_vector3(load.force_n(), "RigidBodyLoad.force_n");

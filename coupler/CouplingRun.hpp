@@ -45,10 +45,10 @@ private:
   bool accept_hello(const proto::Incoming &incoming);
   void refuse(const std::string &peer, const std::string &message);
   void welcome(const std::string &id, bool with_structures);
-  proto::Envelope &await(const std::string &peer, proto::v1::Envelope::BodyCase body, long step, const std::string &what);
+  proto::Message &await(const std::string &peer, proto::v2::Envelope::BodyCase body, long step, const std::string &what);
   void check_stability() const;
   void record_step(long n);
-  void record_rigid_body_loads(const proto::v1::AdvanceReply &reply);
+  void record_rigid_body_loads(const proto::v2::AdvanceReply &reply);
   void report_progress(long n, bool force);
   void write_endpoint_file(const std::string &endpoint) const;
 
@@ -63,7 +63,7 @@ private:
   std::unique_ptr<CouplingResults> results_;
   std::unique_ptr<CouplingLaw> law_;
   std::string fluid_id_, structure_id_;
-  std::vector<proto::v1::StructureTopology> topology_;
+  std::vector<proto::v2::StructureTopology> topology_;
   std::vector<std::pair<std::string, std::shared_ptr<const motion::RigidMotion>>> moving_bodies_;
 
   // Lagrangian state of all structures, concatenated (N x 3, SI).
@@ -71,7 +71,7 @@ private:
   Eigen::VectorXd measures_;
   CouplingOutputs coupled_;
 
-  proto::Envelope request_, fluid_advance_, structure_advance_;
+  proto::Message request_, fluid_advance_, structure_advance_; // headers reused step to step
   StepTimings timings_;
   StepTimings timings_sum_;   ///< since the last progress line
   long timings_count_ = 0;

@@ -28,12 +28,13 @@ void ParticipantTable::add(const std::string &routing_id) {
   last_seen_[routing_id] = Clock::now();
 }
 
-void ParticipantTable::send(const std::string &routing_id, proto::Envelope &envelope, std::uint64_t step) {
+void ParticipantTable::send(const std::string &routing_id, proto::Message &message, std::uint64_t step) {
+  proto::Envelope &envelope = message.envelope();
   envelope.set_protocol_version(proto::current_protocol_version);
-  envelope.set_sender_role(proto::v1::ROLE_COUPLER);
+  envelope.set_sender_role(proto::v2::ROLE_COUPLER);
   envelope.set_step(step);
   try {
-    channel_.send(routing_id, envelope);
+    channel_.send(routing_id, message);
   } catch (const proto::TransportError &e) {
     throw ParticipantFailed(routing_id, "cannot send " + std::string(proto::body_name(envelope)) + " to participant " +
                                             routing_id + " at step " + std::to_string(step) + ": " + e.what());
@@ -104,7 +105,7 @@ void ParticipantTable::send_heartbeats_if_due(std::uint64_t step) {
     return;
   last_heartbeat_sent_ = now;
   for (const auto &id : ids_) {
-    proto::Envelope beat = proto::make_envelope(proto::v1::ROLE_COUPLER, step);
+    proto::Envelope beat = proto::make_envelope(proto::v2::ROLE_COUPLER, step);
     beat.mutable_heartbeat()->set_wall_time_s(seconds(now.time_since_epoch()));
     try {
       channel_.send(id, beat);
@@ -126,7 +127,7 @@ void ParticipantTable::check_liveness(std::uint64_t step) const {
 
 void ParticipantTable::answer_error(const std::string &peer, const std::string &message, std::uint64_t step) noexcept {
   try {
-    proto::Envelope error = proto::make_envelope(proto::v1::ROLE_COUPLER, step);
+    proto::Envelope error = proto::make_envelope(proto::v2::ROLE_COUPLER, step);
     error.mutable_error()->set_message(message);
     error.mutable_error()->set_fatal(false);
     channel_.send(peer, error);
@@ -138,7 +139,7 @@ void ParticipantTable::answer_error(const std::string &peer, const std::string &
 void ParticipantTable::shutdown_all(const std::string &reason, bool success, std::uint64_t step) noexcept {
   for (const auto &id : ids_) {
     try {
-      proto::Envelope shutdown = proto::make_envelope(proto::v1::ROLE_COUPLER, step);
+      proto::Envelope shutdown = proto::make_envelope(proto::v2::ROLE_COUPLER, step);
       shutdown.mutable_shutdown()->set_reason(reason);
       shutdown.mutable_shutdown()->set_success(success);
       channel_.send(id, shutdown);

@@ -35,9 +35,9 @@ public:
   void close_admission() { admission_open_ = false; }
   bool knows(const std::string &routing_id) const { return last_seen_.count(routing_id) != 0; }
 
-  /// Sends to a participant (stamped with the coupler's role and the step). A participant that
-  /// is gone or does not read throws ParticipantFailed.
-  void send(const std::string &routing_id, proto::Envelope &envelope, std::uint64_t step);
+  /// Sends to a participant (stamped with the coupler's role and the step; its array frames go
+  /// with it). A participant that is gone or does not read throws ParticipantFailed.
+  void send(const std::string &routing_id, proto::Message &message, std::uint64_t step);
 
   /// The next message the run has to act on: any body but a heartbeat from a known
   /// participant, or a Hello from anyone. Answers malformed bytes and messages from strangers

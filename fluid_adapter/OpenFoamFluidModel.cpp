@@ -58,7 +58,7 @@ std::string OpenFoamFluidModel::describe() const {
 
 // ---- the master: requests of the coupler, broadcast to the other ranks ----------------------
 
-void OpenFoamFluidModel::start(const proto::v1::Welcome &welcome) {
+void OpenFoamFluidModel::start(const proto::v2::Welcome &welcome) {
   message_.clear();
   for (const auto &s : welcome.structures())
     message_.insert(message_.end(), s.point_measure().begin(), s.point_measure().end());
@@ -67,7 +67,7 @@ void OpenFoamFluidModel::start(const proto::v1::Welcome &welcome) {
   spdlog::info("{}", describe());
 }
 
-void OpenFoamFluidModel::interpolate(const proto::v1::InterpolateRequest &, proto::PointsView x_m,
+void OpenFoamFluidModel::interpolate(const proto::v2::InterpolateRequest &, proto::PointsView x_m,
                                      proto::MutablePointsView u_m_per_s) {
   message_.assign(x_m.data(), x_m.data() + x_m.size());
   broadcast(Command::interpolate, message_);
@@ -77,8 +77,8 @@ void OpenFoamFluidModel::interpolate(const proto::v1::InterpolateRequest &, prot
   u_m_per_s = u;
 }
 
-void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
-                                 proto::v1::AdvanceReply &reply) {
+void OpenFoamFluidModel::advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
+                                 proto::v2::AdvanceReply &reply) {
   // Payload for the other ranks: t, dt, the moving bodies' poses at t + dt, then F_fsi^n.
   message_.assign({request.time_s(), request.dt_s()});
   pack_rigid_poses(request, message_);
@@ -98,7 +98,7 @@ void OpenFoamFluidModel::advance(const proto::v1::FluidAdvance &request, proto::
   }
 }
 
-void OpenFoamFluidModel::pack_rigid_poses(const proto::v1::FluidAdvance &request, std::vector<double> &out) const {
+void OpenFoamFluidModel::pack_rigid_poses(const proto::v2::FluidAdvance &request, std::vector<double> &out) const {
   // Section 2.3: the coupler moved the rigid surfaces; Eqs. (9-10) penalize them at t + dt.
   std::size_t expected = 0;
   for (const auto &body : bodies_)

@@ -56,11 +56,11 @@ public:
                      std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies = {});
 
   std::string describe() const override;
-  void start(const proto::v1::Welcome &welcome) override;
-  void interpolate(const proto::v1::InterpolateRequest &request, proto::PointsView x_m,
+  void start(const proto::v2::Welcome &welcome) override;
+  void interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
                    proto::MutablePointsView u_m_per_s) override;
-  void advance(const proto::v1::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
-               proto::v1::AdvanceReply &reply) override;
+  void advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
+               proto::v2::AdvanceReply &reply) override;
   void finish(bool success) override;
 
   /// Ranks other than the master: serve the master's broadcasts until it finishes.
@@ -81,7 +81,7 @@ private:
   void broadcast(Command command, std::vector<double> &payload) const;
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
   /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).
-  void pack_rigid_poses(const proto::v1::FluidAdvance &request, std::vector<double> &out) const;
+  void pack_rigid_poses(const proto::v2::FluidAdvance &request, std::vector<double> &out) const;
   /// Sets the bodies' coupled motions from such a block; returns the end of the block.
   const double *unpack_rigid_poses(double time_s, const double *begin, const double *end);
   void do_start(const std::vector<double> &point_measures);

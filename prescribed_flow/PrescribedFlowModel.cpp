@@ -8,7 +8,7 @@ std::string PrescribedFlowModel::describe() const {
   return "prescribed, " + flow_->describe() + " (one-way coupling: the FSI force does not act on this flow)";
 }
 
-void PrescribedFlowModel::interpolate(const proto::v1::InterpolateRequest &request, proto::PointsView x_m,
+void PrescribedFlowModel::interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
                                       proto::MutablePointsView u_m_per_s) {
   positions_ = x_m;
   velocities_.resize(positions_.rows(), 3);

@@ -16,11 +16,11 @@ public:
   explicit PrescribedFlowModel(std::unique_ptr<FlowField> flow);
 
   std::string describe() const override;
-  void start(const proto::v1::Welcome &) override {}
-  void interpolate(const proto::v1::InterpolateRequest &request, proto::PointsView x_m,
+  void start(const proto::v2::Welcome &) override {}
+  void interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
                    proto::MutablePointsView u_m_per_s) override;
   /// One-way coupling: the flow is prescribed, so F_fsi (Eq. 8) is not spread.
-  void advance(const proto::v1::FluidAdvance &, proto::PointsView, proto::v1::AdvanceReply &) override {}
+  void advance(const proto::v2::FluidAdvance &, proto::PointsView, proto::v2::AdvanceReply &) override {}
   void finish(bool) override {}
 
 private:

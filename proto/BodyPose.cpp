@@ -5,7 +5,7 @@
 
 namespace fsi::proto {
 
-void write_body_pose(const BodyPose &pose, v1::RigidBodyPose &out) {
+void write_body_pose(const BodyPose &pose, v2::RigidBodyPose &out) {
   out.set_name(pose.name);
   write_matrix3(pose.pose.linear(), *out.mutable_rotation());
   write_vector3(pose.pose.translation(), *out.mutable_translation_m());
@@ -13,7 +13,7 @@ void write_body_pose(const BodyPose &pose, v1::RigidBodyPose &out) {
   write_vector3(pose.origin_velocity_m_per_s, *out.mutable_linear_velocity_m_per_s());
 }
 
-BodyPose read_body_pose(const v1::RigidBodyPose &in) {
+BodyPose read_body_pose(const v2::RigidBodyPose &in) {
   BodyPose pose;
   pose.name = in.name();
   const Eigen::Matrix3d rotation = read_matrix3(in.rotation(), "RigidBodyPose.rotation");

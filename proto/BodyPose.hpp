@@ -19,8 +19,8 @@ struct BodyPose {
   Vec3 angular_velocity_rad_per_s = Vec3::Zero();
 };
 
-void write_body_pose(const BodyPose &pose, v1::RigidBodyPose &out);
+void write_body_pose(const BodyPose &pose, v2::RigidBodyPose &out);
 /// Throws MalformedMessageError for a field of the wrong size or a rotation that is not one.
-BodyPose read_body_pose(const v1::RigidBodyPose &in);
+BodyPose read_body_pose(const v2::RigidBodyPose &in);
 
 } // namespace fsi::proto

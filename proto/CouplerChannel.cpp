@@ -11,14 +11,8 @@ namespace fsi::proto {
 
 namespace {
 
-// A DEALER's message arrives at the ROUTER as [routing id][payload].
-constexpr std::size_t frames_per_message = 2;
-
-std::optional<MalformedMessage> wrong_framing(std::size_t n_frames) {
-  return MalformedMessage{MalformedMessage::Kind::wrong_framing,
-                          "the message has " + std::to_string(n_frames - 1) +
-                              " frames; an Envelope travels in exactly one"};
-}
+// A DEALER's message arrives at the ROUTER as [routing id][Envelope][array frames...].
+constexpr std::size_t header_frame = 1;
 
 } // namespace
 
@@ -34,10 +28,22 @@ CouplerChannel::~CouplerChannel() = default;
 CouplerChannel::CouplerChannel(CouplerChannel &&) noexcept = default;
 CouplerChannel &CouplerChannel::operator=(CouplerChannel &&) noexcept = default;
 
+void CouplerChannel::send(const std::string &peer, Message &message) {
+  std::vector<zmq::message_t> frames;
+  frames.emplace_back(peer.data(), peer.size());
+  EnvelopeCodec::encode(message, frames);
+  send_frames(peer, frames, message.envelope());
+}
+
 void CouplerChannel::send(const std::string &peer, const Envelope &envelope) {
   std::vector<zmq::message_t> frames;
   frames.emplace_back(peer.data(), peer.size());
-  frames.push_back(EnvelopeCodec::encode(envelope));
+  EnvelopeCodec::encode(envelope, frames);
+  send_frames(peer, frames, envelope);
+}
+
+void CouplerChannel::send_frames(const std::string &peer, std::vector<zmq::message_t> &frames,
+                                 const Envelope &envelope) {
   switch (socket_->send_frames(frames)) {
   case Socket::SendStatus::sent:
     return;
@@ -71,9 +77,9 @@ bool CouplerChannel::receive_into(Incoming &incoming, std::chrono::milliseconds 
     return false;
   }
   incoming.peer_.assign(static_cast<const char *>(frames.front().data()), frames.front().size());
-  auto malformed = frames.size() != frames_per_message
-                       ? wrong_framing(frames.size())
-                       : EnvelopeCodec::decode_into(frames.back(), incoming.envelope_to_fill());
+  auto malformed = frames.size() <= header_frame
+                       ? MalformedMessage{MalformedMessage::Kind::wrong_framing, "the message has no Envelope frame"}
+                       : EnvelopeCodec::decode_into(frames, header_frame, incoming.message_to_fill());
   if (malformed) {
     incoming.content_ = std::move(*malformed);
   }

@@ -7,12 +7,14 @@
 #include "ChannelOptions.hpp"
 #include "Endpoint.hpp"
 #include "Incoming.hpp"
+#include "Message.hpp"
 #include "Protocol.hpp"
 
 #include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace fsi::proto {
 
@@ -30,20 +32,24 @@ public:
   /// Where participants connect: the bound endpoint, a tcp port 0 replaced by the chosen port.
   const Endpoint &endpoint() const { return endpoint_; }
 
-  /// Queues envelope for the participant with this routing id. Throws TransportError when no
+  /// Queues the message for the participant with this routing id; its array frames go with it
+  /// (moved, not copied: the message keeps only its header). Throws TransportError when no
   /// such participant is connected, or its queue stays full for options.send_timeout.
+  void send(const std::string &peer, Message &message);
+  /// As above, for an Envelope that names no array frames.
   void send(const std::string &peer, const Envelope &envelope);
 
   /// The next message, or nullopt after timeout (negative: wait without limit) or when a
   /// signal interrupts the wait. Bad bytes never throw: they come back as a malformed Incoming.
   std::optional<Incoming> receive(std::chrono::milliseconds timeout);
 
-  /// As receive(), but parses into incoming, reusing the memory of its Envelope's arrays when
-  /// the body type repeats (worth it from about 10^4 points). False after the timeout, with
-  /// incoming unchanged.
+  /// As receive(), but parses into incoming, reusing its Envelope's memory when the body type
+  /// repeats. False after the timeout, with incoming unchanged.
   bool receive_into(Incoming &incoming, std::chrono::milliseconds timeout);
 
 private:
+  void send_frames(const std::string &peer, std::vector<zmq::message_t> &frames, const Envelope &envelope);
+
   std::unique_ptr<Socket> socket_;
   Endpoint endpoint_;
 };

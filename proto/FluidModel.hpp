@@ -17,14 +17,14 @@ public:
 
   /// Once, after the handshake: time step, number of steps and the structures' topology
   /// (point measures, to turn force densities into forces).
-  virtual void start(const v1::Welcome &welcome) = 0;
+  virtual void start(const v2::Welcome &welcome) = 0;
 
   /// U_ib^n: the fluid velocity at the points at time t (m/s), with the rigid-body poses at t.
-  virtual void interpolate(const v1::InterpolateRequest &request, PointsView x_m, MutablePointsView u_m_per_s) = 0;
+  virtual void interpolate(const v2::InterpolateRequest &request, PointsView x_m, MutablePointsView u_m_per_s) = 0;
 
   /// Spreads F_fsi^n (Eq. 8) at the points of the last interpolate() and advances the flow
   /// from t to t + dt; may fill rigid_body_loads of the reply.
-  virtual void advance(const v1::FluidAdvance &request, PointsView force_density_n_per_measure, v1::AdvanceReply &reply) = 0;
+  virtual void advance(const v2::FluidAdvance &request, PointsView force_density_n_per_measure, v2::AdvanceReply &reply) = 0;
 
   /// The run is over (success: completed): write what is worth keeping.
   virtual void finish(bool success) = 0;

@@ -23,7 +23,7 @@ std::atomic<int> &FluidParticipant::stop_signal() {
 
 FluidParticipant::FluidParticipant(FluidModel &model, SessionSettings settings)
     : model_(model), settings_(std::move(settings)) {
-  settings_.role = v1::ROLE_FLUID;
+  settings_.role = v2::ROLE_FLUID;
   settings_.stop_signal = &stop_signal();
 }
 
@@ -38,16 +38,17 @@ int FluidParticipant::run() {
     spdlog::info("joined: {} steps of {} s, {} Lagrangian points", welcome.n_steps(), welcome.time_step_s(), n_points_);
     model_.start(welcome);
     while (true) {
-      const Envelope &request = session_->next_request();
+      const Message &message = session_->next_request();
+      const Envelope &request = message.envelope();
       if (request.has_shutdown()) {
         model_.finish(true);
         spdlog::info("completed: {} steps ({})", steps_, request.shutdown().reason());
         return 0;
       }
       if (request.has_interpolate_request())
-        interpolate(request);
+        interpolate(message);
       else if (request.has_fluid_advance())
-        advance(request);
+        advance(message);
       else
         throw MalformedMessageError("expected InterpolateRequest or FluidAdvance, got " +
                                     std::string(body_name(request)) + " at step " + std::to_string(request.step()));
@@ -72,27 +73,28 @@ int FluidParticipant::run() {
   return exit_code_run_failed;
 }
 
-void FluidParticipant::interpolate(const Envelope &request) {
+void FluidParticipant::interpolate(const Message &request) {
   const auto start = std::chrono::steady_clock::now();
-  const auto &body = request.interpolate_request();
-  const PointsView x = view_points(body.position_m(), n_points_, "InterpolateRequest.position_m");
-  auto *reply = interpolate_reply_.mutable_interpolate_reply();
-  model_.interpolate(body, x, resize_points(*reply->mutable_velocity_m_per_s(), n_points_));
+  const auto &body = request.envelope().interpolate_request();
+  const PointsView x = request.points(body.position_m(), n_points_, "InterpolateRequest.position_m");
+  auto *reply = interpolate_reply_.envelope().mutable_interpolate_reply();
+  model_.interpolate(body, x, interpolate_reply_.add_points(*reply->mutable_velocity_m_per_s(), n_points_));
   reply->set_solve_wall_s(seconds_since(start));
-  interpolate_reply_.set_step(request.step());
+  interpolate_reply_.envelope().set_step(request.envelope().step());
   session_->send(interpolate_reply_);
 }
 
-void FluidParticipant::advance(const Envelope &request) {
+void FluidParticipant::advance(const Message &request) {
   const auto start = std::chrono::steady_clock::now();
-  const auto &body = request.fluid_advance();
-  const PointsView force = view_points(body.force_density_n_per_measure(), n_points_, "FluidAdvance.force_density_n_per_measure");
-  auto *reply = advance_reply_.mutable_advance_reply();
+  const auto &body = request.envelope().fluid_advance();
+  const PointsView force =
+      request.points(body.force_density_n_per_measure(), n_points_, "FluidAdvance.force_density_n_per_measure");
+  auto *reply = advance_reply_.envelope().mutable_advance_reply();
   reply->mutable_rigid_body_loads()->Clear();
   model_.advance(body, force, *reply);
   reply->set_time_s(body.time_s() + body.dt_s());
   reply->set_solve_wall_s(seconds_since(start));
-  advance_reply_.set_step(request.step());
+  advance_reply_.envelope().set_step(request.envelope().step());
   session_->send(advance_reply_);
   ++steps_;
 }

@@ -23,13 +23,13 @@ public:
   static std::atomic<int> &stop_signal();
 
 private:
-  void interpolate(const Envelope &request);
-  void advance(const Envelope &request);
+  void interpolate(const Message &request);
+  void advance(const Message &request);
 
   FluidModel &model_;
   SessionSettings settings_;
   std::unique_ptr<ParticipantSession> session_;
-  Envelope interpolate_reply_, advance_reply_; // reused: no per-step allocation
+  Message interpolate_reply_, advance_reply_; // reused: no per-step allocation of the headers
   Eigen::Index n_points_ = 0;
   long steps_ = 0;
 };

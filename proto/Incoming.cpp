@@ -5,27 +5,26 @@
 
 namespace fsi::proto {
 
-Incoming::Incoming(std::string peer, Envelope envelope)
-    : peer_(std::move(peer)), content_(std::move(envelope)) {}
+Incoming::Incoming(std::string peer, Message message) : peer_(std::move(peer)), content_(std::move(message)) {}
 
 Incoming::Incoming(std::string peer, MalformedMessage malformed)
     : peer_(std::move(peer)), content_(std::move(malformed)) {}
 
-const Envelope &Incoming::envelope() const {
+const Message &Incoming::message() const {
   if (is_malformed()) {
-    throw std::logic_error("Incoming::envelope() called on a malformed message from " +
+    throw std::logic_error("Incoming::message() called on a malformed message from " +
                            printable(peer_) + "; check is_malformed() first");
   }
-  return std::get<Envelope>(content_);
+  return std::get<Message>(content_);
 }
 
-Envelope &Incoming::envelope() { return const_cast<Envelope &>(std::as_const(*this).envelope()); }
+Message &Incoming::message() { return const_cast<Message &>(std::as_const(*this).message()); }
 
-Envelope &Incoming::envelope_to_fill() {
+Message &Incoming::message_to_fill() {
   if (is_malformed()) {
-    content_.emplace<Envelope>();
+    content_.emplace<Message>();
   }
-  return std::get<Envelope>(content_);
+  return std::get<Message>(content_);
 }
 
 const MalformedMessage &Incoming::malformed() const {

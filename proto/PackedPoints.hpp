@@ -1,7 +1,7 @@
 #pragma once
-// Packed double arrays of the protocol <-> N x 3 row-major point arrays (fsi::PointArray).
-// Both are x0 y0 z0 x1 y1 z1 ..., so a field is filled with one memcpy and read through an
-// Eigen::Map without copying. A field of the wrong size is the sender's fault: the checks
+// Views of N x 3 row-major point arrays (fsi::PointArray, x0 y0 z0 x1 y1 z1 ...) as the
+// protocol's array frames hold them (Message), and the small packed fields of the protocol
+// (vectors, rotations) <-> Eigen. A field of the wrong size is the sender's fault: the checks
 // throw MalformedMessageError naming the field, as the caller spells it.
 
 #include "common/Types.hpp"
@@ -15,24 +15,6 @@ namespace fsi::proto {
 using PackedDoubles = google::protobuf::RepeatedField<double>;
 using PointsView = Eigen::Map<const PointArray>;
 using MutablePointsView = Eigen::Map<PointArray>;
-
-/// Replaces the field's values by the points (one copy, no zero-fill).
-void write_points(const PointArray &points, PackedDoubles &field);
-
-/// Resizes the field to n_points x 3 and returns a view to fill in place (values undefined).
-MutablePointsView resize_points(PackedDoubles &field, Eigen::Index n_points);
-
-/// The field as n x 3 points without copying; throws unless it holds a multiple of 3 values.
-/// The view is valid while the field is alive and not resized.
-PointsView view_points(const PackedDoubles &field, std::string_view field_name);
-/// As above, and throws unless it holds exactly expected_n_points points.
-PointsView view_points(const PackedDoubles &field, Eigen::Index expected_n_points,
-                       std::string_view field_name);
-
-/// Copies the field into points (resized if needed), with the checks of view_points.
-void read_points(const PackedDoubles &field, std::string_view field_name, PointArray &points);
-void read_points(const PackedDoubles &field, Eigen::Index expected_n_points,
-                 std::string_view field_name, PointArray &points);
 
 /// A 3-vector (translation_m, force_n, ...) into and out of a field of exactly 3 values.
 void write_vector3(const Vec3 &vector, PackedDoubles &field);

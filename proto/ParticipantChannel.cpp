@@ -18,14 +18,9 @@ MalformedMessageError malformed_error(const std::string &routing_id, const Endpo
                                coupler.str() + ": " + reason);
 }
 
-void parse_frames(std::vector<zmq::message_t> &frames, Envelope &envelope,
-                  const std::string &routing_id, const Endpoint &coupler) {
-  if (frames.size() != 1) {
-    throw malformed_error(routing_id, coupler,
-                          "it has " + std::to_string(frames.size()) +
-                              " frames; an Envelope travels in exactly one");
-  }
-  if (auto malformed = EnvelopeCodec::decode_into(frames.front(), envelope)) {
+void parse_frames(std::vector<zmq::message_t> &frames, Message &message, const std::string &routing_id,
+                  const Endpoint &coupler) {
+  if (auto malformed = EnvelopeCodec::decode_into(frames, 0, message)) {
     throw malformed_error(routing_id, coupler, malformed->reason);
   }
 }
@@ -47,9 +42,19 @@ ParticipantChannel::~ParticipantChannel() = default;
 ParticipantChannel::ParticipantChannel(ParticipantChannel &&) noexcept = default;
 ParticipantChannel &ParticipantChannel::operator=(ParticipantChannel &&) noexcept = default;
 
+void ParticipantChannel::send(Message &message) {
+  std::vector<zmq::message_t> frames;
+  EnvelopeCodec::encode(message, frames);
+  send_frames(frames, message.envelope());
+}
+
 void ParticipantChannel::send(const Envelope &envelope) {
   std::vector<zmq::message_t> frames;
-  frames.push_back(EnvelopeCodec::encode(envelope));
+  EnvelopeCodec::encode(envelope, frames);
+  send_frames(frames, envelope);
+}
+
+void ParticipantChannel::send_frames(std::vector<zmq::message_t> &frames, const Envelope &envelope) {
   if (socket_->send_frames(frames) != Socket::SendStatus::sent) {
     throw TransportError("participant " + printable(routing_id_) + " cannot send " +
                          std::string(body_name(envelope)) + " to the coupler at " + coupler_.str() +
@@ -57,15 +62,15 @@ void ParticipantChannel::send(const Envelope &envelope) {
   }
 }
 
-std::optional<Envelope> ParticipantChannel::receive(std::chrono::milliseconds timeout) {
-  Envelope envelope;
-  if (!receive_into(envelope, timeout)) {
+std::optional<Message> ParticipantChannel::receive(std::chrono::milliseconds timeout) {
+  Message message;
+  if (!receive_into(message, timeout)) {
     return std::nullopt;
   }
-  return envelope;
+  return message;
 }
 
-bool ParticipantChannel::receive_into(Envelope &envelope, std::chrono::milliseconds timeout) {
+bool ParticipantChannel::receive_into(Message &message, std::chrono::milliseconds timeout) {
   if (!socket_->wait_readable(timeout)) {
     return false;
   }
@@ -73,7 +78,7 @@ bool ParticipantChannel::receive_into(Envelope &envelope, std::chrono::milliseco
   if (frames.empty()) {
     return false;
   }
-  parse_frames(frames, envelope, routing_id_, coupler_);
+  parse_frames(frames, message, routing_id_, coupler_);
   return true;
 }
 

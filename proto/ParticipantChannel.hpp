@@ -6,12 +6,14 @@
 
 #include "ChannelOptions.hpp"
 #include "Endpoint.hpp"
+#include "Message.hpp"
 #include "Protocol.hpp"
 
 #include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace fsi::proto {
 
@@ -31,21 +33,26 @@ public:
   const std::string &routing_id() const { return routing_id_; }
   const Endpoint &coupler_endpoint() const { return coupler_; }
 
-  /// Queues envelope for the coupler; throws TransportError when the queue stays full for
+  /// Queues the message for the coupler; its array frames go with it (moved, not copied: the
+  /// message keeps only its header). Throws TransportError when the queue stays full for
   /// options.send_timeout (the coupler is gone or stuck).
+  void send(Message &message);
+  /// As above, for an Envelope that names no array frames.
   void send(const Envelope &envelope);
 
-  /// The next Envelope from the coupler, or nullopt after timeout (negative: wait without
+  /// The next message from the coupler, or nullopt after timeout (negative: wait without
   /// limit) or when a signal interrupts the wait. Throws MalformedMessageError for anything
-  /// that is not a valid Envelope of this protocol version; the channel stays usable.
-  std::optional<Envelope> receive(std::chrono::milliseconds timeout);
+  /// that is not a valid message of this protocol version; the channel stays usable.
+  std::optional<Message> receive(std::chrono::milliseconds timeout);
 
-  /// As receive(), but parses into envelope, reusing the memory of its arrays when the body
-  /// type repeats (worth it from about 10^4 points). False after the timeout, with envelope
-  /// unchanged; unspecified after MalformedMessageError.
-  bool receive_into(Envelope &envelope, std::chrono::milliseconds timeout);
+  /// As receive(), but parses into message, reusing its Envelope's memory when the body type
+  /// repeats. False after the timeout, with message unchanged; unspecified after
+  /// MalformedMessageError.
+  bool receive_into(Message &message, std::chrono::milliseconds timeout);
 
 private:
+  void send_frames(std::vector<zmq::message_t> &frames, const Envelope &envelope);
+
   std::unique_ptr<Socket> socket_;
   Endpoint coupler_;
   std::string routing_id_;

@@ -16,7 +16,7 @@ ParticipantSession::ParticipantSession(SessionSettings settings)
 
 ParticipantSession::~ParticipantSession() { stop_heartbeat(); }
 
-const v1::Welcome &ParticipantSession::handshake(const std::vector<v1::StructureTopology> &structures) {
+const v2::Welcome &ParticipantSession::handshake(const std::vector<v2::StructureTopology> &structures) {
   Envelope hello = make_envelope(settings_.role, 0);
   auto *body = hello.mutable_hello();
   body->set_role(settings_.role);
@@ -31,7 +31,7 @@ const v1::Welcome &ParticipantSession::handshake(const std::vector<v1::Structure
   Envelope *welcome = nullptr;
   while (!welcome) {
     const auto left = std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
-    Envelope &message = wait_for_message(std::max(left, milliseconds(1)), "Welcome");
+    Envelope &message = wait_for_message(std::max(left, milliseconds(1)), "Welcome").envelope();
     if (!message.has_heartbeat())
       welcome = &message;
   }
@@ -44,7 +44,7 @@ const v1::Welcome &ParticipantSession::handshake(const std::vector<v1::Structure
   return welcome_;
 }
 
-Envelope &ParticipantSession::wait_for_message(milliseconds timeout, const char *waiting_for) {
+Message &ParticipantSession::wait_for_message(milliseconds timeout, const char *waiting_for) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
     if (settings_.stop_signal && *settings_.stop_signal != 0)
@@ -57,29 +57,30 @@ Envelope &ParticipantSession::wait_for_message(milliseconds timeout, const char 
     // Short slices so that a stop signal is seen promptly.
     if (!channel_.receive_into(incoming_, std::min(left, milliseconds(200))))
       continue;
-    if (incoming_.has_heartbeat())
+    const Envelope &envelope = incoming_.envelope();
+    if (envelope.has_heartbeat())
       return incoming_; // the caller decides whether it counts
-    if (incoming_.has_error())
-      throw RunStopped(incoming_.error().message());
-    if (incoming_.has_shutdown() && !incoming_.shutdown().success())
-      throw RunStopped(incoming_.shutdown().reason());
+    if (envelope.has_error())
+      throw RunStopped(envelope.error().message());
+    if (envelope.has_shutdown() && !envelope.shutdown().success())
+      throw RunStopped(envelope.shutdown().reason());
     return incoming_;
   }
 }
 
-Envelope &ParticipantSession::next_request() {
+Message &ParticipantSession::next_request() {
   const milliseconds timeout = to_ms(welcome_.timeout_s());
   while (true) {
-    Envelope &message = wait_for_message(timeout, "the next request");
-    if (!message.has_heartbeat())
+    Message &message = wait_for_message(timeout, "the next request");
+    if (!message.envelope().has_heartbeat())
       return message;
   }
 }
 
-void ParticipantSession::send(Envelope &envelope) {
-  envelope.set_protocol_version(current_protocol_version);
-  envelope.set_sender_role(settings_.role);
-  channel_.send(envelope);
+void ParticipantSession::send(Message &message) {
+  message.envelope().set_protocol_version(current_protocol_version);
+  message.envelope().set_sender_role(settings_.role);
+  channel_.send(message);
 }
 
 void ParticipantSession::report_error(const std::string &message, std::uint64_t step) noexcept {

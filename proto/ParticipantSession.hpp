@@ -7,13 +7,14 @@
 //   ParticipantSession session(settings);
 //   session.handshake(structures);
 //   while (true) {
-//     Envelope &request = session.next_request();   // throws CouplerLost, RunStopped
-//     if (request.has_shutdown()) break;            // end of run (success)
+//     Message &request = session.next_request();    // throws CouplerLost, RunStopped
+//     if (request.envelope().has_shutdown()) break; // end of run (success)
 //     ... compute, then session.send(reply) ...
 //   }
 
 #include "ChannelOptions.hpp"
 #include "Endpoint.hpp"
+#include "Message.hpp"
 #include "ParticipantChannel.hpp"
 #include "Protocol.hpp"
 
@@ -50,7 +51,7 @@ public:
 
 struct SessionSettings {
   Endpoint coupler = Endpoint::parse("tcp://127.0.0.1:5560");
-  Role role = v1::ROLE_STRUCTURE;
+  Role role = v2::ROLE_STRUCTURE;
   std::string name = "main";
   std::string case_fingerprint;
   ChannelOptions options;
@@ -69,17 +70,17 @@ public:
   /// Sends Hello (with the structures, for the structure participant) and waits for Welcome.
   /// Throws CouplerLost when the coupler refuses (version, case) or does not answer in time.
   /// Starts the heartbeat.
-  const v1::Welcome &handshake(const std::vector<v1::StructureTopology> &structures = {});
-  const v1::Welcome &welcome() const { return welcome_; }
+  const v2::Welcome &handshake(const std::vector<v2::StructureTopology> &structures = {});
+  const v2::Welcome &welcome() const { return welcome_; }
 
   /// The next request of the coupler (heartbeats are absorbed). A Shutdown with success is
   /// returned (the end of the run); a failed Shutdown or an ErrorReport throws RunStopped.
   /// Throws CouplerLost after welcome.timeout_s without any message from the coupler,
   /// Interrupted on a stop signal.
-  Envelope &next_request();
+  Message &next_request();
 
-  /// Sends a reply (stamped with this participant's role).
-  void send(Envelope &envelope);
+  /// Sends a reply (stamped with this participant's role); its array frames go with it.
+  void send(Message &message);
   /// Tells the coupler this participant failed at `step` (best effort: never throws).
   void report_error(const std::string &message, std::uint64_t step) noexcept;
 
@@ -87,15 +88,15 @@ public:
   const std::string &routing_id() const { return channel_.routing_id(); }
 
 private:
-  Envelope &wait_for_message(std::chrono::milliseconds timeout, const char *waiting_for);
+  Message &wait_for_message(std::chrono::milliseconds timeout, const char *waiting_for);
   void start_heartbeat(std::chrono::milliseconds interval);
   void stop_heartbeat();
   void heartbeat_loop(std::chrono::milliseconds interval);
 
   SessionSettings settings_;
   ParticipantChannel channel_;
-  v1::Welcome welcome_;
-  Envelope incoming_;
+  v2::Welcome welcome_;
+  Message incoming_;
   std::thread heartbeat_;
   std::mutex heartbeat_mutex_;
   std::condition_variable heartbeat_wakeup_;

@@ -25,11 +25,11 @@ Envelope make_envelope(Role sender, std::uint64_t step) {
 
 std::string_view role_name(Role role) {
   switch (role) {
-  case v1::ROLE_COUPLER:
+  case v2::ROLE_COUPLER:
     return "coupler";
-  case v1::ROLE_FLUID:
+  case v2::ROLE_FLUID:
     return "fluid";
-  case v1::ROLE_STRUCTURE:
+  case v2::ROLE_STRUCTURE:
     return "structure";
   default:
     return "unspecified";
@@ -45,7 +45,7 @@ std::string_view body_name(const Envelope &envelope) {
 }
 
 std::string routing_id(Role role, std::string_view participant_name) {
-  if (role != v1::ROLE_FLUID && role != v1::ROLE_STRUCTURE) {
+  if (role != v2::ROLE_FLUID && role != v2::ROLE_STRUCTURE) {
     throw TransportError("a participant must have the role fluid or structure, not '" +
                          std::string(role_name(role)) + "'");
   }

@@ -1,5 +1,5 @@
 #pragma once
-// The coupling protocol (fsi_coupling.proto, package fsi.proto.v1) as the rest of the code
+// The coupling protocol (fsi_coupling.proto, package fsi.proto.v2) as the rest of the code
 // sees it: the generated messages, the protocol version this build speaks, and small helpers
 // to stamp envelopes and name roles, bodies and peers.
 
@@ -11,11 +11,11 @@
 
 namespace fsi::proto {
 
-using Envelope = v1::Envelope;
-using Role = v1::Role;
+using Envelope = v2::Envelope;
+using Role = v2::Role;
 
 /// Version of fsi_coupling.proto this build speaks; Envelope.protocol_version must equal it.
-inline constexpr std::uint32_t current_protocol_version = 1;
+inline constexpr std::uint32_t current_protocol_version = 2;
 
 /// An empty Envelope stamped with the protocol version, the sender's role and the step.
 Envelope make_envelope(Role sender, std::uint64_t step);

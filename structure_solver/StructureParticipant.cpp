@@ -23,15 +23,15 @@ public:
 
 StructureParticipant::StructureParticipant(StructureRun &run, proto::SessionSettings settings)
     : run_(run), settings_(std::move(settings)) {
-  settings_.role = proto::v1::ROLE_STRUCTURE;
+  settings_.role = proto::v2::ROLE_STRUCTURE;
   settings_.case_fingerprint = run_.config().case_fingerprint;
   settings_.stop_signal = &StructureRun::stop_signal();
 }
 
-std::vector<proto::v1::StructureTopology> StructureParticipant::topology() const {
-  std::vector<proto::v1::StructureTopology> out;
+std::vector<proto::v2::StructureTopology> StructureParticipant::topology() const {
+  std::vector<proto::v2::StructureTopology> out;
   for (const auto &s : run_.scene().structures()) {
-    proto::v1::StructureTopology t;
+    proto::v2::StructureTopology t;
     t.set_name(s->name());
     t.set_model(s->model());
     t.set_n1(static_cast<std::uint32_t>(s->grid_shape().first));
@@ -62,9 +62,10 @@ int StructureParticipant::run() {
     spdlog::info("joined: {} steps of {} s", welcome.n_steps(), welcome.time_step_s());
     send_state(0, 0.0, true); // the initial state X^0, V^0
     for (step = 0; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
-      const proto::Envelope &request = session_->next_request();
+      const proto::Message &message = session_->next_request();
+      const proto::Envelope &request = message.envelope();
       check_request(request, step);
-      unpack_loads(request.structure_advance().load_density_n_per_measure());
+      unpack_loads(message);
       take_rigid_poses(request.structure_advance());
       const auto start = std::chrono::steady_clock::now();
       const StepOutcome outcome = run_.advance_step(step, &loads_);
@@ -80,7 +81,7 @@ int StructureParticipant::run() {
       }
       send_state(static_cast<std::uint64_t>(step), solve_s, false);
     }
-    const proto::Envelope &last = session_->next_request();
+    const proto::Envelope &last = session_->next_request().envelope();
     if (!last.has_shutdown())
       throw ProtocolViolation("expected Shutdown after the last step, got " + std::string(proto::body_name(last)));
     run_.finish("completed", run_.n_steps());
@@ -113,7 +114,7 @@ int StructureParticipant::run() {
   return common::exit_code_run_failed;
 }
 
-void StructureParticipant::take_rigid_poses(const proto::v1::StructureAdvance &advance) {
+void StructureParticipant::take_rigid_poses(const proto::v2::StructureAdvance &advance) {
   // Eq. (11) corrects against the surfaces at the end of the step, where the coupler put them.
   const double end_time_s = advance.time_s() + advance.dt_s();
   for (const auto &message : advance.rigid_bodies()) {
@@ -143,13 +144,14 @@ void StructureParticipant::check_request(const proto::Envelope &request, long st
                             std::to_string(step));
 }
 
-void StructureParticipant::unpack_loads(const proto::PackedDoubles &field) {
+void StructureParticipant::unpack_loads(const proto::Message &request) {
   Eigen::Index total = 0;
   for (const auto &l : loads_)
     total += l.rows();
   proto::PointsView all = [&] {
     try {
-      return proto::view_points(field, total, "StructureAdvance.load_density_n_per_measure");
+      return request.points(request.envelope().structure_advance().load_density_n_per_measure(), total,
+                            "StructureAdvance.load_density_n_per_measure");
     } catch (const proto::MalformedMessageError &e) {
       throw ProtocolViolation(e.what());
     }
@@ -166,20 +168,26 @@ void StructureParticipant::send_state(std::uint64_t step, double solve_wall_s, b
   Eigen::Index total = 0;
   for (const auto &s : structures)
     total += s->n_points();
-  auto *reply = reply_.mutable_advance_reply();
+  auto *reply = reply_.envelope().mutable_advance_reply();
   reply->set_time_s(run_.scene().time_s());
   reply->set_solve_wall_s(solve_wall_s);
-  auto x = proto::resize_points(*reply->mutable_position_m(), total);
-  // Per step only X^{n+1}: the coupler has X^n, so V^{n+1} = (X^{n+1} - X^n) / dt is not sent.
-  auto v = proto::resize_points(*reply->mutable_velocity_m_per_s(), with_velocity ? total : 0);
+  auto x = reply_.add_points(*reply->mutable_position_m(), total);
   Eigen::Index at = 0;
   for (const auto &s : structures) {
     x.middleRows(at, s->n_points()) = s->positions_m();
-    if (with_velocity)
-      v.middleRows(at, s->n_points()) = s->velocities_m_per_s();
     at += s->n_points();
   }
-  reply_.set_step(step);
+  // Per step only X^{n+1}: the coupler has X^n, so V^{n+1} = (X^{n+1} - X^n) / dt is not sent.
+  reply->clear_velocity_m_per_s();
+  if (with_velocity) {
+    auto v = reply_.add_points(*reply->mutable_velocity_m_per_s(), total);
+    at = 0;
+    for (const auto &s : structures) {
+      v.middleRows(at, s->n_points()) = s->velocities_m_per_s();
+      at += s->n_points();
+    }
+  }
+  reply_.envelope().set_step(step);
   session_->send(reply_);
 }
 

@@ -18,19 +18,19 @@ public:
   int run();
 
 private:
-  std::vector<proto::v1::StructureTopology> topology() const;
+  std::vector<proto::v2::StructureTopology> topology() const;
   /// X (and V, for the initial state only) of all structures, concatenated.
   void send_state(std::uint64_t step, double solve_wall_s, bool with_velocity);
   void check_request(const proto::Envelope &request, long step) const;
-  void unpack_loads(const proto::PackedDoubles &field);
+  void unpack_loads(const proto::Message &request);
   /// The moving rigid surfaces at the end of the step, from the coupler (section 2.3).
-  void take_rigid_poses(const proto::v1::StructureAdvance &advance);
+  void take_rigid_poses(const proto::v2::StructureAdvance &advance);
 
   StructureRun &run_;
   proto::SessionSettings settings_;
   std::unique_ptr<proto::ParticipantSession> session_;
   std::vector<PointArray> loads_;
-  proto::Envelope reply_;
+  proto::Message reply_;
   PointArray gather_;
 };
 

@@ -88,7 +88,8 @@ protected:
       fs::remove_all(dir_);
   }
 
-  /// The participant's next message that is not a heartbeat (5 s at most).
+  /// The participant's next message that is not a heartbeat (5 s at most); its array frames
+  /// (protocol version 2: after the Envelope's frame) are kept in arrays_.
   Envelope next() {
     const auto deadline = std::chrono::steady_clock::now() + 5s;
     while (std::chrono::steady_clock::now() < deadline) {
@@ -96,23 +97,29 @@ protected:
       if (zmq::poll(&item, 1, 100ms) <= 0)
         continue;
       std::vector<zmq::message_t> frames;
-      if (!zmq::recv_multipart(router_, std::back_inserter(frames)) || frames.size() != 2)
+      if (!zmq::recv_multipart(router_, std::back_inserter(frames)) || frames.size() < 2)
         continue;
       peer_ = frames[0].to_string();
       Envelope envelope;
       EXPECT_TRUE(envelope.ParseFromArray(frames[1].data(), static_cast<int>(frames[1].size())));
-      if (!envelope.has_heartbeat())
+      if (!envelope.has_heartbeat()) {
+        arrays_.clear();
+        for (std::size_t i = 2; i < frames.size(); ++i)
+          arrays_.emplace_back(frames[i].data<double>(), frames[i].data<double>() + frames[i].size() / sizeof(double));
         return envelope;
+      }
     }
     ADD_FAILURE() << "the structure sent nothing within 5 s:\n" << structure_->output();
     return {};
   }
 
-  void send(const Envelope &envelope) {
+  void send(const Envelope &envelope, const std::vector<std::vector<double>> &arrays = {}) {
     std::vector<zmq::message_t> frames;
     frames.emplace_back(peer_.data(), peer_.size());
     const std::string bytes = envelope.SerializeAsString();
     frames.emplace_back(bytes.data(), bytes.size());
+    for (const auto &array : arrays)
+      frames.emplace_back(array.data(), sizeof(double) * array.size());
     zmq::send_multipart(router_, frames);
   }
 
@@ -120,7 +127,7 @@ protected:
   int join() {
     const Envelope hello = next();
     EXPECT_TRUE(hello.has_hello()) << structure_->output();
-    Envelope welcome = fsi::proto::make_envelope(fsi::proto::v1::ROLE_COUPLER, 0);
+    Envelope welcome = fsi::proto::make_envelope(fsi::proto::v2::ROLE_COUPLER, 0);
     welcome.mutable_welcome()->set_time_step_s(dt_s);
     welcome.mutable_welcome()->set_n_steps(2);
     welcome.mutable_welcome()->set_heartbeat_interval_s(0.1);
@@ -128,20 +135,20 @@ protected:
     send(welcome);
     const Envelope initial = next();
     EXPECT_TRUE(initial.has_advance_reply()) << structure_->output();
-    return initial.advance_reply().position_m_size() / 3;
+    return static_cast<int>(initial.advance_reply().position_m().n_values() / 3);
   }
 
   /// StructureAdvance of step 0 (no load), with these poses of the moving surfaces.
   Envelope advance(int n_points, const std::vector<fsi::proto::BodyPose> &poses) {
-    Envelope request = fsi::proto::make_envelope(fsi::proto::v1::ROLE_COUPLER, 0);
+    Envelope request = fsi::proto::make_envelope(fsi::proto::v2::ROLE_COUPLER, 0);
     auto *advance = request.mutable_structure_advance();
     advance->set_time_s(0.0);
     advance->set_dt_s(dt_s);
-    for (int i = 0; i < 3 * n_points; ++i)
-      advance->add_load_density_n_per_measure(0.0);
+    advance->mutable_load_density_n_per_measure()->set_frame(1);
+    advance->mutable_load_density_n_per_measure()->set_n_values(3 * static_cast<std::uint64_t>(n_points));
     for (const auto &pose : poses)
       fsi::proto::write_body_pose(pose, *advance->add_rigid_bodies());
-    send(request);
+    send(request, {std::vector<double>(3 * static_cast<std::size_t>(n_points), 0.0)});
     return next();
   }
 
@@ -157,6 +164,7 @@ protected:
   zmq::socket_t router_{context_, zmq::socket_type::router};
   std::unique_ptr<fsi::testing::ChildProcess> structure_;
   std::string peer_;
+  std::vector<std::vector<double>> arrays_; ///< the array frames of the last message
 };
 
 TEST_F(FakeCoupler, TheStructureCollidesWithTheSurfaceWhereTheCouplerPutsIt) {
@@ -164,7 +172,7 @@ TEST_F(FakeCoupler, TheStructureCollidesWithTheSurfaceWhereTheCouplerPutsIt) {
   ASSERT_EQ(n, 36);
   const Envelope reply = advance(n, {raised_floor("surface0")});
   ASSERT_TRUE(reply.has_advance_reply()) << structure_->output();
-  const auto &x = reply.advance_reply().position_m();
+  const auto &x = arrays_.at(reply.advance_reply().position_m().frame() - 1);
   for (int i = 0; i < n; ++i) // the case's own motion would leave every point at z = 0.01 m
     EXPECT_NEAR(x[3 * i + 2], raised_floor_m + target_distance_m, 1e-12) << "point " << i;
 }

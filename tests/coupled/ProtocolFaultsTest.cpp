@@ -153,10 +153,10 @@ protected:
   }
 
   static Envelope hello(std::uint32_t envelope_version, std::uint32_t hello_version) {
-    Envelope envelope = fsi::proto::make_envelope(fsi::proto::v1::ROLE_STRUCTURE, 0);
+    Envelope envelope = fsi::proto::make_envelope(fsi::proto::v2::ROLE_STRUCTURE, 0);
     envelope.set_protocol_version(envelope_version);
     auto *h = envelope.mutable_hello();
-    h->set_role(fsi::proto::v1::ROLE_STRUCTURE);
+    h->set_role(fsi::proto::v2::ROLE_STRUCTURE);
     h->set_participant_name("main");
     h->set_protocol_version(hello_version);
     h->set_case_fingerprint("0000000000000000");
@@ -174,37 +174,55 @@ void send(zmq::socket_t &socket, const Envelope &envelope) {
   socket.send(zmq::buffer(envelope.SerializeAsString()), zmq::send_flags::none);
 }
 
-// c. A structure participant of protocol version 2 is refused: ErrorReport naming the version,
-// coupler exit 2 with a clear message. Two ways to say "version 2": the Envelope's
-// protocol_version, and Hello.protocol_version inside a version-1 Envelope.
-TEST_F(ProtocolFaults, EnvelopeOfVersion2IsRefused) {
+// c. A structure participant of another protocol version is refused: ErrorReport naming the
+// version, coupler exit 2 with a clear message. Three ways to be of another version: a version-1
+// participant (the Envelope says 1), a newer one (3), and Hello.protocol_version 3 inside a
+// current Envelope.
+TEST_F(ProtocolFaults, AParticipantOfVersion1IsRefused) {
   const std::string endpoint = start_coupler();
   ASSERT_FALSE(endpoint.empty());
   auto raw = raw_dealer("structure:main", endpoint);
-  send(raw, hello(2, 2));
+  send(raw, hello(1, 1));
   const auto error = receive_error(raw, 5s);
   const auto code = coupler_->wait(10s);
   ASSERT_TRUE(code) << "the coupler still runs: " << coupler_->output();
   EXPECT_EQ(*code, 2) << coupler_->output();
-  EXPECT_NE(coupler_->output().find("protocol_version 2"), std::string::npos) << coupler_->output();
+  EXPECT_NE(coupler_->output().find("protocol_version 1 but this side speaks version 2"), std::string::npos)
+      << coupler_->output();
   EXPECT_NE(coupler_->output().find("structure:main"), std::string::npos) << coupler_->output();
   ASSERT_TRUE(error) << "no ErrorReport reached the refused participant (lost when the coupler exited?)";
   EXPECT_NE(error->find("version"), std::string::npos) << *error;
-  EXPECT_NE(error->find("2"), std::string::npos) << *error;
+  EXPECT_NE(error->find("1"), std::string::npos) << *error;
 }
 
-TEST_F(ProtocolFaults, HelloOfVersion2IsRefused) {
+TEST_F(ProtocolFaults, EnvelopeOfVersion3IsRefused) {
   const std::string endpoint = start_coupler();
   ASSERT_FALSE(endpoint.empty());
   auto raw = raw_dealer("structure:main", endpoint);
-  send(raw, hello(1, 2));
+  send(raw, hello(3, 3));
   const auto error = receive_error(raw, 5s);
   const auto code = coupler_->wait(10s);
   ASSERT_TRUE(code) << "the coupler still runs: " << coupler_->output();
   EXPECT_EQ(*code, 2) << coupler_->output();
-  EXPECT_NE(coupler_->output().find("speaks protocol version 2"), std::string::npos) << coupler_->output();
+  EXPECT_NE(coupler_->output().find("protocol_version 3"), std::string::npos) << coupler_->output();
   ASSERT_TRUE(error) << "no ErrorReport reached the refused participant (lost when the coupler exited?)";
-  EXPECT_NE(error->find("protocol version 2"), std::string::npos) << *error;
+  EXPECT_NE(error->find("version"), std::string::npos) << *error;
+  EXPECT_NE(error->find("3"), std::string::npos) << *error;
+}
+
+TEST_F(ProtocolFaults, HelloOfVersion3IsRefused) {
+  const std::string endpoint = start_coupler();
+  ASSERT_FALSE(endpoint.empty());
+  auto raw = raw_dealer("structure:main", endpoint);
+  send(raw, hello(2, 3));
+  const auto error = receive_error(raw, 5s);
+  const auto code = coupler_->wait(10s);
+  ASSERT_TRUE(code) << "the coupler still runs: " << coupler_->output();
+  EXPECT_EQ(*code, 2) << coupler_->output();
+  EXPECT_NE(coupler_->output().find("speaks protocol version 3, this coupler version 2"), std::string::npos)
+      << coupler_->output();
+  ASSERT_TRUE(error) << "no ErrorReport reached the refused participant (lost when the coupler exited?)";
+  EXPECT_NE(error->find("protocol version 3"), std::string::npos) << *error;
 }
 
 // d. Garbage sent to the coupler's socket during a run is answered with ErrorReports and the
@@ -245,7 +263,7 @@ TEST_F(ProtocolFaults, GarbageDuringARunIsAnsweredAndTheRunCompletes) {
   garbage.send(zmq::buffer(good), zmq::send_flags::sndmore);
   garbage.send(zmq::buffer(good), zmq::send_flags::none);
   EXPECT_TRUE(receive_error(garbage, 2s)) << "two frames";
-  Envelope no_body = fsi::proto::make_envelope(fsi::proto::v1::ROLE_FLUID, 3);
+  Envelope no_body = fsi::proto::make_envelope(fsi::proto::v2::ROLE_FLUID, 3);
   send(garbage, no_body);
   EXPECT_TRUE(receive_error(garbage, 2s)) << "Envelope without a body";
   send(garbage, hello(1, 1));

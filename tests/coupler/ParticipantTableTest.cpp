@@ -28,7 +28,7 @@ protected:
   proto::SessionSettings settings(const std::string &name) {
     proto::SessionSettings s;
     s.coupler = channel.endpoint();
-    s.role = proto::v1::ROLE_STRUCTURE;
+    s.role = proto::v2::ROLE_STRUCTURE;
     s.name = name;
     s.handshake_timeout = 5s;
     return s;
@@ -40,9 +40,9 @@ protected:
     EXPECT_TRUE(hello.envelope().has_hello());
     const std::string id = hello.peer();
     table.add(id);
-    proto::Envelope welcome = proto::make_envelope(proto::v1::ROLE_COUPLER, 0);
-    welcome.mutable_welcome()->set_heartbeat_interval_s(heartbeat_s);
-    welcome.mutable_welcome()->set_timeout_s(timeout_s);
+    proto::Message welcome = proto::make_envelope(proto::v2::ROLE_COUPLER, 0);
+    welcome.envelope().mutable_welcome()->set_heartbeat_interval_s(heartbeat_s);
+    welcome.envelope().mutable_welcome()->set_timeout_s(timeout_s);
     table.send(id, welcome, 0);
     table.close_admission(); // the handshake is over: liveness is watched from now on
     return id;
@@ -71,8 +71,8 @@ TEST_F(LivenessTest, AParticipantThatStopsIsNamedWithinTheTimeout) {
 TEST_F(LivenessTest, AJoinedParticipantWaitingForTheOthersIsNotDeclaredDead) {
   // During the handshake a participant that has said Hello waits for Welcome without
   // heartbeats (they start with Welcome); the coupler waits for the others meanwhile.
-  proto::ParticipantChannel early(channel.endpoint(), proto::v1::ROLE_STRUCTURE, "early");
-  proto::Envelope hello = proto::make_envelope(proto::v1::ROLE_STRUCTURE, 0);
+  proto::ParticipantChannel early(channel.endpoint(), proto::v2::ROLE_STRUCTURE, "early");
+  proto::Envelope hello = proto::make_envelope(proto::v2::ROLE_STRUCTURE, 0);
   hello.mutable_hello()->set_participant_name("early");
   early.send(hello);
   auto &incoming = table.next(Clock::now() + 5s, "anyone", "Hello", 0);
@@ -93,8 +93,8 @@ TEST_F(LivenessTest, ABusyParticipantStaysAliveThroughItsHeartbeat) {
   // The participant "solves" for three times the liveness timeout, then replies.
   auto reply = std::async(std::launch::async, [&] {
     std::this_thread::sleep_for(3 * std::chrono::milliseconds(static_cast<int>(timeout_s * 1000)));
-    proto::Envelope done = proto::make_envelope(proto::v1::ROLE_STRUCTURE, 3);
-    done.mutable_advance_reply()->set_time_s(1.0);
+    proto::Message done = proto::make_envelope(proto::v2::ROLE_STRUCTURE, 3);
+    done.envelope().mutable_advance_reply()->set_time_s(1.0);
     session.send(done);
   });
   auto &incoming = table.next(Clock::now() + 10s, id, "AdvanceReply", 3);
@@ -122,22 +122,23 @@ TEST_F(LivenessTest, StrangersAreAnsweredWithAnErrorAndTheWaitGoesOn) {
   auto joined = std::async(std::launch::async, [&] { session.handshake(); });
   const std::string id = accept_one();
   joined.get();
-  proto::ParticipantChannel stranger(channel.endpoint(), proto::v1::ROLE_FLUID, "stranger");
-  proto::Envelope bogus = proto::make_envelope(proto::v1::ROLE_FLUID, 0);
+  proto::ParticipantChannel stranger(channel.endpoint(), proto::v2::ROLE_FLUID, "stranger");
+  proto::Envelope bogus = proto::make_envelope(proto::v2::ROLE_FLUID, 0);
   bogus.mutable_advance_reply()->set_time_s(1.0);
   stranger.send(bogus);
   auto reply = std::async(std::launch::async, [&] {
     std::this_thread::sleep_for(200ms);
-    proto::Envelope done = proto::make_envelope(proto::v1::ROLE_STRUCTURE, 0);
-    done.mutable_advance_reply();
+    proto::Message done = proto::make_envelope(proto::v2::ROLE_STRUCTURE, 0);
+    done.envelope().mutable_advance_reply();
     session.send(done);
   });
   auto &incoming = table.next(Clock::now() + 5s, id, "AdvanceReply", 0);
   EXPECT_EQ(incoming.peer(), id);
   const auto answer = stranger.receive(2s);
   ASSERT_TRUE(answer.has_value());
-  ASSERT_TRUE(answer->has_error());
-  EXPECT_NE(answer->error().message().find("send Hello first"), std::string::npos) << answer->error().message();
+  ASSERT_TRUE(answer->envelope().has_error());
+  const auto &error = answer->envelope().error();
+  EXPECT_NE(error.message().find("send Hello first"), std::string::npos) << error.message();
   reply.get();
 }
 

@@ -138,12 +138,12 @@ TEST(Endpoint, ATakenPortIsNamedWithARemedy) {
 
 TEST(Endpoint, ParticipantsCannotConnectToBindOnlyEndpoints) {
   EXPECT_TRUE(contains(error_of([] {
-                         ParticipantChannel p(Endpoint::parse("tcp://127.0.0.1:0"), v1::ROLE_FLUID,
+                         ParticipantChannel p(Endpoint::parse("tcp://127.0.0.1:0"), v2::ROLE_FLUID,
                                               "main");
                        }),
                        "port 0"));
   EXPECT_TRUE(contains(error_of([] {
-                         ParticipantChannel p(Endpoint::parse("tcp://*:5555"), v1::ROLE_FLUID,
+                         ParticipantChannel p(Endpoint::parse("tcp://*:5555"), v2::ROLE_FLUID,
                                               "main");
                        }),
                        "host *"));
@@ -151,11 +151,11 @@ TEST(Endpoint, ParticipantsCannotConnectToBindOnlyEndpoints) {
 
 TEST(Endpoint, ParticipantsNeedAParticipantRoleAndAName) {
   const auto coupler = Endpoint::parse("inproc://nowhere");
-  EXPECT_TRUE(contains(error_of([&] { ParticipantChannel p(coupler, v1::ROLE_COUPLER, "main"); }),
+  EXPECT_TRUE(contains(error_of([&] { ParticipantChannel p(coupler, v2::ROLE_COUPLER, "main"); }),
                        "fluid or"));
-  EXPECT_TRUE(contains(error_of([&] { ParticipantChannel p(coupler, v1::ROLE_FLUID, ""); }),
+  EXPECT_TRUE(contains(error_of([&] { ParticipantChannel p(coupler, v2::ROLE_FLUID, ""); }),
                        "1 to 200 characters"));
-  EXPECT_EQ(ParticipantChannel(coupler, v1::ROLE_FLUID, "main").routing_id(), "fluid:main");
+  EXPECT_EQ(ParticipantChannel(coupler, v2::ROLE_FLUID, "main").routing_id(), "fluid:main");
 }
 
 TEST(Endpoint, OptionsOutOfRangeAreNamed) {

@@ -1,10 +1,15 @@
-// Packed double fields <-> N x 3 point arrays: layout, zero-copy views, size checks.
+// Array frames of a message <-> N x 3 point arrays (layout, views in place, size checks); small
+// packed fields <-> vectors and rotations.
 
+#include "proto/Message.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/Protocol.hpp"
 #include "proto/TransportError.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
 
 namespace fsi::proto::test {
 namespace {
@@ -26,67 +31,57 @@ std::string error_of(const std::function<void()> &f) {
   return "";
 }
 
-TEST(PackedPoints, WriteIsPointMajor) {
-  PackedDoubles field;
-  field.Add(99.0); // replaced, not appended to
-  write_points(numbered_points(2), field);
-  ASSERT_EQ(field.size(), 6);
-  EXPECT_EQ(field.Get(0), 0.25); // x0
-  EXPECT_EQ(field.Get(1), 1.25); // y0
-  EXPECT_EQ(field.Get(3), 3.25); // x1
-}
-
-TEST(PackedPoints, ViewReadsInPlaceWithoutCopying) {
-  PackedDoubles field;
-  write_points(numbered_points(4), field);
-  const PointsView view = view_points(field, 4, "position_m");
-  EXPECT_EQ(view.data(), field.data());
-  EXPECT_EQ(view(3, 2), 11.25);
-  EXPECT_EQ(view_points(field, "position_m").rows(), 4);
-}
-
-TEST(PackedPoints, ResizeGivesAViewToFillInPlace) {
-  PackedDoubles field;
-  MutablePointsView view = resize_points(field, 3);
-  view = numbered_points(3);
-  EXPECT_EQ(field.size(), 9);
-  EXPECT_EQ(field.Get(8), 8.25);
-}
-
-TEST(PackedPoints, ReadCopiesIntoAnArrayOfAnySize) {
-  PackedDoubles field;
-  write_points(numbered_points(5), field);
-  PointArray points(1, 3);
-  read_points(field, 5, "position_m", points);
-  EXPECT_EQ(points, numbered_points(5));
-  read_points(field, "position_m", points);
-  EXPECT_EQ(points, numbered_points(5));
-}
-
-TEST(PackedPoints, EmptyFieldsAreZeroPoints) {
-  PackedDoubles field;
-  write_points(PointArray(0, 3), field);
-  EXPECT_EQ(field.size(), 0);
-  EXPECT_EQ(view_points(field, "position_m").rows(), 0);
-  EXPECT_EQ(view_points(field, 0, "position_m").rows(), 0);
-}
-
-TEST(PackedPoints, WrongSizesNameTheField) {
-  PackedDoubles field;
-  for (int i = 0; i < 7; ++i) {
-    field.Add(1.0);
+TEST(MessageArrays, AFrameIsPointMajorDoubles) {
+  Message message = make_envelope(v2::ROLE_COUPLER, 1);
+  auto &ref = *message.envelope().mutable_interpolate_request()->mutable_position_m();
+  message.add_points(ref, numbered_points(2));
+  EXPECT_EQ(ref.frame(), 1U);
+  EXPECT_EQ(ref.n_values(), 6U);
+  const std::string_view bytes = message.array_frame(1);
+  ASSERT_EQ(bytes.size(), 6 * sizeof(double));
+  double values[6];
+  std::memcpy(values, bytes.data(), bytes.size());
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(values[i], i + 0.25); // x0 y0 z0 x1 y1 z1
   }
-  const std::string not_triples = error_of([&] { view_points(field, "advance_reply.position_m"); });
-  EXPECT_NE(not_triples.find("advance_reply.position_m holds 7 values"), std::string::npos)
-      << not_triples;
-  EXPECT_NE(not_triples.find("multiple of 3"), std::string::npos) << not_triples;
+}
 
-  write_points(numbered_points(4), field);
+TEST(MessageArrays, AddGivesAViewIntoTheFrameThatPointsReadsInPlace) {
+  Message message = make_envelope(v2::ROLE_COUPLER, 1);
+  auto *body = message.envelope().mutable_advance_reply();
+  MutablePointsView x = message.add_points(*body->mutable_position_m(), 3);
+  x = numbered_points(3);
+  // A second frame must not move the first (small frames live inside their zmq message).
+  message.add_points(*body->mutable_velocity_m_per_s(), 1).setConstant(-1.0);
+  EXPECT_EQ(x(2, 2), 8.25);
+  const PointsView view = message.points(body->position_m(), 3, "position_m");
+  EXPECT_EQ(view.data(), x.data());
+  EXPECT_EQ(PointArray(view), numbered_points(3));
+  EXPECT_EQ(message.points(body->velocity_m_per_s(), "velocity_m_per_s")(0, 1), -1.0);
+}
+
+TEST(MessageArrays, AnUnsetOrEmptyFieldIsZeroPoints) {
+  Message message = make_envelope(v2::ROLE_STRUCTURE, 1);
+  auto *body = message.envelope().mutable_advance_reply();
+  EXPECT_EQ(message.points(body->velocity_m_per_s(), "velocity_m_per_s").rows(), 0);
+  EXPECT_EQ(message.points(body->velocity_m_per_s(), 0, "velocity_m_per_s").rows(), 0);
+  message.add_points(*body->mutable_position_m(), PointArray(0, 3));
+  EXPECT_EQ(message.points(body->position_m(), 0, "position_m").rows(), 0);
+}
+
+TEST(MessageArrays, WrongSizesNameTheField) {
+  Message message = make_envelope(v2::ROLE_FLUID, 1);
+  auto *body = message.envelope().mutable_interpolate_reply();
+  message.add_points(*body->mutable_velocity_m_per_s(), numbered_points(4));
   const std::string wrong_count =
-      error_of([&] { view_points(field, 5, "interpolate_reply.velocity_m_per_s"); });
-  EXPECT_NE(wrong_count.find("interpolate_reply.velocity_m_per_s holds 12 values, expected 15"),
+      error_of([&] { message.points(body->velocity_m_per_s(), 5, "interpolate_reply.velocity_m_per_s"); });
+  EXPECT_NE(wrong_count.find("interpolate_reply.velocity_m_per_s holds 12 values, expected 5 points x 3"),
             std::string::npos)
       << wrong_count;
+  body->mutable_velocity_m_per_s()->set_n_values(7);
+  const std::string not_triples = error_of([&] { message.points(body->velocity_m_per_s(), "velocity_m_per_s"); });
+  EXPECT_NE(not_triples.find("velocity_m_per_s holds 7 values, not a multiple of 3"), std::string::npos)
+      << not_triples;
 }
 
 TEST(PackedPoints, VectorsAndRotationsRoundTrip) {
@@ -104,14 +99,14 @@ TEST(PackedPoints, VectorsAndRotationsRoundTrip) {
 }
 
 TEST(Protocol, NamesRolesBodiesAndPeers) {
-  EXPECT_EQ(role_name(v1::ROLE_STRUCTURE), "structure");
-  Envelope envelope = make_envelope(v1::ROLE_FLUID, 12);
+  EXPECT_EQ(role_name(v2::ROLE_STRUCTURE), "structure");
+  Envelope envelope = make_envelope(v2::ROLE_FLUID, 12);
   EXPECT_EQ(envelope.protocol_version(), current_protocol_version);
   EXPECT_EQ(envelope.step(), 12U);
   EXPECT_EQ(body_name(envelope), "none");
   envelope.mutable_fluid_advance();
   EXPECT_EQ(body_name(envelope), "fluid_advance");
-  EXPECT_EQ(routing_id(v1::ROLE_FLUID, "main"), "fluid:main");
+  EXPECT_EQ(routing_id(v2::ROLE_FLUID, "main"), "fluid:main");
   EXPECT_EQ(printable(std::string("\0ab\n", 4)), "\\x00ab\\x0a");
 }
 

@@ -19,7 +19,15 @@ void fill(google::protobuf::RepeatedField<double> *field, std::size_t n, double 
   }
 }
 
-void fill_topology(v1::StructureTopology *topology, const char *name) {
+/// A frame of n values (a multiple of 3) for `field`, the tricky values spread as in fill().
+void fill(Message &message, ArrayFrame *field, std::size_t n, double offset = 0.0) {
+  auto points = message.add_points(*field, static_cast<Eigen::Index>(n / 3));
+  for (std::size_t i = 0; i < n; ++i) {
+    points.data()[i] = tricky_values[i % tricky_values.size()] + offset * static_cast<double>(i);
+  }
+}
+
+void fill_topology(v2::StructureTopology *topology, const char *name) {
   topology->set_name(name);
   topology->set_model("membrane");
   topology->set_n1(std::numeric_limits<std::uint32_t>::max());
@@ -27,7 +35,7 @@ void fill_topology(v1::StructureTopology *topology, const char *name) {
   fill(topology->mutable_point_measure(), 5, 1e-3);
 }
 
-void fill_pose(v1::RigidBodyPose *pose) {
+void fill_pose(v2::RigidBodyPose *pose) {
   pose->set_name("pôle");
   fill(pose->mutable_rotation(), 9);
   fill(pose->mutable_translation_m(), 3, 0.5);
@@ -35,12 +43,12 @@ void fill_pose(v1::RigidBodyPose *pose) {
   fill(pose->mutable_linear_velocity_m_per_s(), 3, 2.0);
 }
 
-Envelope stamped(std::uint64_t step) { return make_envelope(v1::ROLE_COUPLER, step); }
+Message stamped(std::uint64_t step) { return make_envelope(v2::ROLE_COUPLER, step); }
 
 Envelope hello() {
-  Envelope e = make_envelope(v1::ROLE_STRUCTURE, 0);
+  Envelope e = make_envelope(v2::ROLE_STRUCTURE, 0);
   auto *body = e.mutable_hello();
-  body->set_role(v1::ROLE_STRUCTURE);
+  body->set_role(v2::ROLE_STRUCTURE);
   body->set_participant_name("drapeau ✓");
   body->set_protocol_version(current_protocol_version);
   body->set_case_fingerprint("sha256:0123456789abcdef");
@@ -50,7 +58,7 @@ Envelope hello() {
 }
 
 Envelope welcome() {
-  Envelope e = stamped(0);
+  Envelope e = make_envelope(v2::ROLE_COUPLER, 0);
   auto *body = e.mutable_welcome();
   body->set_time_step_s(1e-5);
   body->set_n_steps(std::numeric_limits<std::uint64_t>::max());
@@ -60,47 +68,47 @@ Envelope welcome() {
   return e;
 }
 
-Envelope interpolate_request() {
-  Envelope e = stamped(17);
-  auto *body = e.mutable_interpolate_request();
+Message interpolate_request() {
+  Message e = stamped(17);
+  auto *body = e.envelope().mutable_interpolate_request();
   body->set_time_s(0.125);
   fill_pose(body->add_rigid_bodies());
   fill_pose(body->add_rigid_bodies());
-  fill(body->mutable_position_m(), 30, 0.01);
+  fill(e, body->mutable_position_m(), 30, 0.01);
   return e;
 }
 
-Envelope interpolate_reply() {
-  Envelope e = make_envelope(v1::ROLE_FLUID, 17);
-  fill(e.mutable_interpolate_reply()->mutable_velocity_m_per_s(), 30, -0.02);
+Message interpolate_reply() {
+  Message e = make_envelope(v2::ROLE_FLUID, 17);
+  fill(e, e.envelope().mutable_interpolate_reply()->mutable_velocity_m_per_s(), 30, -0.02);
   return e;
 }
 
-Envelope fluid_advance() {
-  Envelope e = stamped(18);
-  auto *body = e.mutable_fluid_advance();
-  body->set_time_s(0.125);
-  body->set_dt_s(1e-5);
-  fill(body->mutable_force_density_n_per_measure(), 30, 3.0);
-  return e;
-}
-
-Envelope structure_advance() {
-  Envelope e = stamped(18);
-  auto *body = e.mutable_structure_advance();
+Message fluid_advance() {
+  Message e = stamped(18);
+  auto *body = e.envelope().mutable_fluid_advance();
   body->set_time_s(0.125);
   body->set_dt_s(1e-5);
-  fill(body->mutable_load_density_n_per_measure(), 30, -3.0);
+  fill(e, body->mutable_force_density_n_per_measure(), 30, 3.0);
+  return e;
+}
+
+Message structure_advance() {
+  Message e = stamped(18);
+  auto *body = e.envelope().mutable_structure_advance();
+  body->set_time_s(0.125);
+  body->set_dt_s(1e-5);
+  fill(e, body->mutable_load_density_n_per_measure(), 30, -3.0);
   fill_pose(body->add_rigid_bodies());
   return e;
 }
 
-Envelope advance_reply() {
-  Envelope e = make_envelope(v1::ROLE_STRUCTURE, 18);
-  auto *body = e.mutable_advance_reply();
+Message advance_reply() {
+  Message e = make_envelope(v2::ROLE_STRUCTURE, 18);
+  auto *body = e.envelope().mutable_advance_reply();
   body->set_time_s(0.12501);
-  fill(body->mutable_position_m(), 30, 0.01);
-  fill(body->mutable_velocity_m_per_s(), 30, 0.5);
+  fill(e, body->mutable_position_m(), 30, 0.01);
+  fill(e, body->mutable_velocity_m_per_s(), 30, 0.5);
   body->set_solve_wall_s(0.003);
   auto *load = body->add_rigid_body_loads();
   load->set_name("pole");
@@ -110,13 +118,13 @@ Envelope advance_reply() {
 }
 
 Envelope heartbeat() {
-  Envelope e = make_envelope(v1::ROLE_FLUID, 19);
+  Envelope e = make_envelope(v2::ROLE_FLUID, 19);
   e.mutable_heartbeat()->set_wall_time_s(1.7e9);
   return e;
 }
 
 Envelope error_report() {
-  Envelope e = make_envelope(v1::ROLE_FLUID, 20);
+  Envelope e = make_envelope(v2::ROLE_FLUID, 20);
   auto *body = e.mutable_error();
   body->set_message("fluid 'main' at step 20: the pressure solver diverged; reduce dt_s");
   body->set_fatal(true);
@@ -124,7 +132,7 @@ Envelope error_report() {
 }
 
 Envelope shutdown() {
-  Envelope e = stamped(21);
+  Envelope e = make_envelope(v2::ROLE_COUPLER, 21);
   auto *body = e.mutable_shutdown();
   body->set_reason("end of run");
   body->set_success(true);
@@ -133,14 +141,32 @@ Envelope shutdown() {
 
 } // namespace
 
-std::vector<Envelope> sample_envelopes() {
-  return {hello(),         welcome(),           interpolate_request(), interpolate_reply(),
-          fluid_advance(), structure_advance(), advance_reply(),       heartbeat(),
-          error_report(),  shutdown()};
+std::vector<Message> sample_messages() {
+  std::vector<Message> messages;
+  messages.emplace_back(hello());
+  messages.emplace_back(welcome());
+  messages.push_back(interpolate_request());
+  messages.push_back(interpolate_reply());
+  messages.push_back(fluid_advance());
+  messages.push_back(structure_advance());
+  messages.push_back(advance_reply());
+  messages.emplace_back(heartbeat());
+  messages.emplace_back(error_report());
+  messages.emplace_back(shutdown());
+  return messages;
 }
 
-bool same_bytes(const Envelope &a, const Envelope &b) {
-  return a.SerializeAsString() == b.SerializeAsString();
+bool same_bytes(const Message &a, const Message &b) {
+  if (a.envelope().SerializeAsString() != b.envelope().SerializeAsString() ||
+      a.array_frame_count() != b.array_frame_count()) {
+    return false;
+  }
+  for (std::size_t frame = 1; frame <= a.array_frame_count(); ++frame) {
+    if (a.array_frame(frame) != b.array_frame(frame)) {
+      return false;
+    }
+  }
+  return true;
 }
 
 } // namespace fsi::proto::test

@@ -55,7 +55,7 @@ Incoming TransportFixture::receive_at_coupler() {
   return std::move(*incoming);
 }
 
-Envelope TransportFixture::receive_at(ParticipantChannel &participant) {
+Message TransportFixture::receive_at(ParticipantChannel &participant) {
   auto envelope = participant.receive(patience);
   if (!envelope) {
     throw std::runtime_error("no message reached " + participant.routing_id() + " within 5 s");

@@ -28,8 +28,8 @@ protected:
 
   /// The next message at the coupler; fails the test if none arrives in time.
   Incoming receive_at_coupler();
-  /// The next Envelope at a participant; fails the test if none arrives in time.
-  Envelope receive_at(ParticipantChannel &participant);
+  /// The next message at a participant; fails the test if none arrives in time.
+  Message receive_at(ParticipantChannel &participant);
 
 private:
   Endpoint fresh_endpoint();
