@@ -194,25 +194,43 @@ int ScalarStepSystem::solve(const StepInputs &in, PointArray &rhs, PointArray &x
   return std::max(iterations, 0);
 }
 
-int ScalarStepSystem::solve_cg(const PointArray &b, PointArray &x) const {
+int ScalarStepSystem::solve_cg(const PointArray &b, PointArray &x) {
   // Jacobi-preconditioned conjugate gradients on the three coordinates at once (one matrix
   // traversal per iteration). Returns the iteration count, or -1 without convergence.
-  const Eigen::VectorXd inv_diag = matrix_.diagonal().cwiseInverse();
-  PointArray r = b - matrix_ * x;
-  PointArray z = inv_diag.asDiagonal() * r;
+  // A is symmetric (the prescribed rows and columns are cleared alike), so A p is computed as
+  // A^T p: a row-by-row traversal of the column-major matrix that gathers into each row of the
+  // result instead of scattering. The vector updates of an iteration are fused into one pass
+  // over the arrays, which no longer fit in the cache from about 10^5 points; the work arrays
+  // are kept from step to step.
+  const Eigen::Index n = x.rows();
+  const double *a = matrix_.valuePtr();
+  cg_inv_diag_.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    cg_inv_diag_[i] = 1.0 / a[slots_.diagonal[static_cast<std::size_t>(i)]];
+  PointArray &r = cg_r_, &z = cg_z_, &p = cg_p_, &q = cg_q_;
+  r.resize(n, 3), z.resize(n, 3), p.resize(n, 3), q.resize(n, 3);
+  q.noalias() = matrix_.transpose() * x;
+  Eigen::Array3d rz = Eigen::Array3d::Zero(), error_m = Eigen::Array3d::Zero();
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double ri = b(i, c) - q(i, c), zi = cg_inv_diag_[i] * ri;
+      r(i, c) = ri, z(i, c) = zi, p(i, c) = zi;
+      rz[c] += ri * zi;
+      error_m[c] = std::max(error_m[c], std::abs(zi));
+    }
   // Stop when the preconditioned residual has dropped by 1e-10 from that of the warm start
   // (the constant-velocity guess), or reached round-off relative to the coordinates.
   const double round_off_m = 1e-15 * std::max(x.cwiseAbs().maxCoeff(), 1e-3);
-  const double tolerance_m = std::max(1e-10 * z.cwiseAbs().maxCoeff(), round_off_m);
-  PointArray p = z;
-  Eigen::Array3d rz = (r.array() * z.array()).colwise().sum();
+  const double tolerance_m = std::max(1e-10 * error_m.maxCoeff(), round_off_m);
   constexpr int max_iterations = 400;
   for (int it = 0; it < max_iterations; ++it) {
-    const Eigen::Array3d error_m = z.cwiseAbs().colwise().maxCoeff().transpose();
     if ((error_m <= tolerance_m).all())
       return it;
-    const PointArray q = matrix_ * p;
-    const Eigen::Array3d pq = (p.array() * q.array()).colwise().sum();
+    q.noalias() = matrix_.transpose() * p;
+    Eigen::Array3d pq = Eigen::Array3d::Zero();
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c)
+        pq[c] += p(i, c) * q(i, c);
     Eigen::Array3d alpha = Eigen::Array3d::Zero();
     for (int c = 0; c < 3; ++c) {
       if (error_m[c] <= tolerance_m)
@@ -221,12 +239,20 @@ int ScalarStepSystem::solve_cg(const PointArray &b, PointArray &x) const {
         return -1; // not positive definite
       alpha[c] = rz[c] / pq[c];
     }
-    x += p * alpha.matrix().asDiagonal();
-    r -= q * alpha.matrix().asDiagonal();
-    z = inv_diag.asDiagonal() * r;
-    const Eigen::Array3d rz_new = (r.array() * z.array()).colwise().sum();
+    Eigen::Array3d rz_new = Eigen::Array3d::Zero();
+    error_m.setZero();
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        x(i, c) += alpha[c] * p(i, c);
+        const double ri = r(i, c) - alpha[c] * q(i, c), zi = cg_inv_diag_[i] * ri;
+        r(i, c) = ri, z(i, c) = zi;
+        rz_new[c] += ri * zi;
+        error_m[c] = std::max(error_m[c], std::abs(zi));
+      }
     const Eigen::Array3d beta = (rz > 0.0).select(rz_new / rz, 0.0);
-    p = z + p * beta.matrix().asDiagonal();
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c)
+        p(i, c) = z(i, c) + beta[c] * p(i, c);
     rz = rz_new;
   }
   return -1;

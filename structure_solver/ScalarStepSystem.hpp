@@ -58,7 +58,7 @@ private:
   void build_pattern();
   void add_tension_hessian(const PointArray &x, double scale, double *values) const;
   void apply_prescribed(const PointArray &prescribed_next, PointArray &rhs);
-  int solve_cg(const PointArray &rhs, PointArray &x) const;
+  int solve_cg(const PointArray &rhs, PointArray &x);
   void solve_direct(const PointArray &rhs, PointArray &x);
 
   const ElasticTerms &terms_;
@@ -76,6 +76,8 @@ private:
   StepSlots slots_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
   bool ldlt_analysed_ = false;
+  PointArray cg_r_, cg_z_, cg_p_, cg_q_; ///< work arrays of solve_cg, kept from step to step
+  Eigen::VectorXd cg_inv_diag_;
 };
 
 } // namespace fsi::structure
