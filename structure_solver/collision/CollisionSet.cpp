@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
+
+#include <omp.h>
 
 namespace fsi::structure::collision {
 namespace {
@@ -10,6 +13,10 @@ namespace {
 /// A point already at d_c (up to round-off, e.g. just corrected with d_t = d_c) is not
 /// corrected again.
 constexpr double kSettledTolerance_m = 1e-12;
+
+/// Below this many points a pass runs on one thread: starting the team costs more than the
+/// queries (a culled point costs a few ns, a near one about 0.3 us).
+constexpr std::size_t kMinPointsForThreads = 2048;
 
 } // namespace
 
@@ -82,7 +89,16 @@ void CollisionSet::correct_against(const Body &body, PointArray &positions_m, do
   const Eigen::Isometry3d world_to_body = body_to_world.inverse();
   const Eigen::Matrix3d rotation = body_to_world.linear();
   const double trigger_m = threshold_m_ - kSettledTolerance_m;
-  for (Eigen::Index i : active) {
+  // Each point is corrected on its own (its own row, its own flags), so the points are split
+  // among threads; the count and the minimum are reduced exactly, and the result does not
+  // depend on the number of threads.
+  const auto n_active = static_cast<std::ptrdiff_t>(active.size());
+  std::size_t n_corrections = 0;
+  double min_signed_distance_m = stats.min_signed_distance_m;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : n_corrections) \
+    reduction(min : min_signed_distance_m) if (active.size() >= kMinPointsForThreads)
+  for (std::ptrdiff_t k = 0; k < n_active; ++k) {
+    const Eigen::Index i = active[static_cast<std::size_t>(k)];
     const Vec3 world_m = positions_m.row(i).transpose();
     if (!world_m.allFinite())
       continue;
@@ -96,17 +112,21 @@ void CollisionSet::correct_against(const Body &body, PointArray &positions_m, do
     const Vec3 shift_m =
         rotation * (d.normal_into_fluid * (target_distance_m_ - d.signed_distance_m));
     positions_m.row(i) += shift_m.transpose();
-    stats.min_signed_distance_m = std::min(stats.min_signed_distance_m, d.signed_distance_m);
+    min_signed_distance_m = std::min(min_signed_distance_m, d.signed_distance_m);
     was_corrected[static_cast<std::size_t>(i)] = 1;
     moved[static_cast<std::size_t>(i)] = 1;
-    ++stats.n_corrections;
+    ++n_corrections;
   }
+  stats.n_corrections += n_corrections;
+  stats.min_signed_distance_m = min_signed_distance_m;
 }
 
 std::string CollisionSet::describe() const {
   std::string text = "collision: d_c = " + std::to_string(threshold_m_) +
                      " m, d_t = " + std::to_string(target_distance_m_) + " m, " +
-                     std::to_string(bodies_.size()) + " surface(s)";
+                     std::to_string(bodies_.size()) + " surface(s), passes of " +
+                     std::to_string(kMinPointsForThreads) + "+ points on " +
+                     std::to_string(omp_get_max_threads()) + " thread(s) (OMP_NUM_THREADS)";
   for (const Body &body : bodies_) {
     text +=
         "\n  " + body.surface->describe() + (body.motion->is_static() ? " (static)" : " (moving)");

@@ -40,7 +40,8 @@ public:
 
   /// Eq. 11: every point closer than d_c to a surface (or inside it) is moved along the wall
   /// normal to distance d_t. Surfaces are applied in turn and the pass repeated until no point
-  /// moves (at most max_passes). Non-finite points are left alone.
+  /// moves (at most max_passes). Non-finite points are left alone. A pass over many points is
+  /// split among OpenMP threads (OMP_NUM_THREADS); the result is the same bit for bit.
   CorrectionStats correct(PointArray &positions_m, double time_s) const;
 
   std::size_t n_surfaces() const { return bodies_.size(); }

@@ -16,6 +16,8 @@
 
 #include <Eigen/Geometry>
 
+#include <omp.h>
+
 namespace fsi::structure::collision {
 namespace {
 
@@ -185,6 +187,34 @@ TEST(CollisionSet, RotatingTorusCloudIsClearedAtSeveralTimes) {
   const CollisionSet set = mesh_collision_set(soup, FluidSide::outside, spin, 0.015, 0.015);
   for (double time_s : {0.0, 0.37, 1.1, 2.9}) {
     expect_cloud_cleared(set, soup, FluidSide::outside, *spin, time_s);
+  }
+}
+
+TEST(CollisionSet, ThreadsSplitThePointsWithoutChangingTheResult) {
+  // A pass of 3000 points runs on several threads; every point's correction and the reduced
+  // statistics must be bit for bit those of one thread (restarts and comparisons rely on it).
+  const TriangleSoup soup = testing::test_torus();
+  const auto spin = std::make_shared<ConstantRotation>(Vec3(0.2, 0.0, 0.1), Vec3(1, 0.3, 0.2), 2.5);
+  const CollisionSet set = mesh_collision_set(soup, FluidSide::outside, spin, 0.015, 0.015);
+  const PointArray cloud =
+      testing::to_point_array(testing::random_points_around(soup, 3000, 0.1, 5));
+  const int threads_before = omp_get_max_threads();
+  std::vector<PointArray> results;
+  std::vector<CorrectionStats> stats;
+  for (int n_threads : {1, 2, 3}) {
+    omp_set_num_threads(n_threads);
+    PointArray points = cloud;
+    stats.push_back(set.correct(points, 0.37));
+    results.push_back(points);
+  }
+  omp_set_num_threads(threads_before);
+  ASSERT_GT(stats[0].n_points_corrected, 100u);
+  for (std::size_t r = 1; r < results.size(); ++r) {
+    EXPECT_TRUE((results[r].array() == results[0].array()).all()) << "threads " << r + 1;
+    EXPECT_EQ(stats[r].n_points_corrected, stats[0].n_points_corrected);
+    EXPECT_EQ(stats[r].n_corrections, stats[0].n_corrections);
+    EXPECT_EQ(stats[r].n_passes, stats[0].n_passes);
+    EXPECT_EQ(stats[r].min_signed_distance_m, stats[0].min_signed_distance_m);
   }
 }
 
