@@ -1,14 +1,16 @@
 #include "OpenFoamFluidModel.hpp"
 
 #include "fluid_adapter/ibm/ClosestCellLinear.hpp"
+#include "fluid_adapter/ibm/PeskinKernel.hpp"
 #include "proto/BodyPose.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/TransportError.hpp"
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
-
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -140,15 +142,16 @@ const double *OpenFoamFluidModel::unpack_rigid_poses(double time_s, const double
 void OpenFoamFluidModel::finish(bool success) {
   message_.assign({success ? 1.0 : 0.0});
   broadcast(Command::finish, message_);
+  log_lagrangian_stats();
   flow_.write_now();
   spdlog::info("fluid fields written at t = {} s ({})", flow_.time_s(), success ? "completed" : "stopped");
 }
 
-void OpenFoamFluidModel::broadcast(Command command, std::vector<double> &payload) const {
+void OpenFoamFluidModel::broadcast(Command command, std::vector<double> &payload) {
   if (flow_.n_ranks() == 1)
     return;
   payload.insert(payload.begin(), static_cast<double>(command));
-  flow_.broadcast_from_master(payload);
+  collective([&] { flow_.broadcast_from_master(payload); });
   payload.erase(payload.begin());
 }
 
@@ -157,7 +160,7 @@ void OpenFoamFluidModel::broadcast(Command command, std::vector<double> &payload
 void OpenFoamFluidModel::follow() {
   while (true) {
     message_.clear();
-    flow_.broadcast_from_master(message_);
+    flow_.broadcast_from_master(message_); // not timed: mostly the wait for the master's next request
     const auto command = static_cast<Command>(static_cast<int>(message_.at(0)));
     const double *payload = message_.data() + 1;
     const std::size_t n = message_.size() - 1;
@@ -179,6 +182,7 @@ void OpenFoamFluidModel::follow() {
       break;
     }
     case Command::finish:
+      log_lagrangian_stats();
       flow_.write_now();
       return;
     }
@@ -187,45 +191,97 @@ void OpenFoamFluidModel::follow() {
 
 // ---- collective work (every rank) ----------------------------------------------------------
 
+template <class Operation> void OpenFoamFluidModel::collective(const Operation &operation) {
+  if (flow_.n_ranks() == 1) {
+    operation();
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  operation();
+  lagrangian_stats_.collectives_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void OpenFoamFluidModel::log_lagrangian_stats() {
+  // Collective (every rank at its finish): the master logs every rank's figures. The other
+  // ranks' broadcasts are not timed (they wait there for the master's next request).
+  const int n_ranks = flow_.n_ranks();
+  if (n_ranks == 1)
+    return;
+  const double steps = std::max<double>(1.0, static_cast<double>(lagrangian_stats_.interpolations));
+  std::vector<double> figures(2 * static_cast<std::size_t>(n_ranks), 0.0);
+  figures[2 * static_cast<std::size_t>(flow_.rank())] = 1e3 * lagrangian_stats_.collectives_s / steps;
+  figures[2 * static_cast<std::size_t>(flow_.rank()) + 1] =
+      lagrangian_stats_.points_seen == 0 ? 0.0
+                                         : 100.0 * static_cast<double>(lagrangian_stats_.points_skipped) /
+                                               static_cast<double>(lagrangian_stats_.points_seen);
+  flow_.sum_over_ranks(figures.data(), figures.size());
+  if (flow_.rank() != 0 || lagrangian_stats_.points_seen == 0)
+    return;
+  for (int r = 0; r < n_ranks; ++r)
+    spdlog::info("MPI rank {} of {}: Lagrangian data (broadcasts from rank 0, reductions over the ranks, waits "
+                 "included) {:.3f} ms a step over {} steps; nearest-cell searches skipped (no cell of this rank "
+                 "within a kernel's reach) for {:.1f} % of the points",
+                 r, n_ranks, figures[2 * static_cast<std::size_t>(r)], lagrangian_stats_.interpolations,
+                 figures[2 * static_cast<std::size_t>(r) + 1]);
+}
+
 void OpenFoamFluidModel::do_start(const std::vector<double> &point_measures) {
   point_measures_ = Eigen::Map<const Eigen::VectorXd>(point_measures.data(), static_cast<Eigen::Index>(point_measures.size()));
 }
 
-void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) const {
+void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) {
   // Eq. (6): h is the size of the cell nearest to each point, over all ranks (lowest rank on
   // ties), so every rank spreads and interpolates with the same kernel.
   const Eigen::Index n = positions_.rows();
-  Eigen::VectorXd distance(n), local_width(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const auto nearest = index_.nearest(positions_.row(k).transpose());
-    distance[k] = nearest.distance_m;
-    local_width[k] = nearest.cell >= 0 ? cells_.size_m(nearest.cell) : 0.0;
+  if (skip_beyond_m_ < 0.0) {
+    local_max_width_m_ = cells_.n_cells() > 0 ? cells_.sizes_m().maxCoeff() : 0.0;
+    // A kernel reaches cell centres within support_radius h <= support_radius h_max of a point
+    // along each axis, so within sqrt(3) support_radius h_max.
+    double negative_max = -local_max_width_m_;
+    collective([&] { flow_.min_over_ranks(&negative_max, 1); });
+    skip_beyond_m_ = std::sqrt(3.0) * ibm::PeskinKernel::support_radius * -negative_max;
   }
+  // A rank whose cell centres all lie farther than skip_beyond_m_ from a point skips its
+  // nearest-cell query and reports the distance to its centres' box, a lower bound. If some
+  // centre of another rank lies within skip_beyond_m_, that rank still wins the point. If
+  // none does, no kernel of width <= h_max touches any cell: the point gets no pairs whatever
+  // its width, exactly as with the true nearest cell, so only a positive width is needed.
+  Eigen::VectorXd distance(n), local_width(n);
+  std::size_t skipped = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto nearest = index_.nearest_within(positions_.row(k).transpose(), skip_beyond_m_);
+    distance[k] = nearest.distance_m;
+    local_width[k] = nearest.cell >= 0 ? cells_.size_m(nearest.cell) : local_max_width_m_;
+    skipped += nearest.cell < 0 && cells_.n_cells() > 0;
+  }
+  lagrangian_stats_.points_skipped += skipped;
+  lagrangian_stats_.points_seen += static_cast<std::size_t>(n);
   Eigen::VectorXd best = distance;
-  flow_.min_over_ranks(best.data(), static_cast<std::size_t>(n));
+  collective([&] { flow_.min_over_ranks(best.data(), static_cast<std::size_t>(n)); });
   Eigen::VectorXd owner(n);
   for (Eigen::Index k = 0; k < n; ++k)
     owner[k] = distance[k] == best[k] ? flow_.rank() : std::numeric_limits<double>::infinity();
-  flow_.min_over_ranks(owner.data(), static_cast<std::size_t>(n));
+  collective([&] { flow_.min_over_ranks(owner.data(), static_cast<std::size_t>(n)); });
   widths_m.resize(n);
   for (Eigen::Index k = 0; k < n; ++k)
     widths_m[k] = owner[k] == flow_.rank() ? local_width[k] : 0.0;
-  flow_.sum_over_ranks(widths_m.data(), static_cast<std::size_t>(n));
+  collective([&] { flow_.sum_over_ranks(widths_m.data(), static_cast<std::size_t>(n)); });
 }
 
 void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
+  ++lagrangian_stats_.interpolations;
   Eigen::VectorXd widths;
   kernel_widths(widths);
   stencil_ = std::make_unique<ibm::KernelStencil>(index_, positions_, widths);
   if (config_.normalise_kernel) {
     Eigen::VectorXd sums = stencil_->weight_sums();
-    flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size()));
+    collective([&] { flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size())); });
     stencil_->normalise_weights(sums);
   }
   flow_.cell_velocities(cell_velocity_);
   if (config_.interpolation == InterpolationChoice::kernel) {
     u_m_per_s = stencil_->interpolate(cell_velocity_); // this rank's part of the kernel sum
-    flow_.sum_over_ranks(u_m_per_s.data(), static_cast<std::size_t>(u_m_per_s.size()));
+    collective([&] { flow_.sum_over_ranks(u_m_per_s.data(), static_cast<std::size_t>(u_m_per_s.size())); });
     return;
   }
   nearest_ = std::make_unique<ibm::NearestCells>(index_, positions_);

@@ -78,7 +78,7 @@ private:
   FlowStepTimings timings_;
   PenalizationSwitching switching_;
   enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
-  void broadcast(Command command, std::vector<double> &payload) const;
+  void broadcast(Command command, std::vector<double> &payload);
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
   /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).
   void pack_rigid_poses(const proto::v2::FluidAdvance &request, std::vector<double> &out) const;
@@ -88,7 +88,12 @@ private:
   void do_interpolate(PointArray &u_m_per_s);
   void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
-  void kernel_widths(Eigen::VectorXd &widths_m) const;
+  void kernel_widths(Eigen::VectorXd &widths_m);
+  /// Runs one collective operation over the ranks (broadcast, reduction), timing it.
+  template <class Operation> void collective(const Operation &operation);
+  /// With MPI (collective): every rank's time in the Lagrangian collectives and its skipped
+  /// searches, logged by the master.
+  void log_lagrangian_stats();
   void penalize_rigid_bodies(double time_s, double dt_s);
   rigid::BodyLoad rigid_body_load(std::size_t body, double time_s);
 
@@ -106,6 +111,15 @@ private:
   Eigen::VectorXd penalization_rate_;
   PointArray rigid_velocity_, penalization_acceleration_, penalization_force_;
   std::vector<double> message_;
+  /// Beyond this distance from a rank's cell centres no kernel reaches them (m; < 0 until
+  /// the first interpolation computes it over the ranks).
+  double skip_beyond_m_ = -1.0;
+  double local_max_width_m_ = 0.0; ///< the largest cell size of this rank (m)
+  struct LagrangianStats {
+    double collectives_s = 0.0;     ///< wall time in broadcasts and reductions (MPI only)
+    std::size_t interpolations = 0; ///< steps (interpolation requests) served
+    std::size_t points_seen = 0, points_skipped = 0;
+  } lagrangian_stats_;
 };
 
 } // namespace fsi::fluid

@@ -52,7 +52,10 @@ struct CellIndex::Tree {
 };
 
 CellIndex::CellIndex(const EulerianCells &cells)
-    : cells_(cells), tree_(std::make_unique<Tree>(cells.centres_m())) {}
+    : cells_(cells), tree_(std::make_unique<Tree>(cells.centres_m())) {
+  for (Eigen::Index c = 0; c < cells.n_cells(); ++c)
+    centre_box_m_.extend(Vec3(cells.centres_m().row(c).transpose()));
+}
 
 CellIndex::~CellIndex() = default;
 CellIndex::CellIndex(CellIndex &&) noexcept = default;
@@ -62,6 +65,8 @@ void CellIndex::cells_in_box(const Vec3 &point_m, double half_width_m, std::vect
   if (cells_.n_cells() == 0)
     return;
   const Vec3 half(half_width_m, half_width_m, half_width_m);
+  if (!centre_box_m_.intersects(Eigen::AlignedBox3d(point_m - half, point_m + half)))
+    return; // a rank far from the point (the tree would walk down to a leaf to find nothing)
   tree_->search_box(tree_->tree.root_node, point_m - half, point_m + half, found);
 }
 
@@ -77,6 +82,15 @@ CellIndex::Nearest CellIndex::nearest(const Vec3 &point_m) const {
   nearest.cell = static_cast<CellId>(cell);
   nearest.distance_m = std::sqrt(distance_sq_m2);
   return nearest;
+}
+
+CellIndex::Nearest CellIndex::nearest_within(const Vec3 &point_m, double beyond_m) const {
+  if (cells_.n_cells() > 0) {
+    const double lower_bound_m = centre_box_m_.exteriorDistance(point_m);
+    if (lower_bound_m > beyond_m)
+      return {-1, lower_bound_m};
+  }
+  return nearest(point_m);
 }
 
 } // namespace fsi::fluid::ibm

@@ -5,9 +5,11 @@
 
 #include "TestMeshes.hpp"
 #include "fluid_adapter/ibm/InterpolationScheme.hpp"
+#include "fluid_adapter/ibm/PeskinKernel.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -136,6 +138,52 @@ TEST(Partition, ClosestCellInterpolationsAddUp) {
   };
   const PointArray summed = interpolate(*s.ranks[0]) + interpolate(*s.ranks[1]);
   EXPECT_LT((summed - interpolate(*s.whole)).cwiseAbs().maxCoeff(), round_off);
+}
+
+TEST(Partition, RanksFarFromAPointSkipItsSearchAndTheStencilsAreUnchanged) {
+  // The rule of OpenFoamFluidModel::kernel_widths: a rank whose centres' box is farther than
+  // sqrt(3) * support_radius * h_max from a point reports that box distance (cell -1) and its
+  // largest cell size; the point goes to the rank of smallest distance (lowest on ties) and
+  // takes its width. Points inside the mesh, near the cut and far outside it (where no
+  // kernel reaches a cell at all) must give the undecomposed stencils exactly.
+  Split s;
+  PointArray points(s.points_m.rows() + 4, 3);
+  points << s.points_m, -3.0, 0.5, 0.5, 4.0, 0.2, 0.3, 0.5, 0.5, 9.0, 0.47, 0.5, 0.5;
+  const Eigen::Index n = points.rows();
+  double h_max = 0.0;
+  for (const auto &rank : s.ranks)
+    h_max = std::max(h_max, rank->cells.sizes_m().maxCoeff());
+  const double beyond_m = std::sqrt(3.0) * PeskinKernel::support_radius * h_max;
+  Eigen::VectorXd distance[2], width[2];
+  int n_skipped[2] = {0, 0};
+  for (int r = 0; r < 2; ++r) {
+    distance[r].resize(n);
+    width[r].resize(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const auto nearest = s.ranks[r]->index.nearest_within(points.row(k).transpose(), beyond_m);
+      distance[r][k] = nearest.distance_m;
+      width[r][k] = nearest.cell >= 0 ? s.ranks[r]->cells.size_m(nearest.cell) : s.ranks[r]->cells.sizes_m().maxCoeff();
+      n_skipped[r] += nearest.cell < 0;
+    }
+  }
+  Eigen::VectorXd merged(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    merged[k] = distance[0][k] <= distance[1][k] ? width[0][k] : width[1][k];
+  const NearestCells whole_nearest(s.whole->index, points);
+  const KernelStencil whole(s.whole->index, points, whole_nearest.kernel_width_m());
+  std::size_t n_pairs = 0;
+  PointArray summed = PointArray::Zero(n, 3);
+  for (const auto &rank : s.ranks) {
+    const KernelStencil stencil(rank->index, points, merged);
+    n_pairs += stencil.n_pairs();
+    summed += stencil.interpolate(s.velocity_on(*rank));
+  }
+  EXPECT_GT(n_skipped[0], 40); // points at x > 0.47 + beyond (and the far ones)
+  EXPECT_GT(n_skipped[1], 40);
+  EXPECT_EQ(n_pairs, whole.n_pairs());
+  EXPECT_LT((summed - whole.interpolate(s.velocity_on(*s.whole))).cwiseAbs().maxCoeff(), round_off);
+  for (Eigen::Index k = s.points_m.rows(); k < n - 1; ++k) // far outside: no pairs at all
+    EXPECT_EQ(whole.offsets()[static_cast<std::size_t>(k) + 1], whole.offsets()[static_cast<std::size_t>(k)]);
 }
 
 TEST(Partition, TiesGoToTheLowestRankWhateverTheMergeOrder) {

@@ -43,19 +43,19 @@ class OneAndTwoRanks(unittest.TestCase):
     def tearDown(self):
         shutil.rmtree(self.tmp, ignore_errors=True)
 
-    def run_case(self, ranks):
-        case = os.path.join(self.tmp, "case%d" % ranks)
+    def run_case(self, ranks, origin_x_m=0.1):
+        case = os.path.join(self.tmp, "case%d-%g" % (ranks, origin_x_m))
         shutil.copytree(os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), case,
                         ignore=shutil.ignore_patterns("output"))
         config = yaml.safe_load(open(os.path.join(case, "case.yaml")))
         config["run"]["end_time_s"] = 0.005
-        config["structures"][0]["origin_m"] = [0.1, 0.03, 0.03]
+        config["structures"][0]["origin_m"] = [origin_x_m, 0.03, 0.03]
         config["fluid"]["openfoam"]["mpi_ranks"] = ranks
         yaml.safe_dump(config, open(os.path.join(case, "case.yaml"), "w"))
         control = os.path.join(case, "openfoam", "system", "controlDict")
         text = open(control).read().replace("writeFormat     binary", "writeFormat     ascii")
         open(control, "w").write(text.replace("writeInterval   0.01", "writeInterval   0.005"))
-        out = os.path.join(self.tmp, "out%d" % ranks)
+        out = os.path.join(self.tmp, "out%d-%g" % (ranks, origin_x_m))
         result = subprocess.run([PYTHON, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", BIN_DIR,
                                  "-o", out, case], stdin=subprocess.DEVNULL, capture_output=True, timeout=600)
         self.assertEqual(result.returncode, 0, result.stderr.decode()[-3000:])
@@ -65,6 +65,8 @@ class OneAndTwoRanks(unittest.TestCase):
         times = sorted((d for d in os.listdir(foam) if re.fullmatch(r"[0-9.e-]+", d) and d != "0"), key=float)
         u = read_internal_vectors(os.path.join(foam, times[-1], "U"))
         x = h5py.File(os.path.join(out, "structure.h5"), "r")["structures/sheet/position_m"][-1]
+        with open(os.path.join(out, "logs", "fluid.console"), errors="replace") as f:
+            self.log = f.read()
         return x, u, float(times[-1])
 
     def test_two_ranks_agree_with_one(self):
@@ -81,6 +83,21 @@ class OneAndTwoRanks(unittest.TestCase):
         self.assertGreater(disturbance, 1e-5)
         self.assertLess(du, 1e-6)
         self.assertLess(dx, 1e-12)
+
+    def test_a_rank_far_from_the_sheet_skips_its_searches_and_changes_nothing(self):
+        # The sheet well inside rank 0's half (x = 0.03 m, the cut at 0.1 m): rank 1 has no cell
+        # within a kernel's reach of any point and skips its nearest-cell searches; the run must
+        # not notice.
+        x1, u1, _ = self.run_case(1, origin_x_m=0.03)
+        x2, u2, _ = self.run_case(2, origin_x_m=0.03)
+        skipped = {int(r): float(p) for r, p in re.findall(
+            r"MPI rank (\d) of 2: Lagrangian data .* searches skipped .* for ([0-9.]+) % of the points", self.log)}
+        print("1 vs 2 ranks, sheet far from the cut: max |dU| = %.3g m/s, max |dX| = %.3g m, skipped %s"
+              % (np.abs(u1 - u2).max(), np.abs(x1 - x2).max(), skipped))
+        self.assertEqual(skipped.get(1), 100.0, self.log[-3000:])
+        self.assertEqual(skipped.get(0), 0.0, self.log[-3000:])
+        self.assertLess(np.abs(u1 - u2).max(), 1e-6)
+        self.assertLess(np.abs(x1 - x2).max(), 1e-12)
 
 
 if __name__ == "__main__":
