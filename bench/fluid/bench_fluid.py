@@ -3,7 +3,7 @@
 (issue 4, "Speed"; run by `./fsi bench fluid`).
 
     bench_fluid.py [--bin-dir DIR] [-o DIR] [--cells NX NY NZ] [--steps N] [--warmup W]
-                   [--rounds R] [--dt S] [--variants stock,a,b,c,b0,c0,c1,c2,cs,cn]
+                   [--rounds R] [--dt S] [--variants stock,a,b,c,b0,c0,c1,c2,cs,cn] [--ranks 1,2]
 
 One mesh (a 0.4 x 0.1 x 0.1 m channel, blockMesh, 168 x 42 x 42 = 296,352 cubic cells by
 default), one set of PIMPLE settings and schemes (those of cases/sheet-in-openfoam-channel:
@@ -24,6 +24,10 @@ Euler, linearUpwind, GAMG p, smoothSolver U, 1 outer x 2 pressure correctors), a
   cs     (c) with the torus static (same place, no rotation): what the body alone costs the pressure
   cn     (c) with fluid.openfoam.interface_flux body_normal (the penalized cells are holes of the pressure
          equation; the faces to free cells carry the body velocity's normal component)
+--ranks 1,2 runs every variant on each number of MPI ranks (stock: decomposePar hierarchical along x
+as our fluid does it, then mpirun -np N pimpleFoam -parallel; ours: fluid.openfoam.mpi_ranks N) and adds a
+speedup table (time per step on 1 rank / on N, each variant against itself) and the master's log of the
+time in the Lagrangian broadcasts and reductions per step.
 What the numbers contain (per time step, the first W steps of each run dropped):
   stock  wall time between consecutive `ExecutionTime = ...` lines of its log, time-stamped as
          they arrive through a pipe (OpenFOAM flushes each): Courant number, the PIMPLE loop
@@ -194,7 +198,7 @@ def big_sheet():
             "edges": {"s1_min": "free", "s1_max": "free", "s2_min": "free", "s2_max": "free"}}
 
 
-def write_our_case(folder, variant, template, stl, dt, n_steps):
+def write_our_case(folder, variant, template, stl, dt, n_steps, ranks=1):
     case = {
         "run": {"end_time_s": n_steps * dt, "time_step_s": dt, "output_interval_s": n_steps * dt,
                 "progress_interval_s": 1000.0},
@@ -212,6 +216,8 @@ def write_our_case(folder, variant, template, stl, dt, n_steps):
         case["collisions"] = {"threshold_m": 5.0e-4, "target_distance_m": 5.0e-4, "surfaces": [surface]}
     if variant == "cn":
         case["fluid"]["openfoam"]["interface_flux"] = "body_normal"
+    if ranks > 1:
+        case["fluid"]["openfoam"]["mpi_ranks"] = ranks
     if variant in ("c1", "c2"):
         case["fluid"]["openfoam"].update({"body_indicator": "inside_smoothed",
                                           "body_indicator_depth_cells": 1.0 if variant == "c1" else 2.0})
@@ -245,13 +251,23 @@ def iterations_per_step(log_text, warmup):
     return rows[warmup:]
 
 
-def run_stock(template, run_dir, warmup):
+def run_stock(template, run_dir, warmup, ranks=1):
     shutil.rmtree(run_dir, ignore_errors=True)
     shutil.copytree(template, run_dir)
+    command = ["/usr/bin/pimpleFoam", "-case", run_dir]
+    if ranks > 1:  # the decomposition our fluid makes (fluid_adapter/OpenFoamCase.cpp)
+        with open(os.path.join(run_dir, "system", "decomposeParDict"), "w") as f:
+            f.write(HEADER % ("dictionary", "decomposeParDict") +
+                    "numberOfSubdomains %d;\nmethod hierarchical;\ncoeffs { n (%d 1 1); order xyz; }\n" % (ranks, ranks))
+        with open(os.path.join(run_dir, "log.decomposePar"), "w") as log:
+            subprocess.run(["decomposePar", "-force", "-case", run_dir], stdout=log, stderr=subprocess.STDOUT,
+                           env=FOAM_ENV, check=True)
+        command = ["mpirun", "-np", str(ranks), "--oversubscribe", "-x", "WM_PROJECT_DIR"] + \
+                  (["--allow-run-as-root"] if os.geteuid() == 0 else []) + command + ["-parallel"]
     stamps, cpu = [], []
     start = time.perf_counter()
     with open(os.path.join(run_dir, "log.pimpleFoam"), "w") as log:
-        process = subprocess.Popen(["/usr/bin/pimpleFoam", "-case", run_dir], stdout=subprocess.PIPE,
+        process = subprocess.Popen(command, stdout=subprocess.PIPE,
                                    stderr=subprocess.STDOUT, env=FOAM_ENV, text=True, bufsize=1)
         for line in process.stdout:
             now = time.perf_counter()
@@ -291,7 +307,9 @@ def run_ours(bin_dir, case_dir, run_dir, warmup):
     with open(os.path.join(run_dir, "logs", "fluid.console"), errors="replace") as f:
         text = f.read()
     fluid = timings["fluid_solve_s"] + timings["interpolation_s"]
-    return {"per_step_s": fluid.tolist(), "fluid_solve_s": timings["fluid_solve_s"].tolist(),
+    collectives = re.search(r"MPI rank 0 of \d+: Lagrangian data .*?\) ([0-9.]+) ms a step", text)
+    return {"collectives_ms": float(collectives.group(1)) if collectives else None,
+            "per_step_s": fluid.tolist(), "fluid_solve_s": timings["fluid_solve_s"].tolist(),
             "interpolation_s": timings["interpolation_s"].tolist(),
             "structure_solve_s": timings["structure_solve_s"].tolist(),
             "step_wall_s": timings["step_wall_s"].tolist(), "total_wall_s": total, "iterations": solver_iterations(text),
@@ -357,12 +375,13 @@ def adjusted_for_solver_work(results, variants):
     return lines
 
 
-def report(results, variants, args, n_cells, n_triangles, out):
+def report(results, variants, args, n_cells, n_triangles, ranks=1):
     rounds = args.rounds
     med = {v: [float(np.median(results[v][r]["per_step_s"])) for r in range(rounds) if r < len(results[v])]
            for v in variants}
     stock = float(np.median(med["stock"])) if "stock" in med else float("nan")
-    lines = ["# `./fsi bench fluid`: time per step of the fluid, side by side with stock pimpleFoam", "",
+    lines = ["# `./fsi bench fluid`: time per step of the fluid, side by side with stock pimpleFoam"
+             + ("" if ranks == 1 else ", %d MPI ranks" % ranks), "",
              "%s; mesh %d x %d x %d = %d cells (0.4 x 0.1 x 0.1 m channel, blockMesh), dt = %g s, %d warm-up + %d "
              "measured steps per run, %d rounds interleaved (%s). Torus STL: %d triangles."
              % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), args.cells[0], args.cells[1], args.cells[2],
@@ -401,12 +420,25 @@ def report(results, variants, args, n_cells, n_triangles, out):
     lines += ["", "stock: wall time between its `ExecutionTime` lines (time-stamped as they arrive); ours: "
               "coupling.h5 /timings/fluid_solve_s + interpolation_s (inside the fluid process, no coupling). "
               "Load average at the end: %s." % " ".join("%.2f" % x for x in os.getloadavg())]
-    text = "\n".join(lines) + "\n"
-    with open(os.path.join(out, "results.md"), "w") as f:
-        f.write(text)
-    with open(os.path.join(out, "results.json"), "w") as f:
-        json.dump(results, f, indent=1)
-    print(text)
+    return lines
+
+
+def speedup_table(results, variants, rank_counts):
+    """Per variant: median time per step on each rank count, the speedup over one rank, and (ours) the
+    master's time in the Lagrangian broadcasts and reductions per step."""
+    base = rank_counts[0]
+    lines = ["", "# Speedup with MPI ranks (each variant against itself on %d rank%s)" % (base, "" if base == 1 else "s"),
+             "", "| variant | " + " | ".join("%d rank(s) ms/step" % n for n in rank_counts) + " | " +
+             " | ".join("speedup %d" % n for n in rank_counts[1:]) + " | Lagrangian collectives ms/step (rank 0) |",
+             "|---|" + "---|" * (2 * len(rank_counts) - 1) + "---|"]
+    for v in variants:
+        med = {n: float(np.median(np.concatenate([r["per_step_s"] for r in results[n][v]]))) for n in rank_counts}
+        coll = [r.get("collectives_ms") for n in rank_counts[1:] for r in results[n][v] if r.get("collectives_ms")]
+        lines.append("| %s | %s | %s | %s |" % (
+            v, " | ".join(ms(med[n]) for n in rank_counts),
+            " | ".join("%.2f" % (med[base] / med[n]) for n in rank_counts[1:]),
+            "%.3f" % float(np.median(coll)) if coll else "-"))
+    return lines
 
 
 def main():
@@ -420,10 +452,17 @@ def main():
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--dt", type=float, default=5.0e-4)
     parser.add_argument("--variants", default="stock,a,b,c,b0,c0")
+    parser.add_argument("--ranks", default="1", help="comma-separated MPI rank counts, e.g. 1,2 (each variant on each)")
     args = parser.parse_args()
     variants = args.variants.split(",")
     if any(v not in LABELS for v in variants) or "stock" not in variants:
         parser.error("--variants: a comma-separated subset of %s that includes stock" % ",".join(LABELS))
+    try:
+        rank_counts = [int(n) for n in args.ranks.split(",")]
+    except ValueError:
+        rank_counts = []
+    if not rank_counts or min(rank_counts) < 1:
+        parser.error("--ranks: comma-separated positive integers, e.g. 1,2 (got %r)" % args.ranks)
     if args.warmup < 1:
         parser.error("--warmup must be >= 1")
     bin_dir = os.path.abspath(args.bin_dir)
@@ -441,22 +480,35 @@ def main():
     n_cells = args.cells[0] * args.cells[1] * args.cells[2]
     stl = os.path.join(out, "torus.stl")
     n_triangles = write_torus_stl(stl, (0.2, 0.05, 0.05), 0.025, 0.008, 320, 160)
-    for v in variants:
-        if v != "stock":
-            write_our_case(os.path.join(out, "cases", v), v, template, stl, args.dt, n_steps)
-    results = {v: [] for v in variants}
-    for r in range(args.rounds):
+    tag = lambda v, n: v if n == 1 else "%s-np%d" % (v, n)
+    for n in rank_counts:
         for v in variants:
-            run_dir = os.path.join(out, "runs", "%s-r%d" % (v, r + 1))
-            t0 = time.time()
-            if v == "stock":
-                res = run_stock(template, run_dir, args.warmup)
-            else:
-                res = run_ours(bin_dir, os.path.join(out, "cases", v), run_dir, args.warmup)
-            results[v].append(res)
-            print("bench_fluid: round %d %-5s median %7s ms/step (run %.0f s)"
-                  % (r + 1, v, ms(np.median(res["per_step_s"])), time.time() - t0), flush=True)
-    report(results, variants, args, n_cells, n_triangles, out)
+            if v != "stock":
+                write_our_case(os.path.join(out, "cases", tag(v, n)), v, template, stl, args.dt, n_steps, n)
+    results = {n: {v: [] for v in variants} for n in rank_counts}
+    for r in range(args.rounds):
+        for n in rank_counts:
+            for v in variants:
+                run_dir = os.path.join(out, "runs", "%s-r%d" % (tag(v, n), r + 1))
+                t0 = time.time()
+                if v == "stock":
+                    res = run_stock(template, run_dir, args.warmup, n)
+                else:
+                    res = run_ours(bin_dir, os.path.join(out, "cases", tag(v, n)), run_dir, args.warmup)
+                results[n][v].append(res)
+                print("bench_fluid: round %d %-9s median %7s ms/step (run %.0f s)"
+                      % (r + 1, tag(v, n), ms(np.median(res["per_step_s"])), time.time() - t0), flush=True)
+    lines = []
+    for n in rank_counts:
+        lines += report(results[n], variants, args, n_cells, n_triangles, n) + [""]
+    if len(rank_counts) > 1:
+        lines += speedup_table(results, variants, rank_counts)
+    text = "\n".join(lines) + "\n"
+    with open(os.path.join(out, "results.md"), "w") as f:
+        f.write(text)
+    with open(os.path.join(out, "results.json"), "w") as f:
+        json.dump({str(n): results[n] for n in rank_counts}, f, indent=1)
+    print(text)
     print("bench_fluid: results in %s/results.md" % out)
 
 
