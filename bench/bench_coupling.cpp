@@ -600,11 +600,11 @@ int main(int argc, char **argv) try {
                 120 * size.points(), size.steps, ms * median(period), ms * median(wall), ms * median(law),
                 ms * median(tcp), ms * median(zmq_raw), median(ratio_tcp), median(ratio_zmq));
     std::fflush(stdout);
-    if (median(ratio_tcp) > 3.0)
+    if (size.points() >= 1000 && median(ratio_tcp) > 2.0)
       goal_ratio = false;
     if (size.points() == 10000) {
       at_1e4 = ms * median(period);
-      goal_time = at_1e4 < 1.0;
+      goal_time = at_1e4 < 0.5;
       spread_1e4[0] = ms * *std::min_element(period.begin(), period.end());
       spread_1e4[1] = ms * *std::max_element(period.begin(), period.end());
     }
@@ -614,11 +614,13 @@ int main(int argc, char **argv) try {
   else
     std::printf("case folders kept in %s\n", root.c_str());
   if (at_1e4 < 0)
-    std::printf("goal 1, < 1 ms/step at 10^4 points: not measured\n");
+    std::printf("goal 1 (issue 12), < 0.5 ms/step at 10^4 points: not measured\n");
   else
-    std::printf("goal 1, < 1 ms/step at 10^4 points: %s (median %.3f ms, rounds %.3f .. %.3f ms)\n",
+    std::printf("goal 1 (issue 12), < 0.5 ms/step at 10^4 points: %s (median %.3f ms, rounds %.3f .. %.3f ms)\n",
                 goal_time ? "met" : "MISSED", at_1e4, spread_1e4[0], spread_1e4[1]);
-  std::printf("goal 2, coupling / raw tcp <= 3 at every size: %s\n", goal_ratio ? "met" : "MISSED");
+  std::printf("goal 2 (issue 12), coupling / raw tcp <= 2 from 10^3 points up: %s (bare ZeroMQ is already 2.5-3.5x "
+              "raw TCP below 10^4 points on this kind of machine: docs/verification.md)\n",
+              goal_ratio ? "met" : "MISSED");
   return 0;
 } catch (const std::exception &e) {
   std::fprintf(stderr, "bench_coupling: %s\n", e.what());

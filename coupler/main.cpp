@@ -6,6 +6,7 @@
 // Exit codes: 0 success, 1 a participant failed, 2 bad input or refused participant, 130 interrupted.
 
 #include "CouplingRun.hpp"
+#include "common/Allocator.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 
@@ -58,6 +59,7 @@ int main(int argc, char **argv) {
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   fsi::common::setup_logging("coupler", verbose);
+  fsi::common::keep_freed_memory(); // before the solver allocates (common/Allocator.hpp)
   return fsi::common::guarded_main("coupler", [&] {
     auto config = options.load();
     const std::string &case_dir = options.case_dir;

@@ -24,6 +24,7 @@
 #include "case/CaseOptions.hpp"
 #include "case/ModuleSetups.hpp"
 #include "case/ParticipantSettings.hpp"
+#include "common/Allocator.hpp"
 #include "common/ExitCodes.hpp"
 #include "common/GuardedMain.hpp"
 #include "common/Logging.hpp"
@@ -169,6 +170,7 @@ int main(int argc, char **argv) {
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   fsi::common::setup_logging("fluid", verbose);
+  fsi::common::keep_freed_memory(); // OpenFOAM's per-step fields: 2x faster here (common/Allocator.hpp)
   // Debian's OpenFOAM finds its etc/ through WM_PROJECT_DIR, read while its libraries load
   // (before main): the launcher sets it; blockMesh, started from here, needs it as well.
   if (!std::getenv("WM_PROJECT_DIR")) {

@@ -9,6 +9,7 @@
 #include "PrescribedFlowModel.hpp"
 #include "proto/FluidParticipant.hpp"
 #include "case/ParticipantSettings.hpp"
+#include "common/Allocator.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 #include "proto/TransportError.hpp"
@@ -40,6 +41,7 @@ int main(int argc, char **argv) {
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   fsi::common::setup_logging("fluid", verbose);
+  fsi::common::keep_freed_memory(); // before the solver allocates (common/Allocator.hpp)
   return fsi::common::guarded_main("prescribed flow", [&] {
     const auto config = options.load();
     const std::string &case_dir = options.case_dir;

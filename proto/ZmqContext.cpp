@@ -1,6 +1,6 @@
 #include "ZmqContext.hpp"
 
-#include <malloc.h>
+#include "common/Allocator.hpp"
 
 namespace fsi::proto {
 
@@ -10,16 +10,10 @@ namespace {
 constexpr int io_threads = 1;
 
 // Every step, each array frame (2.4 MB at 10^5 points) is allocated by the sender and by
-// ZeroMQ on the receiving side, and freed once used. glibc's defaults hand such blocks back to
-// the kernel (mmap/munmap, or trimming the heap) and page-fault them in again the next step:
-// at 10^5 points that made a coupled step 44 ms instead of 7 (./fsi bench coupling). Both
-// settings are needed: either one alone turns glibc's adaptive thresholds off and is worse.
-constexpr int mmap_threshold_bytes = 32 << 20; // glibc's largest on 64-bit; bigger arrays are mmapped
-constexpr int trim_threshold_bytes = 256 << 20;
-
+// ZeroMQ on the receiving side, and freed once used: the allocator must keep such blocks
+// (common::keep_freed_memory; the executables call it first thing, this covers tests and benches).
 zmq::context_t *make_context() {
-  mallopt(M_MMAP_THRESHOLD, mmap_threshold_bytes);
-  mallopt(M_TRIM_THRESHOLD, trim_threshold_bytes);
+  common::keep_freed_memory();
   return new zmq::context_t(io_threads);
 }
 

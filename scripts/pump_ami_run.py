@@ -33,7 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import pump_head_budget  # noqa: E402
 import pump_point  # noqa: E402
-from fsi_launch import OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
+from fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
 for _name, _value in OPENFOAM_ENVIRONMENT.items():
     os.environ.setdefault(_name, _value)
@@ -235,8 +235,10 @@ def run_pimple(foam_case, logs, end_time, dt):
     say("pimpleFoam to t = %g s (dt = %g s, %d steps), log %s" % (end_time, dt, round(end_time / dt), log))
     exec_times, t, last_report, start = [], 0.0, 0.0, time.monotonic()
     with open(log, "w") as f:
+        # With our executables' allocator settings: the comparison per revolution is of the methods.
         process = subprocess.Popen(["pimpleFoam", "-case", foam_case], stdout=subprocess.PIPE,
-                                   stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+                                   stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                   env=dict(os.environ, **ALLOCATOR_TUNABLES))
         for raw in iter(process.stdout.readline, b""):
             line = raw.decode("utf-8", "replace")
             f.write(line)

@@ -7,6 +7,7 @@ machine and the commit. Usage: report.py --bin-dir build/bin [--out report] [--q
 
 import argparse
 import datetime
+import json
 import math
 import os
 import platform
@@ -407,6 +408,80 @@ def stability_section(args):
     return ["## Stability (`./fsi test --stability`)", ""] + body + [""]
 
 
+def run_bench(args, name, argv, env=None, timeout=3600):
+    """Runs build/bin/bench_<name> (or a bench script) and returns its standard output, or raises
+    RuntimeError naming the bench and the end of its error output."""
+    result = subprocess.run(argv, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=timeout,
+                            env=dict(os.environ, **(env or {})))
+    if result.returncode != 0:
+        raise RuntimeError("%s failed (exit %d): %s" % (name, result.returncode, result.stderr.strip()[-300:]))
+    return result.stdout
+
+
+def speed_section(args):
+    """The benchmarks of issue 12 in one run, each against its reference in the same run: the
+    coupling against raw TCP, the membrane step per point, the collision correction on one thread
+    against all cores, and (not with --quick) the OpenFOAM fluid against stock pimpleFoam on 1 and 2
+    MPI ranks."""
+    bin_dir = os.path.abspath(args.bin_dir)
+    lines = ["## Speed (`./fsi bench ...`): each figure against its reference in the same run", ""]
+
+    print("report: speed, coupling over TCP loopback", flush=True)
+    try:
+        text = run_bench(args, "bench_coupling", [os.path.join(bin_dir, "bench_coupling"), "--rounds", "3"])
+        lines += ["### Coupling overhead per step (`./fsi bench coupling --rounds 3`)", "", "```"] + \
+            text.strip().splitlines() + ["```", ""]
+    except (RuntimeError, subprocess.TimeoutExpired) as e:
+        lines += ["### Coupling overhead per step", "", "failed: %s" % e, ""]
+
+    print("report: speed, membrane step per point", flush=True)
+    try:
+        text = run_bench(args, "bench_structure", [
+            os.path.join(bin_dir, "bench_structure"), "--benchmark_filter=n_side:(32|100|316)/collisions:0",
+            "--benchmark_format=json"])
+        rows = json.loads(text)["benchmarks"]
+        lines += ["### Membrane step (`./fsi bench structure`), no collisions", "",
+                  "| points | ms a step | ns a point | CG iterations a step |", "|---|---|---|---|"]
+        for row in rows:
+            lines.append("| %d | %.3f | %.0f | %.1f |" % (row["points"], row["real_time"], 1e3 * row["us_per_point"],
+                                                          row["cg_iterations"]))
+        lines.append("")
+    except (RuntimeError, subprocess.TimeoutExpired, ValueError, KeyError) as e:
+        lines += ["### Membrane step", "", "failed: %s" % e, ""]
+
+    print("report: speed, collision correction on 1 and %d threads" % (os.cpu_count() or 1), flush=True)
+    try:
+        timings = {}
+        for threads in ("1", str(os.cpu_count() or 1)) * 2:  # alternated, twice
+            text = run_bench(args, "bench_mesh_surface", [os.path.join(bin_dir, "bench_mesh_surface"), "3"],
+                             env={"OMP_NUM_THREADS": threads, "BENCH_ONLY": "none"})
+            for contact, ms_per_call in re.findall(r"contact\s+([0-9.]+) %:\s+([0-9.]+) ms per call", text):
+                timings.setdefault(contact, {}).setdefault(threads, []).append(float(ms_per_call))
+        many = str(os.cpu_count() or 1)
+        lines += ["### Collision correction, 10^4 points against a 102k-triangle torus (`./fsi bench mesh_surface`)",
+                  "", "| contact | 1 thread (ms) | %s threads (ms) | ratio |" % many, "|---|---|---|---|"]
+        for contact, by_threads in timings.items():
+            one, all_ = min(by_threads["1"]), min(by_threads[many])
+            lines.append("| %s %% | %.2f | %.2f | %.2f |" % (contact, one, all_, all_ / one))
+        lines += ["", "Best of two alternated runs each; the goal of issue 12 is under 5 ms at 100 % contact.", ""]
+    except (RuntimeError, subprocess.TimeoutExpired, KeyError) as e:
+        lines += ["### Collision correction", "", "failed: %s" % e, ""]
+
+    if args.quick:
+        return lines + ["(The fluid against stock pimpleFoam: not with --quick; `./fsi bench fluid --ranks 1,2`.)", ""]
+    print("report: speed, the OpenFOAM fluid against stock pimpleFoam on 1 and 2 ranks (about 15 minutes)", flush=True)
+    with tempfile.TemporaryDirectory(prefix="fsi-report-fluid-") as workdir:
+        try:
+            run_bench(args, "bench_fluid", ["/usr/bin/python3", os.path.join(ROOT, "bench", "fluid", "bench_fluid.py"),
+                                            "--bin-dir", bin_dir, "-o", workdir, "--variants", "stock,a,b,c,c2",
+                                            "--ranks", "1,2", "--rounds", "1"], timeout=7200)
+            table = open(os.path.join(workdir, "results.md")).read().splitlines()
+            lines += [("#" + line) if line.startswith("# ") else line for line in table] + [""]
+        except (RuntimeError, subprocess.TimeoutExpired, OSError) as e:
+            lines += ["### The OpenFOAM fluid", "", "failed: %s" % e, ""]
+    return lines
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bin-dir", required=True)
@@ -414,8 +489,16 @@ def main():
     parser.add_argument("--quick", action="store_true", help="shorter ladders (a few minutes)")
     parser.add_argument("--skip-stability", action="store_true",
                         help="do not run the stability suite; use its last table, if any")
+    parser.add_argument("--skip-speed", action="store_true", help="do not run the speed benchmarks")
+    parser.add_argument("--only-speed", action="store_true", help="only the speed benchmarks (report/SPEED.md)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    if args.only_speed:
+        lines = ["# Speed", "", "Machine: %s. Written %s by `./fsi report --only-speed`." % (
+            machine(), datetime.datetime.now().strftime("%Y-%m-%d %H:%M")), ""] + speed_section(args)
+        open(os.path.join(args.out, "SPEED.md"), "w").write("\n".join(lines))
+        print("report: %s" % os.path.join(args.out, "SPEED.md"))
+        return
     lines = ["# Speed against error", "",
              "Machine: %s. Written %s by `./fsi report`." % (machine(), datetime.datetime.now().strftime("%Y-%m-%d %H:%M")),
              "", "Core-seconds per simulated second = wall time x processes / simulated time (each process",
@@ -451,6 +534,8 @@ def main():
         lines.append("")
     lines += model_cost_section(args)
     lines += stability_section(args)
+    if not args.skip_speed:
+        lines += speed_section(args)
     ax.set_xlabel("core-seconds per simulated second")
     ax.set_ylabel("relative error against the reference")
     ax.grid(True, which="both", alpha=0.3)

@@ -19,6 +19,7 @@
 #include "StructureRun.hpp"
 #include "proto/TransportError.hpp"
 #include "geometry/MeshErrors.hpp"
+#include "common/Allocator.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"
 
@@ -75,6 +76,7 @@ int main(int argc, char **argv) {
     return fsi::common::exit_code_bad_input;
   }
   fsi::common::setup_logging("structure", verbose);
+  fsi::common::keep_freed_memory(); // before the solver allocates (common/Allocator.hpp)
   return fsi::common::guarded_main("run", [&] {
     if (check)
       return check_case(options);

@@ -10,6 +10,10 @@ default), one set of PIMPLE settings and schemes (those of cases/sheet-in-openfo
 Euler, linearUpwind, GAMG p, smoothSolver U, 1 outer x 2 pressure correctors), a uniform
 0.1 m/s stream. Variants, interleaved (stock, a, b, c, stock, a, b, c, ...) for R rounds:
   stock  /usr/bin/pimpleFoam on the same case (no coupling at all)
+  stockt stock with the allocator settings our executables set for themselves (common/Allocator.hpp, here
+         through GLIBC_TUNABLES): without them glibc hands OpenFOAM's per-step fields back to the kernel and
+         page-faults them in again every step, about 2x slower on this machine. With stockt in the
+         variants, ratios are to stockt (the methods compared, not the allocators).
   a      fsi-openfoam-fluid, no structure in the flow: the coupled run needs one, so a 3 x 3-point (the smallest membrane)
          fixed sheet (2 mm) sits 2 cm before the outlet, softly coupled
   b      fsi-openfoam-fluid, a free 50 x 50-point sheet (2,500 points, 6 x 6 cm) across the stream
@@ -64,10 +68,12 @@ import numpy as np
 import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from fsi_launch import ALLOCATOR_TUNABLES  # noqa: E402  (the settings of common/Allocator.hpp)
 FOAM_ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
 HEADER = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"
 GOALS = {"a": 1.02, "b": 1.10, "c": 1.15, "b0": 1.10, "c0": 1.15, "c1": 1.25, "c2": 1.25}
-LABELS = {"stock": "stock pimpleFoam", "a": "(a) ours, no structure (3x3 sheet far downstream)",
+LABELS = {"stock": "stock pimpleFoam", "stockt": "stock pimpleFoam, our allocator settings (GLIBC_TUNABLES)", "a": "(a) ours, no structure (3x3 sheet far downstream)",
           "b": "(b) ours, 50x50-point sheet", "c": "(c) ours, rotating STL torus",
           "b0": "(b0) = (b), coupling stiffness x 1e-9: IBM work, flow undisturbed",
           "c0": "(c0) = (c), penalization time 1e3 s: penalization work, flow undisturbed",
@@ -251,7 +257,7 @@ def iterations_per_step(log_text, warmup):
     return rows[warmup:]
 
 
-def run_stock(template, run_dir, warmup, ranks=1):
+def run_stock(template, run_dir, warmup, ranks=1, tunables=False):
     shutil.rmtree(run_dir, ignore_errors=True)
     shutil.copytree(template, run_dir)
     command = ["/usr/bin/pimpleFoam", "-case", run_dir]
@@ -263,12 +269,14 @@ def run_stock(template, run_dir, warmup, ranks=1):
             subprocess.run(["decomposePar", "-force", "-case", run_dir], stdout=log, stderr=subprocess.STDOUT,
                            env=FOAM_ENV, check=True)
         command = ["mpirun", "-np", str(ranks), "--oversubscribe", "-x", "WM_PROJECT_DIR"] + \
+                  (["-x", "GLIBC_TUNABLES"] if tunables else []) + \
                   (["--allow-run-as-root"] if os.geteuid() == 0 else []) + command + ["-parallel"]
     stamps, cpu = [], []
     start = time.perf_counter()
     with open(os.path.join(run_dir, "log.pimpleFoam"), "w") as log:
-        process = subprocess.Popen(command, stdout=subprocess.PIPE,
-                                   stderr=subprocess.STDOUT, env=FOAM_ENV, text=True, bufsize=1)
+        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                   env=dict(FOAM_ENV, **ALLOCATOR_TUNABLES) if tunables else FOAM_ENV,
+                                   text=True, bufsize=1)
         for line in process.stdout:
             now = time.perf_counter()
             log.write(line)
@@ -342,6 +350,11 @@ def ms(x):
     return "%.1f" % (1e3 * x)
 
 
+def reference(variants):
+    """The run the ratios are to: stock with our allocator settings when it was run, else stock."""
+    return "stockt" if "stockt" in variants else "stock"
+
+
 def adjusted_for_solver_work(results, variants):
     """Least squares over every measured step of every run: t = a_variant + b_p N_p + b_U N_U (N: that
     step's linear-solver iterations). a_variant + b . mean(N of stock) is the time the variant would
@@ -361,7 +374,8 @@ def adjusted_for_solver_work(results, variants):
                 times.append(t)
     coef, *_ = np.linalg.lstsq(np.asarray(rows), np.asarray(times), rcond=None)
     b_p, b_u = coef[-2], coef[-1]
-    ref = np.mean(np.concatenate([np.asarray(r["step_iterations"], float) for r in results["stock"]]), axis=0)
+    base = reference(variants)
+    ref = np.mean(np.concatenate([np.asarray(r["step_iterations"], float) for r in results[base]]), axis=0)
     at_stock_work = {v: coef[i] + b_p * ref[0] + b_u * ref[1] for i, v in enumerate(variants)}
     lines = ["", "At stock's linear-solver work (fit over all measured steps: t = a_variant + %.1f ms x p iterations "
              "+ %.2f ms x U iterations; stock does %.1f p and %.1f U iterations a step):" % (1e3 * b_p, 1e3 * b_u,
@@ -371,7 +385,7 @@ def adjusted_for_solver_work(results, variants):
     for v in variants:
         its = np.mean(np.concatenate([np.asarray(r["step_iterations"], float) for r in results[v]]), axis=0)
         lines.append("| %s | %.1f | %.1f | %s | %.3f |" % (v, its[0], its[1], ms(at_stock_work[v]),
-                                                           at_stock_work[v] / at_stock_work["stock"]))
+                                                           at_stock_work[v] / at_stock_work[base]))
     return lines
 
 
@@ -379,18 +393,19 @@ def report(results, variants, args, n_cells, n_triangles, ranks=1):
     rounds = args.rounds
     med = {v: [float(np.median(results[v][r]["per_step_s"])) for r in range(rounds) if r < len(results[v])]
            for v in variants}
-    stock = float(np.median(med["stock"])) if "stock" in med else float("nan")
+    base = reference(variants)
+    stock = float(np.median(med[base]))
     lines = ["# `./fsi bench fluid`: time per step of the fluid, side by side with stock pimpleFoam"
              + ("" if ranks == 1 else ", %d MPI ranks" % ranks), "",
              "%s; mesh %d x %d x %d = %d cells (0.4 x 0.1 x 0.1 m channel, blockMesh), dt = %g s, %d warm-up + %d "
              "measured steps per run, %d rounds interleaved (%s). Torus STL: %d triangles."
              % (datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), args.cells[0], args.cells[1], args.cells[2],
                 n_cells, args.dt, args.warmup, args.steps, rounds, ", ".join(variants), n_triangles), "",
-             "| variant | median ms/step (per round) | median ms/step | ratio to stock (per round) | goal | holds |",
+             "| variant | median ms/step (per round) | median ms/step | ratio to %s (per round) | goal | holds |" % base,
              "|---|---|---|---|---|---|"]
     for v in variants:
         m = float(np.median(med[v]))
-        per_round_ratio = [med[v][r] / med["stock"][r] for r in range(len(med[v]))] if "stock" in med else []
+        per_round_ratio = [med[v][r] / med[base][r] for r in range(len(med[v]))]
         ratio = m / stock
         goal = GOALS.get(v)
         lines.append("| %s | %s | %s | %.3f (%s) | %s | %s |" % (
@@ -409,7 +424,7 @@ def report(results, variants, args, n_cells, n_triangles, ranks=1):
             pool("cpu_per_step_s"), u_its, its.get("p", 0.0),
             ", ".join("%.0f" % r["total_wall_s"] for r in runs)))
     lines += adjusted_for_solver_work(results, variants)
-    chatter = [(v, force_chatter(results[v][0])) for v in variants if v != "stock"]
+    chatter = [(v, force_chatter(results[v][0])) for v in variants if v not in ("stock", "stockt")]
     chatter = [(v, c) for v, c in chatter if c is not None and c[0] > 0]
     if chatter:
         lines += ["", "The structure's force on the fluid, per step (round 1; coupling.h5 total_force_on_fluid_n): "
@@ -455,8 +470,8 @@ def main():
     parser.add_argument("--ranks", default="1", help="comma-separated MPI rank counts, e.g. 1,2 (each variant on each)")
     args = parser.parse_args()
     variants = args.variants.split(",")
-    if any(v not in LABELS for v in variants) or "stock" not in variants:
-        parser.error("--variants: a comma-separated subset of %s that includes stock" % ",".join(LABELS))
+    if any(v not in LABELS for v in variants) or not {"stock", "stockt"} & set(variants):
+        parser.error("--variants: a comma-separated subset of %s that includes stock or stockt" % ",".join(LABELS))
     try:
         rank_counts = [int(n) for n in args.ranks.split(",")]
     except ValueError:
@@ -483,21 +498,26 @@ def main():
     tag = lambda v, n: v if n == 1 else "%s-np%d" % (v, n)
     for n in rank_counts:
         for v in variants:
-            if v != "stock":
+            if v not in ("stock", "stockt"):
                 write_our_case(os.path.join(out, "cases", tag(v, n)), v, template, stl, args.dt, n_steps, n)
     results = {n: {v: [] for v in variants} for n in rank_counts}
+    # A run of stock first, not counted: the first OpenFOAM run after a pause (or after other
+    # processes freed their memory) was up to 2x slower on this kind of machine (fresh pages).
+    # Each round then starts one place further along the order, so no variant always comes first.
+    run_stock(template, os.path.join(out, "runs", "warm-up"), args.warmup, tunables="stockt" in variants)
+    order = [(n, v) for n in rank_counts for v in variants]
     for r in range(args.rounds):
-        for n in rank_counts:
-            for v in variants:
-                run_dir = os.path.join(out, "runs", "%s-r%d" % (tag(v, n), r + 1))
-                t0 = time.time()
-                if v == "stock":
-                    res = run_stock(template, run_dir, args.warmup, n)
-                else:
-                    res = run_ours(bin_dir, os.path.join(out, "cases", tag(v, n)), run_dir, args.warmup)
-                results[n][v].append(res)
-                print("bench_fluid: round %d %-9s median %7s ms/step (run %.0f s)"
-                      % (r + 1, tag(v, n), ms(np.median(res["per_step_s"])), time.time() - t0), flush=True)
+        shift = r % len(order)
+        for n, v in order[shift:] + order[:shift]:
+            run_dir = os.path.join(out, "runs", "%s-r%d" % (tag(v, n), r + 1))
+            t0 = time.time()
+            if v in ("stock", "stockt"):
+                res = run_stock(template, run_dir, args.warmup, n, tunables=v == "stockt")
+            else:
+                res = run_ours(bin_dir, os.path.join(out, "cases", tag(v, n)), run_dir, args.warmup)
+            results[n][v].append(res)
+            print("bench_fluid: round %d %-9s median %7s ms/step (run %.0f s)"
+                  % (r + 1, tag(v, n), ms(np.median(res["per_step_s"])), time.time() - t0), flush=True)
     lines = []
     for n in rank_counts:
         lines += report(results[n], variants, args, n_cells, n_triangles, n) + [""]
