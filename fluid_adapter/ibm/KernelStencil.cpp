@@ -41,11 +41,46 @@ KernelStencil::KernelStencil(const CellIndex &index, const PointArray &points_m,
   }
 }
 
+namespace {
+
+/// phi along one axis for the cells of one point's support, remembered by the cells' centre
+/// coordinate: on hexahedral meshes (blockMesh, snappyHexMesh) the up to 64 cells of a support
+/// share about 4 coordinates per axis, so 12 evaluations replace 192. Same arguments, same
+/// values: the weights are those of PeskinKernel::delta_per_m3 bit for bit.
+class AxisPhi {
+public:
+  AxisPhi(double point_m, double inverse_width) : point_m_(point_m), inverse_width_(inverse_width) {}
+  double operator()(double centre_m) {
+    for (int i = 0; i < size_; ++i)
+      if (centre_m_[i] == centre_m)
+        return phi_[i];
+    const double phi = PeskinKernel::phi((centre_m - point_m_) * inverse_width_);
+    if (size_ < capacity) {
+      centre_m_[size_] = centre_m;
+      phi_[size_++] = phi;
+    }
+    return phi;
+  }
+
+private:
+  static constexpr int capacity = 8;
+  double point_m_, inverse_width_;
+  double centre_m_[capacity] = {}, phi_[capacity] = {};
+  int size_ = 0;
+};
+
+} // namespace
+
 void KernelStencil::add_point(const CellIndex &index, const Vec3 &point_m, double width_m,
                               std::vector<CellId> &found) {
   index.cells_in_box(point_m, PeskinKernel::support_radius * width_m, found);
+  const double inverse_width = 1.0 / width_m;
+  AxisPhi phi_x(point_m.x(), inverse_width), phi_y(point_m.y(), inverse_width), phi_z(point_m.z(), inverse_width);
   for (const CellId cell : found) {
-    const double weight = PeskinKernel::delta_per_m3(mesh_.centre_m(cell) - point_m, width_m) * mesh_.volume_m3(cell);
+    // delta_per_m3(centre - point, width) * V, in the same order of operations.
+    const Vec3 centre_m = mesh_.centre_m(cell);
+    const double weight = phi_x(centre_m.x()) * phi_y(centre_m.y()) * phi_z(centre_m.z()) * inverse_width *
+                          inverse_width * inverse_width * mesh_.volume_m3(cell);
     if (weight == 0.0)
       continue;
     cells_of_pairs_.push_back(cell);

@@ -38,6 +38,28 @@ Vec3 total_cell_torque_nm(const EulerianCells &cells, const PointArray &force_de
   return torque;
 }
 
+TEST(KernelStencilWeights, AreDeltaTimesVolumeBitForBitOnUniformAndStretchedMeshes) {
+  // The stencil evaluates phi once per distinct centre coordinate of a support (hexahedral
+  // meshes repeat them); every weight must still be delta_h(x_c - X) V_c exactly.
+  for (const EulerianCells &mesh : {testing::uniform_grid(20, 1.0), testing::stretched_grid(20, 1.0, 0.5)}) {
+    const CellIndex index(mesh);
+    const PointArray points = testing::random_points(200, 0.05, 0.95, 7);
+    const NearestCells nearest(index, points);
+    const KernelStencil stencil(index, points, nearest.kernel_width_m());
+    ASSERT_GT(stencil.n_pairs(), 200u * 27u);
+    for (Eigen::Index k = 0; k < points.rows(); ++k) {
+      const Vec3 x = points.row(k).transpose();
+      const double h = nearest.kernel_width_m()[k];
+      for (std::size_t p = stencil.offsets()[static_cast<std::size_t>(k)];
+           p < stencil.offsets()[static_cast<std::size_t>(k) + 1]; ++p) {
+        const CellId c = stencil.cells()[p];
+        ASSERT_EQ(stencil.weights()[p], PeskinKernel::delta_per_m3(mesh.centre_m(c) - x, h) * mesh.volume_m3(c))
+            << "point " << k << ", cell " << c;
+      }
+    }
+  }
+}
+
 TEST(Spreading, ConservesForceAndTorqueOnAUniformMesh) {
   // A sheet-like load: densities in N/m^2 times point areas in m^2.
   const Coupling s(testing::uniform_grid(20, 1.0), testing::random_points(150, 0.25, 0.75, 11));
