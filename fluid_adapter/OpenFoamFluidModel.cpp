@@ -272,7 +272,10 @@ void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
   ++lagrangian_stats_.interpolations;
   Eigen::VectorXd widths;
   kernel_widths(widths);
-  stencil_ = std::make_unique<ibm::KernelStencil>(index_, positions_, widths);
+  if (stencil_)
+    stencil_->rebuild(index_, positions_, widths); // reuses last step's arrays
+  else
+    stencil_ = std::make_unique<ibm::KernelStencil>(index_, positions_, widths);
   if (config_.normalise_kernel) {
     Eigen::VectorXd sums = stencil_->weight_sums();
     collective([&] { flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size())); });

@@ -32,6 +32,9 @@ public:
   /// Borrows index.cells(), which must outlive the stencil. Throws std::invalid_argument
   /// when the sizes differ or a width is not positive and finite.
   KernelStencil(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m);
+  /// The stencil of new points and widths on the same mesh (the next time step), reusing the
+  /// arrays' memory. Same checks as the constructor; std::invalid_argument for another index's mesh.
+  void rebuild(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m);
 
   Eigen::Index n_points() const { return static_cast<Eigen::Index>(offsets_.size()) - 1; }
   std::size_t n_pairs() const { return cells_of_pairs_.size(); }
@@ -64,6 +67,7 @@ private:
   std::vector<std::size_t> offsets_;
   std::vector<CellId> cells_of_pairs_;
   std::vector<double> weights_;
+  std::vector<CellId> found_; ///< one point's cells in reach, kept from point to point
 };
 
 } // namespace fsi::fluid::ibm

@@ -60,6 +60,28 @@ TEST(KernelStencilWeights, AreDeltaTimesVolumeBitForBitOnUniformAndStretchedMesh
   }
 }
 
+TEST(KernelStencilWeights, ARebuiltStencilEqualsANewOne) {
+  // The fluid rebuilds one stencil every step, keeping its arrays: the next step's points (more
+  // of them, then fewer) must give exactly the stencil built from scratch.
+  const EulerianCells mesh = testing::stretched_grid(16, 1.0, 0.5);
+  const CellIndex index(mesh);
+  const PointArray first = testing::random_points(300, 0.05, 0.95, 3);
+  KernelStencil stencil(index, first, NearestCells(index, first).kernel_width_m());
+  for (const int n : {500, 40}) {
+    const PointArray next = testing::random_points(n, 0.0, 1.0, static_cast<unsigned>(n));
+    const Eigen::VectorXd widths = NearestCells(index, next).kernel_width_m();
+    stencil.rebuild(index, next, widths);
+    const KernelStencil fresh(index, next, widths);
+    EXPECT_EQ(stencil.n_points(), n);
+    EXPECT_EQ(stencil.offsets(), fresh.offsets());
+    EXPECT_EQ(stencil.cells(), fresh.cells());
+    EXPECT_EQ(stencil.weights(), fresh.weights());
+  }
+  const EulerianCells other = testing::uniform_grid(4, 1.0);
+  const CellIndex other_index(other);
+  EXPECT_THROW(stencil.rebuild(other_index, first, Eigen::VectorXd::Constant(300, 0.1)), std::invalid_argument);
+}
+
 TEST(Spreading, ConservesForceAndTorqueOnAUniformMesh) {
   // A sheet-like load: densities in N/m^2 times point areas in m^2.
   const Coupling s(testing::uniform_grid(20, 1.0), testing::random_points(150, 0.25, 0.75, 11));
