@@ -2,8 +2,11 @@
 """The speed-against-error report (./fsi report): for each case with a reference, run a ladder
 of resolutions / time steps through the launcher, measure the wall time and the error against
 the reference, and write report/REPORT.md (table: resolution, dt, wall time, core-seconds per
-simulated second, error, observed order) and report/error_vs_cost.png. The report names the
-machine and the commit. Usage: report.py --bin-dir build/bin [--out report] [--quick]"""
+simulated second, error, observed order) and report/error_vs_cost.png, then the speed benchmarks
+against their references in the same run (coupling against raw TCP, membrane step per point,
+collisions on 1 thread against all cores, the fluid against stock pimpleFoam on 1 and 2 ranks).
+The report names the machine and the commit. Usage: report.py --bin-dir build/bin [--out report]
+[--quick] [--skip-stability] [--skip-speed | --only-speed (report/SPEED.md)]"""
 
 import argparse
 import datetime
