@@ -466,7 +466,7 @@ def main():
     parser.add_argument("--warmup", type=int, default=3, help="steps dropped at the start of each run")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--dt", type=float, default=5.0e-4)
-    parser.add_argument("--variants", default="stock,a,b,c,b0,c0")
+    parser.add_argument("--variants", default="stock,stockt,a,b,c,b0,c0")
     parser.add_argument("--ranks", default="1", help="comma-separated MPI rank counts, e.g. 1,2 (each variant on each)")
     args = parser.parse_args()
     variants = args.variants.split(",")
