@@ -10,11 +10,9 @@ namespace fsi::common {
 /// virtualised machine made an OpenFOAM step of 296k cells about 2x slower (850 against 420 ms)
 /// and a coupled step of 10^5 points 44 ms instead of 7 (docs/verification.md). Call it at the
 /// start of main, before the solver allocates; calling it again does nothing more. Both
-/// settings are needed: either alone turns glibc's adaptive thresholds off and is worse. For
-/// other programs (stock pimpleFoam) the same settings are GLIBC_TUNABLES=allocator_tunables().
+/// settings are needed: either alone turns glibc's adaptive thresholds off and is worse. Stock
+/// OpenFOAM programs started by our scripts get the same values through GLIBC_TUNABLES
+/// (scripts/fsi_launch.py, ALLOCATOR_TUNABLES).
 void keep_freed_memory();
-
-/// The same settings as a GLIBC_TUNABLES value, for programs started from here.
-const char *allocator_tunables();
 
 } // namespace fsi::common

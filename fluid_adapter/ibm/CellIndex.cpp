@@ -65,9 +65,10 @@ void CellIndex::cells_in_box(const Vec3 &point_m, double half_width_m, std::vect
   if (cells_.n_cells() == 0)
     return;
   const Vec3 half(half_width_m, half_width_m, half_width_m);
-  if (!centre_box_m_.intersects(Eigen::AlignedBox3d(point_m - half, point_m + half)))
+  const Eigen::AlignedBox3d box(point_m - half, point_m + half);
+  if (!centre_box_m_.intersects(box))
     return; // a rank far from the point (the tree would walk down to a leaf to find nothing)
-  tree_->search_box(tree_->tree.root_node, point_m - half, point_m + half, found);
+  tree_->search_box(tree_->tree.root_node, box.min(), box.max(), found);
 }
 
 CellIndex::Nearest CellIndex::nearest(const Vec3 &point_m) const {

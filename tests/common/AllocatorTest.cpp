@@ -10,7 +10,6 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <string>
 #include <vector>
 
 namespace {
@@ -54,12 +53,6 @@ TEST(Allocator, FreedBlocksOfMegabytesAreReusedWithoutPageFaults) {
   std::printf("page faults: first step %ld, next 20 steps %ld\n", first, next);
   ASSERT_GT(first, 4000); // the measurement sees the faults of fresh memory
   EXPECT_LT(next, first / 10);
-}
-
-TEST(Allocator, TunablesStringSetsTheSameThresholds) {
-  const std::string tunables = fsi::common::allocator_tunables();
-  EXPECT_NE(tunables.find("glibc.malloc.mmap_threshold=33554432"), std::string::npos);
-  EXPECT_NE(tunables.find("glibc.malloc.trim_threshold=268435456"), std::string::npos);
 }
 
 } // namespace
