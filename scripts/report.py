@@ -411,7 +411,7 @@ def stability_section(args):
     return ["## Stability (`./fsi test --stability`)", ""] + body + [""]
 
 
-def run_bench(args, name, argv, env=None, timeout=3600):
+def run_bench(name, argv, env=None, timeout=3600):
     """Runs build/bin/bench_<name> (or a bench script) and returns its standard output, or raises
     RuntimeError naming the bench and the end of its error output."""
     result = subprocess.run(argv, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=timeout,
@@ -431,7 +431,7 @@ def speed_section(args):
 
     print("report: speed, coupling over TCP loopback", flush=True)
     try:
-        text = run_bench(args, "bench_coupling", [os.path.join(bin_dir, "bench_coupling"), "--rounds", "3"])
+        text = run_bench("bench_coupling", [os.path.join(bin_dir, "bench_coupling"), "--rounds", "3"])
         lines += ["### Coupling overhead per step (`./fsi bench coupling --rounds 3`)", "", "```"] + \
             text.strip().splitlines() + ["```", ""]
     except (RuntimeError, subprocess.TimeoutExpired) as e:
@@ -439,7 +439,7 @@ def speed_section(args):
 
     print("report: speed, membrane step per point", flush=True)
     try:
-        text = run_bench(args, "bench_structure", [
+        text = run_bench("bench_structure", [
             os.path.join(bin_dir, "bench_structure"), "--benchmark_filter=n_side:(32|100|316)/collisions:0",
             "--benchmark_format=json"])
         rows = json.loads(text)["benchmarks"]
@@ -457,7 +457,7 @@ def speed_section(args):
     try:
         timings = {}
         for threads in ("1", str(os.cpu_count() or 1)) * 2:  # alternated, twice
-            text = run_bench(args, "bench_mesh_surface", [os.path.join(bin_dir, "bench_mesh_surface"), "3"],
+            text = run_bench("bench_mesh_surface", [os.path.join(bin_dir, "bench_mesh_surface"), "3"],
                              env={"OMP_NUM_THREADS": threads, "BENCH_ONLY": "none"})
             for contact, ms_per_call in re.findall(r"contact\s+([0-9.]+) %:\s+([0-9.]+) ms per call", text):
                 timings.setdefault(contact, {}).setdefault(threads, []).append(float(ms_per_call))
@@ -476,7 +476,7 @@ def speed_section(args):
     print("report: speed, the OpenFOAM fluid against stock pimpleFoam on 1 and 2 ranks (about 15 minutes)", flush=True)
     with tempfile.TemporaryDirectory(prefix="fsi-report-fluid-") as workdir:
         try:
-            run_bench(args, "bench_fluid", ["/usr/bin/python3", os.path.join(ROOT, "bench", "fluid", "bench_fluid.py"),
+            run_bench("bench_fluid", ["/usr/bin/python3", os.path.join(ROOT, "bench", "fluid", "bench_fluid.py"),
                                             "--bin-dir", bin_dir, "-o", workdir, "--variants", "stock,a,b,c,c2",
                                             "--ranks", "1,2", "--rounds", "1"], timeout=7200)
             table = open(os.path.join(workdir, "results.md")).read().splitlines()

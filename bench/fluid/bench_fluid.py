@@ -257,6 +257,13 @@ def iterations_per_step(log_text, warmup):
     return rows[warmup:]
 
 
+def collectives_ms(fluid_log):
+    """Rank 0's time in the Lagrangian broadcasts and reductions per step (ms), from the fluid's log
+    ("MPI rank 0 of P: Lagrangian data ... X ms a step"); None on one rank."""
+    match = re.search(r"MPI rank 0 of \d+: Lagrangian data .*?\) ([0-9.]+) ms a step", fluid_log)
+    return float(match.group(1)) if match else None
+
+
 def run_stock(template, run_dir, warmup, ranks=1, tunables=False):
     shutil.rmtree(run_dir, ignore_errors=True)
     shutil.copytree(template, run_dir)
@@ -315,8 +322,7 @@ def run_ours(bin_dir, case_dir, run_dir, warmup):
     with open(os.path.join(run_dir, "logs", "fluid.console"), errors="replace") as f:
         text = f.read()
     fluid = timings["fluid_solve_s"] + timings["interpolation_s"]
-    collectives = re.search(r"MPI rank 0 of \d+: Lagrangian data .*?\) ([0-9.]+) ms a step", text)
-    return {"collectives_ms": float(collectives.group(1)) if collectives else None,
+    return {"collectives_ms": collectives_ms(text),
             "per_step_s": fluid.tolist(), "fluid_solve_s": timings["fluid_solve_s"].tolist(),
             "interpolation_s": timings["interpolation_s"].tolist(),
             "structure_solve_s": timings["structure_solve_s"].tolist(),

@@ -24,7 +24,6 @@ Python standard library + numpy + h5py + yaml (Debian's python3-* packages).
 import argparse
 import datetime
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -33,8 +32,7 @@ import h5py
 import numpy as np
 import yaml
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-FOAM_ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+from bench_fluid import FOAM_ENV, ROOT, collectives_ms  # the same fluid log and environment
 WARMUP = 3
 
 
@@ -64,8 +62,8 @@ def run(bin_dir, case, out):
     with h5py.File(os.path.join(out, "coupling.h5"), "r") as f:
         timings = {k: float(np.median(np.asarray(f["timings"][k])[WARMUP:])) for k in f["timings"].keys()}
     with open(os.path.join(out, "logs", "fluid.console"), errors="replace") as f:
-        match = re.search(r"MPI rank 0 of \d+: Lagrangian data .*?\) ([0-9.]+) ms a step", f.read())
-    timings["collectives_s"] = float(match.group(1)) / 1e3 if match else 0.0
+        collectives = collectives_ms(f.read())
+    timings["collectives_s"] = collectives / 1e3 if collectives is not None else 0.0
     return timings
 
 
