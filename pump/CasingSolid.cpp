@@ -174,6 +174,14 @@ int CasingSolid::build() {
     parts.emplace_back("suction pipe", occ::addCylinder(0, 0, z_low_ - length, 0, 0, length + overlap,
                                                         0.5 * design_.inlet.suction_pipe_diameter_m));
   });
+  if (design_.inlet.has_sump())
+    gmsh_step(part, "inlet sump", [&] {
+      // Its top overlaps the pipe's foot, so that the fuse cuts a clean circle in the sump's roof.
+      const double top = z_low_ - design_.inlet.suction_pipe_length_m, overlap = 0.002;
+      const double bottom = top - design_.inlet.sump_height_m;
+      parts.emplace_back("inlet sump",
+                         occ::addCylinder(0, 0, bottom, 0, 0, top + overlap - bottom, 0.5 * design_.inlet.sump_diameter_m));
+    });
   gmsh_step(part, "spiral volute (lofts through its sections)", [&] {
     parts.emplace_back("spiral's first half", spiral_loft(-spiral_lead_in_rad, M_PI));
     parts.emplace_back("spiral's second half", spiral_loft(M_PI, 2 * M_PI));
@@ -200,13 +208,15 @@ int CasingSolid::build() {
 
 int CasingSolid::classify(const CadFace &face) const {
   constexpr double tol = 1e-5;
-  const double suction_bottom = z_low_ - design_.inlet.suction_pipe_length_m;
+  const double suction_bottom = z_low_ - design_.inlet.suction_pipe_length_m - design_.inlet.sump_height_m;
   if (face.upper_m[2] <= suction_bottom + tol)
     return inlet;
   if (face.lower_m[0] >= outlet_x_m() - tol)
     return outlet;
-  if (face.upper_m[2] <= z_low_ + tol && face.lower_m[2] < z_low_ - tol &&
-      face.max_radius_m <= 0.5 * design_.inlet.suction_pipe_diameter_m + tol)
+  // The suction pipe's wall, and the sump's wall and roof.
+  const double suction_radius =
+      0.5 * std::max(design_.inlet.suction_pipe_diameter_m, design_.inlet.sump_diameter_m);
+  if (face.upper_m[2] <= z_low_ + tol && face.lower_m[2] < z_low_ - tol && face.max_radius_m <= suction_radius + tol)
     return suction_wall;
   const Eigen::Vector2d nose_xy = nose_centre_xy_m();
   bool on_nose = face.surface_type != "Plane";

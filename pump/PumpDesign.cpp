@@ -90,6 +90,14 @@ void PumpDesign::validate(common::ConfigReader &v) const {
     v.fail_value("inlet", "suction_pipe_diameter_m = " + std::to_string(inlet.suction_pipe_diameter_m) +
                               " must be below 2 volute.base_radius_m = " + std::to_string(2.0 * volute.base_radius_m) +
                               " (the suction pipe opens into the impeller chamber).");
+  if (inlet.has_sump() != (inlet.sump_height_m > 0.0))
+    v.fail_value("inlet", "sump_diameter_m = " + std::to_string(inlet.sump_diameter_m) + " and sump_height_m = " +
+                              std::to_string(inlet.sump_height_m) +
+                              ": a sump needs both above 0 (or leave both out for none).");
+  if (inlet.has_sump() && inlet.sump_diameter_m <= inlet.suction_pipe_diameter_m)
+    v.fail_value("inlet", "sump_diameter_m = " + std::to_string(inlet.sump_diameter_m) +
+                              " must be above suction_pipe_diameter_m = " +
+                              std::to_string(inlet.suction_pipe_diameter_m) + " (a sump is wider than its pipe).");
   if (volute.section == VoluteSection::rectangular && volute.flank_angle_deg != 0.0)
     v.fail_value("volute", "flank_angle_deg is for a trapezoidal section; a rectangular one has none.");
 }

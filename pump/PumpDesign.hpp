@@ -86,13 +86,24 @@ struct VoluteDesign {
 struct InletDesign {
   double suction_pipe_diameter_m = 0.1;
   double suction_pipe_length_m = 0.3;
+  double sump_diameter_m = 0.0;
+  double sump_height_m = 0.0;
+
+  bool has_sump() const { return sump_diameter_m > 0.0; }
+  /// Diameter of the inlet patch: the sump's floor, or the suction pipe's bottom.
+  double inlet_diameter_m() const { return has_sump() ? sump_diameter_m : suction_pipe_diameter_m; }
 
   template <class V> void visit(V &v) {
     v.number("suction_pipe_diameter_m", suction_pipe_diameter_m, common::Range::positive("m"),
              "Diameter of the suction pipe below the eye: at most the eye diameter for a closed impeller (a wider "
              "pipe opens the side space under the shroud to the suction, a leak from the volute back to the eye).");
     v.number("suction_pipe_length_m", suction_pipe_length_m, common::Range::positive("m"),
-             "Length of the suction pipe (the rag is released at its bottom).");
+             "Length of the suction pipe from the sump (or the inlet) up to the impeller chamber.");
+    v.number("sump_diameter_m", sump_diameter_m, common::Range::non_negative("m"),
+             "Inlet sump: a wider cylinder below the suction pipe, its floor the inlet, where a rag too wide for the "
+             "pipe is released (the paper's section 4.2). 0: no sump, the inlet is the suction pipe's bottom.");
+    v.number("sump_height_m", sump_height_m, common::Range::non_negative("m"),
+             "Height of the inlet sump (> 0 with a sump).");
   }
 };
 
@@ -126,7 +137,7 @@ struct PumpDesign {
   template <class V> void visit(V &v) {
     v.section("impeller", impeller, "The rotating part: blades between hub and shroud.");
     v.section("volute", volute, "The spiral casing around the impeller and its discharge.");
-    v.section("inlet", inlet, "The suction pipe below the eye.");
+    v.section("inlet", inlet, "The suction pipe below the eye, and an optional inlet sump below it.");
     v.section("operation", operation, "Rotation and design flow rate.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       validate(v);

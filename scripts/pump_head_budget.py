@@ -73,7 +73,7 @@ def head_budget(foam_case, design, time=None):
     z_lo, z_hi = 0.5 * (imp["outlet_width_m"] - vol_["base_width_m"]), 0.5 * (imp["outlet_width_m"] + vol_["base_width_m"])
     in_chamber = (x[:, 2] > z_lo) & (x[:, 2] < z_hi)
     stations = [
-        ("suction pipe", np.abs(x[:, 2] - (x[:, 2].min() + 0.5 * inlet["suction_pipe_length_m"])) < 0.5 * h, u[:, 2]),
+        ("suction pipe", np.abs(x[:, 2] - (z_lo - 0.5 * inlet["suction_pipe_length_m"])) < 0.5 * h, u[:, 2]),
         ("impeller outlet", (np.abs(r - 0.5 * (r2 + r3)) < 0.5 * h) & in_chamber, u_r),
         ("volute", (np.abs(r - 1.1 * r3) < 0.5 * h) & in_chamber, u_r),
         ("discharge pipe", np.abs(x[:, 0] - (x[:, 0].max() - 0.5 * vol_["discharge_length_m"])) < 0.5 * h, u[:, 0]),

@@ -420,7 +420,9 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     link_surface(folder, casing)
     if refine_gaps:
         link_surface(folder, os.path.join(os.path.dirname(casing), "impeller.stl"))
-    u_in = design["operation"]["design_flow_rate_m3_per_s"] / (math.pi * design["inlet"]["suction_pipe_diameter_m"] ** 2 / 4)
+    inlet = design["inlet"]
+    inlet_diameter = inlet.get("sump_diameter_m") or inlet["suction_pipe_diameter_m"]   # the sump's floor, if any
+    u_in = design["operation"]["design_flow_rate_m3_per_s"] / (math.pi * inlet_diameter ** 2 / 4)
     k_in = 1.5 * (0.05 * u_in) ** 2                       # 5 % intensity
     values = {"nt": NU_TILDA_IN, "k": k_in, "w": math.sqrt(k_in) / (0.09 ** 0.25 * 0.01)}
     fields = dict(FIELDS, **TURBULENCE_FIELDS[turbulence])

@@ -83,6 +83,10 @@ TEST(PumpDesign, RefusesBladesAndChambersThatCannotBeBuilt) {
   EXPECT_NE(load_error("volute: {base_width_m: 0.07}\n").find("does not hold the impeller"), std::string::npos);
   EXPECT_NE(load_error("inlet: {suction_pipe_diameter_m: 0.22}\n").find("opens into the impeller chamber"),
             std::string::npos);
+  EXPECT_NE(load_error("inlet: {sump_diameter_m: 0.2}\n").find("a sump needs both above 0"), std::string::npos);
+  EXPECT_NE(load_error("inlet: {sump_diameter_m: 0.08, sump_height_m: 0.1}\n").find("a sump is wider than its pipe"),
+            std::string::npos);
+  EXPECT_EQ(load_error("inlet: {sump_diameter_m: 0.2, sump_height_m: 0.12}\n"), "");
   EXPECT_EQ(load_error("impeller: {leading_edge_radius_m: 0.006}\n"), ""); // a bulb
 }
 

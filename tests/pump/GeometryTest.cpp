@@ -24,17 +24,26 @@ struct Built {
   std::filesystem::path dir;
 };
 
-const Built &built(int n_blades) {
-  static std::map<int, Built> cache;
-  auto found = cache.find(n_blades);
+/// The designs built: the single blade (the default), two blades, and the single blade with an
+/// inlet sump (cases/rag-in-pump).
+enum class Variant { single_blade, two_blades, single_blade_with_sump };
+
+const Built &built(Variant variant) {
+  static std::map<Variant, Built> cache;
+  auto found = cache.find(variant);
   if (found == cache.end()) {
     Built b;
-    b.design.impeller.n_blades = n_blades;
+    b.design.impeller.n_blades = variant == Variant::two_blades ? 2 : 1;
+    if (variant == Variant::single_blade_with_sump) {
+      b.design.inlet.sump_diameter_m = 0.2;
+      b.design.inlet.sump_height_m = 0.12;
+    }
     b.geometry = PumpGeometry::build(b.design, GeometryOptions::coarse());
     b.dir = std::filesystem::temp_directory_path() /
-            ("fsi-pump-geometry-" + std::to_string(std::random_device{}()) + "-" + std::to_string(n_blades));
+            ("fsi-pump-geometry-" + std::to_string(std::random_device{}()) + "-" +
+             std::to_string(static_cast<int>(variant)));
     b.geometry.write(b.dir, b.design);
-    found = cache.emplace(n_blades, std::move(b)).first;
+    found = cache.emplace(variant, std::move(b)).first;
   }
   return found->second;
 }
@@ -107,10 +116,21 @@ void TheImpellerSitsInsideTheCasing(const Built &b) {
 
 void InletAndOutletDiscsHaveTheirDesignAreas(const Built &b) {
   const RegionSurface &casing = b.geometry.casing.surface;
-  const double inlet = M_PI * std::pow(b.design.inlet.suction_pipe_diameter_m, 2) / 4.0;
+  const double inlet = M_PI * std::pow(b.design.inlet.inlet_diameter_m(), 2) / 4.0;
   const double outlet = M_PI * std::pow(b.design.volute.discharge_diameter_m, 2) / 4.0;
   EXPECT_NEAR(casing.region_area_m2(casing.region_index("inlet")), inlet, 0.01 * inlet);
   EXPECT_NEAR(casing.region_area_m2(casing.region_index("outlet")), outlet, 0.01 * outlet);
+}
+
+/// The pipe's wall, and with a sump its wall and the annulus of its roof around the pipe.
+void TheSuctionWallIsThePipeAndTheSump(const Built &b) {
+  const InletDesign &in = b.design.inlet;
+  double expected = M_PI * in.suction_pipe_diameter_m * in.suction_pipe_length_m;
+  if (in.has_sump())
+    expected += M_PI * in.sump_diameter_m * in.sump_height_m +
+                M_PI / 4.0 * (std::pow(in.sump_diameter_m, 2) - std::pow(in.suction_pipe_diameter_m, 2));
+  const RegionSurface &casing = b.geometry.casing.surface;
+  EXPECT_NEAR(casing.region_area_m2(casing.region_index("suction_wall")), expected, 0.02 * expected);
 }
 
 void TheBladeIsBuiltWithItsDesignWrapAndAngles(const Built &b) {
@@ -134,7 +154,7 @@ void TheCutWaterHasItsRoundNose(const Built &b) {
 }
 
 // One test per design: ctest runs each test in its own process, and the build is the cost.
-class GeneratedPump : public testing::TestWithParam<int> {};
+class GeneratedPump : public testing::TestWithParam<Variant> {};
 
 TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
   const Built &b = built(GetParam());
@@ -155,6 +175,10 @@ TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
     InletAndOutletDiscsHaveTheirDesignAreas(b);
   }
   {
+    SCOPED_TRACE("TheSuctionWallIsThePipeAndTheSump");
+    TheSuctionWallIsThePipeAndTheSump(b);
+  }
+  {
     SCOPED_TRACE("TheBladeIsBuiltWithItsDesignWrapAndAngles");
     TheBladeIsBuiltWithItsDesignWrapAndAngles(b);
   }
@@ -164,9 +188,14 @@ TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(OneAndTwoBlades, GeneratedPump, testing::Values(1, 2),
-                         [](const testing::TestParamInfo<int> &info) {
-                           return info.param == 1 ? std::string("SingleBlade") : std::string("TwoBlades");
+INSTANTIATE_TEST_SUITE_P(Designs, GeneratedPump,
+                         testing::Values(Variant::single_blade, Variant::two_blades, Variant::single_blade_with_sump),
+                         [](const testing::TestParamInfo<Variant> &info) {
+                           switch (info.param) {
+                           case Variant::single_blade: return std::string("SingleBlade");
+                           case Variant::two_blades: return std::string("TwoBlades");
+                           default: return std::string("SingleBladeWithSump");
+                           }
                          });
 
 } // namespace
