@@ -23,6 +23,9 @@
 #                             geometry.yaml, geometry.png; docs/pump-design.md)
 #   ./fsi pump-curve [--points 0.36,0.6,0.8,1.0,1.2] [--jobs N] [--resolution NAME] CASE_DIR
 #                             a pump case at several flow rates: pump_curve.csv and pump_curve.png
+#   ./fsi rag-ensemble [--runs 8] [--seed 1] [--flow-fraction 1.0] [--sizes LxW,...] [--jobs N] CASE_DIR
+#                             rag releases into a pump case (cases/rag-in-pump): P(hang-up) with its
+#                             interval, residence and wrap distributions (ensemble.csv, ensemble.png)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
 # FSI_SANITIZE=0 skips the sanitizer pass of './fsi test'.
@@ -205,6 +208,9 @@ case "${1:-help}" in
   pump-curve)
     shift; [ $# -ge 1 ] || die "usage: ./fsi pump-curve [--points F,F,...] [--jobs N] [--resolution NAME] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/pump_curve.py" --bin-dir "$BUILD/bin" "$@" ;;
-  help|-h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, pump-design, pump-curve, build, help)" ;;
+  rag-ensemble)
+    shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/rag_ensemble.py" --bin-dir "$BUILD/bin" "$@" ;;
+  help|-h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
 esac

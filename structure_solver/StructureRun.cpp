@@ -35,7 +35,7 @@ std::vector<std::string> StructureRun::time_step_warnings(const Scene &scene, do
     if (!s->explicit_stretching()) {
       if (ratio < 100.0)
         warnings.push_back(fmt::format("structure '{}': Delta s / Delta t = {:.4g} m/s is below 100 m/s, the rule of "
-                                       "section 2.2; solver.tension is stabilized, so stretching waves (speed {:.4g} "
+                                       "section 2.2; solver.tension takes the stretching implicitly, so stretching waves (speed {:.4g} "
                                        "m/s) do not limit the step, but accuracy does: compare with a smaller step.",
                                        s->name(), ratio, wave_speed));
       continue;

@@ -370,19 +370,23 @@ def link_surface(folder, source):
 # In a pump-curve point's copy of the case (scripts/pump_curve.py writes it): the point's flow
 # rate as a fraction of the design flow rate, so that a regeneration of these files in the copy
 # (the generator rebuilt while the curve runs) keeps the point's flow rate.
+# cases/rag-in-pump keeps its operating point the same way, in flow_rate.yaml.
 POINT_FILE = "pump_curve_point.yaml"
+POINT_FILES = (POINT_FILE, "flow_rate.yaml")
 
 
 def operating_point(folder, design):
     """constant/operatingPoint: the imposed volume flow rate at the inlet (m^3/s), the design
-    point of pump.yaml or, in a pump-curve point's copy, its fraction of it."""
+    point of pump.yaml or, in a pump-curve point's copy (or a case with flow_rate.yaml), its
+    fraction of it."""
     q = design["operation"]["design_flow_rate_m3_per_s"]
-    point = os.path.join(os.path.dirname(os.path.abspath(folder)), POINT_FILE)
-    if os.path.isfile(point):
-        with open(point) as f:
-            fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
-        return ("// The imposed volume flow rate at the inlet (m^3/s): %.3g of the design flow rate (%s).\n"
-                "flowRate        %r;\n" % (fraction, POINT_FILE, fraction * q))
+    for name in POINT_FILES:
+        point = os.path.join(os.path.dirname(os.path.abspath(folder)), name)
+        if os.path.isfile(point):
+            with open(point) as f:
+                fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
+            return ("// The imposed volume flow rate at the inlet (m^3/s): %.3g of the design flow rate (%s).\n"
+                    "flowRate        %r;\n" % (fraction, name, fraction * q))
     return ("// The imposed volume flow rate at the inlet (m^3/s): the design point of pump.yaml.\n"
             "flowRate        %r;\n" % q)
 
@@ -431,22 +435,29 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     return box
 
 
-def main():
-    with open(os.path.join(HERE, "pump.yaml")) as f:
+def main(argv):
+    """make_case.py [CASE_DIR] [--resolutions-only]: the case folder (default this one; also
+    cases/rag-in-pump, through its prepare.py); --resolutions-only: without the rans and
+    coarse-gaps variants."""
+    args = [a for a in argv[1:] if not a.startswith("--")]
+    case_dir = os.path.abspath(args[0]) if args else HERE
+    with open(os.path.join(case_dir, "pump.yaml")) as f:
         design = yaml.safe_load(f)
     d2 = design["impeller"]["outer_diameter_m"]
-    casing = os.path.join(HERE, "geometry", "casing.stl")
+    casing = os.path.join(case_dir, "geometry", "casing.stl")
     if not os.path.exists(casing):
         sys.exit("make_case.py: %s is missing; run ./fsi pump-design %s --write %s first"
-                 % (casing, os.path.join(HERE, "pump.yaml"), os.path.join(HERE, "geometry")))
+                 % (casing, os.path.join(case_dir, "pump.yaml"), os.path.join(case_dir, "geometry")))
     for name, n in RESOLUTIONS.items():
-        box = write_case(os.path.join(HERE, "openfoam-" + name), design, d2 / n, "ddes", casing)
+        box = write_case(os.path.join(case_dir, "openfoam-" + name), design, d2 / n, "ddes", casing)
         print("openfoam-%s: h = %.4g m, background %d cells" % (name, d2 / n, box["nc"]))
-    write_case(os.path.join(HERE, "openfoam-coarse-rans"), design, d2 / RESOLUTIONS["coarse"], "rans", casing)
+    if "--resolutions-only" in argv:
+        return
+    write_case(os.path.join(case_dir, "openfoam-coarse-rans"), design, d2 / RESOLUTIONS["coarse"], "rans", casing)
     # The coarse mesh with 2 mm cells within 4 mm of the impeller, as the AMI reference's gap cells.
-    write_case(os.path.join(HERE, "openfoam-coarse-gaps"), design, d2 / RESOLUTIONS["coarse"], "ddes", casing,
+    write_case(os.path.join(case_dir, "openfoam-coarse-gaps"), design, d2 / RESOLUTIONS["coarse"], "ddes", casing,
                refine_gaps=True)
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv)

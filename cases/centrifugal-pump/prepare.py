@@ -36,7 +36,12 @@ def stl_lines(digests):
     return "".join("%s sha256 %s\n" % (name, digests[name]) for name in STLS if name in digests)
 
 
-def main(argv):
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def main(argv, pump_curve_variants=True):
+    """pump_curve_variants: also the rans and coarse-gaps folders and the AMI reference (this
+    case's pump curve); cases/rag-in-pump, which calls this for its own folder, wants neither."""
     if len(argv) != 3:
         sys.exit("usage: prepare.py CASE_DIR BIN_DIR")
     case_dir, bin_dir = argv[1], argv[2]
@@ -86,8 +91,11 @@ def main(argv):
     shutil.rmtree(old, ignore_errors=True)
     # The OpenFOAM cases' files follow the geometry (the background box around the casing, the
     # rotor cylinder of the AMI reference): unchanged bytes when the geometry is.
-    for script in ("make_case.py", "make_ami_case.py"):
-        made = subprocess.run([sys.executable, os.path.join(case_dir, script)], stdout=subprocess.PIPE,
+    scripts = [["make_case.py", case_dir] + ([] if pump_curve_variants else ["--resolutions-only"])]
+    if pump_curve_variants:
+        scripts.append(["make_ami_case.py"])
+    for script, *args in scripts:
+        made = subprocess.run([sys.executable, os.path.join(HERE, script)] + args, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT)
         if made.returncode != 0:
             sys.exit("prepare.py: %s failed:\n%s" % (script, made.stdout.decode(errors="replace").strip()))
