@@ -63,8 +63,16 @@ build() {
   local args=() targets=()
   while [ $# -gt 0 ] && [ "$1" != "--" ]; do args+=("$1"); shift; done
   [ $# -gt 0 ] && shift && targets=("$@")
+  # One build at a time per build folder: two ./fsi commands started together (two runs in two
+  # terminals) would otherwise race on the same objects and libraries and link broken executables.
+  mkdir -p "$dir"
+  local lock_fd
+  exec {lock_fd}>"$dir/.build.lock"
+  if ! flock -n "$lock_fd"; then
+    say "waiting for another ./fsi building in $dir"
+    flock "$lock_fd"
+  fi
   if [ ! -f "$dir/build.ninja" ]; then
-    mkdir -p "$dir"
     cmake -S "$ROOT" -B "$dir" -G Ninja "${args[@]}" >"$dir/configure.log" 2>&1 ||
       { cat "$dir/configure.log" >&2; die "CMake configuration failed (log: $dir/configure.log)"; }
   fi
@@ -81,6 +89,7 @@ build() {
     grep -E "error|Error" -A3 "$dir/build.log" | head -60 >&2
     die "build failed (full log: $dir/build.log)"
   fi
+  exec {lock_fd}>&-
 }
 
 # OpenFOAM v1912: Debian's package + the headers of the same version from its source package,
