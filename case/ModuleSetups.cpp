@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
 #include <stdexcept>
 
 namespace fsi::case_config {
@@ -48,8 +49,15 @@ fluid::PrecursorInputs precursor_inputs(const CaseConfig &config) {
   inputs.openfoam = *config.fluid->openfoam;
   const YAML::Node node = YAML::Load(effective_yaml(config));
   inputs.fluid_yaml = YAML::Dump(node["fluid"]);
-  if (node["collisions"])
-    inputs.collisions_yaml = YAML::Dump(node["collisions"]);
+  if (node["collisions"]) {
+    // The STL files by name only: their contents are hashed on their own, and a copy of the case
+    // elsewhere (a pump-curve point, a rag-ensemble member) keeps its precursor valid.
+    YAML::Node collisions = YAML::Clone(node["collisions"]);
+    for (YAML::Node surface : collisions["surfaces"])
+      if (surface["mesh"] && surface["mesh"]["file"])
+        surface["mesh"]["file"] = std::filesystem::path(surface["mesh"]["file"].as<std::string>()).filename().string();
+    inputs.collisions_yaml = YAML::Dump(collisions);
+  }
   if (config.collisions)
     for (const auto &surface : config.collisions->surfaces)
       if (surface.mesh)

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <numeric>
 #include <random>
+#include <tuple>
 
 namespace fsi::fluid {
 namespace {
@@ -25,10 +26,20 @@ std::string case_yaml(double precursor_time_s, double rag_mass) {
          "coupling: {law: penalty, stiffness_n_per_m_per_measure: 2.5e5}\n";
 }
 
-Precursor precursor_of(const std::string &yaml) {
+/// A closed tetrahedron, its apex at height `apex_m`.
+std::string tetrahedron_stl(double apex_m) {
+  const std::string a = "0 0 0", b = "0.1 0 0", c = "0 0.1 0", d = "0 0 " + std::to_string(apex_m);
+  std::string stl = "solid body\n";
+  for (const auto &[p, q, r] : {std::tuple{a, c, b}, std::tuple{a, b, d}, std::tuple{b, c, d}, std::tuple{c, a, d}})
+    stl += "facet normal 0 0 0\nouter loop\nvertex " + p + "\nvertex " + q + "\nvertex " + r + "\nendloop\nendfacet\n";
+  return stl + "endsolid body\n";
+}
+
+Precursor precursor_of(const std::string &yaml, double apex_m = 0.1) {
   static std::mt19937_64 rng(std::random_device{}());
   const auto dir = std::filesystem::temp_directory_path() / ("fsi-precursor-test-" + std::to_string(rng()));
-  std::filesystem::create_directories(dir);
+  std::filesystem::create_directories(dir / "geometry");
+  std::ofstream(dir / "geometry" / "body.stl") << tetrahedron_stl(apex_m);
   std::ofstream(dir / "case.yaml") << yaml;
   return Precursor(case_config::precursor_inputs(case_config::CaseConfig::load(dir)), dir, dir / "output");
 }
@@ -52,6 +63,16 @@ TEST(Precursor, FingerprintFollowsTheFlowNotTheStructure) {
   EXPECT_EQ(reference.fingerprint(), precursor_of(case_yaml(1.2, 0.03)).fingerprint()); // another rag
   EXPECT_NE(reference.fingerprint(), precursor_of(case_yaml(1.0, 0.08)).fingerprint()); // another precursor
   EXPECT_EQ(reference.fingerprint().size(), 16u);
+}
+
+// A copy of the case in another folder (a pump-curve point, a rag-ensemble member: each case
+// folder above is a new temporary one) keeps the precursor of its rigid bodies; another body does not.
+TEST(Precursor, FingerprintFollowsTheBodysFileContentsNotItsFolder) {
+  const std::string with_body =
+      case_yaml(1.2, 0.08) + "collisions:\n  surfaces:\n    - mesh: {file: geometry/body.stl}\n";
+  const auto reference = precursor_of(with_body);
+  EXPECT_EQ(reference.fingerprint(), precursor_of(with_body).fingerprint());
+  EXPECT_NE(reference.fingerprint(), precursor_of(with_body, 0.2).fingerprint());
 }
 
 } // namespace
