@@ -332,6 +332,47 @@ class CentrifugalPumpRefusals(CaseTest):
             self.assertTrue(os.path.isfile(os.path.join(foam, "0.005", field)), field)
 
 
+class RagInPump(CaseTest):
+    """cases/rag-in-pump, coarse, shortened (a precursor of 10 steps, 24 coupled steps) through
+    the launcher: the pump with its inlet sump is generated, meshed and run with the rag, all three
+    processes over ZeroMQ; the water rising from the sump carries the rag up (its centroid's
+    vertical velocity > 0 at the end, 0 at the release), no rag point is closer than d_t to the
+    turning impeller or the casing (the collision surfaces of Eq. 11, inside the casing), and the
+    case's postprocess.py writes the clogging metrics (outcome `running`: the rag is still in the
+    sump) and the pictures. The passage itself takes minutes: ./fsi run cases/rag-in-pump."""
+
+    STEPS = 24
+
+    def test_rag_rises_from_the_sump_and_the_metrics_are_written(self):
+        need_openfoam(self)
+        case = self.copy_case("rag-in-pump")
+        self.edit(os.path.join(case, "case.yaml"), "precursor_time_s: 0.25", "precursor_time_s: 0.0025")
+        with open(os.path.join(case, "case.yaml")) as f:
+            config = load_case_yaml(f)
+        dt = config["run"]["time_step_s"]
+        out = os.path.join(self.tmp, "out")
+        result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, "--end-time",
+                                 repr(self.STEPS * dt), case], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stderr.decode()[-3000:])
+        with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
+            status = f.attrs["status"]
+        self.assertEqual(status.decode() if isinstance(status, bytes) else str(status), "completed")
+        _, velocity = mean_over_points(out, "rag", "velocity_m_per_s")
+        self.assertAlmostEqual(float(velocity[0, 2]), 0.0, delta=1e-12)
+        self.assertGreater(float(velocity[-1, 2]), 0.01)   # m/s; the sump's mean upflow is 0.67 m/s
+        made = subprocess.run([PYTHON, os.path.join(case, "postprocess.py"), out, case, "--no-animation"],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=fsi_launch.case_script_env())
+        self.assertEqual(made.returncode, 0, made.stdout.decode()[-3000:])
+        with open(os.path.join(out, "rag_metrics.yaml")) as f:
+            metrics = yaml.safe_load(f)
+        self.assertEqual(metrics["outcome"], "running")
+        d_t = config["collisions"]["target_distance_m"]
+        self.assertGreaterEqual(metrics["min_wall_distance_m"], d_t * (1 - 1e-3))
+        for name in ("rag_metrics.csv", "rag_summary.png", "rag_sequence.png"):
+            self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+
+
 class PumpCurvePoint(CaseTest):
     """A pump-curve point's copy of the pump case keeps its flow rate when the launcher's prepare
     hook regenerates the copy's geometry and OpenFOAM files (the generator was rebuilt since the
