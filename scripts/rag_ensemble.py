@@ -7,9 +7,10 @@ summed over the runs (ensemble.csv, ensemble.yaml, ensemble.png).
     rag_ensemble.py --bin-dir BIN [--runs 8] [--seed 1] [--flow-fraction 1.0] [--sizes 0.15x0.05,0.1x0.1]
                     [--jobs N] [--resolution NAME] [--end-time S] [-o DIR] CASE_DIR
 
-Each member is a copy of the case folder (DIR/run-NN/case) whose rag is released at a random
-place of the sump's floor, turned by a random angle about the vertical, with one of the sizes
-(in turn), run by fsi_launch.py into DIR/run-NN; the seed makes the draw reproducible. The
+Each member is a copy of the case folder (DIR/run-NN/case) run by fsi_launch.py into DIR/run-NN.
+run-00 is the case's own rag and release (without --sizes); every other member's rag is released at a random place
+of the sump's floor, turned by a random angle about the vertical, with one of the sizes (in
+turn); the seed makes the draw reproducible. The
 flow rate is --flow-fraction times the case's (flow_rate.yaml: Q_BEP), so 0.36 is the paper's
 part load. The precursor of the flow alone is the same for every member of one operating point:
 the first member runs it, the others start from a copy of it. Members run in parallel up to
@@ -338,6 +339,8 @@ def main(argv):
     for i in range(args.runs):
         m = Member(i, out, fraction, flow_rate)
         member_rag, m.release = draw_release(rng, sizes[i % len(sizes)], rag, design, collision_m)
+        if i == 0 and not args.sizes:  # the case's own rag as it is: the reference member
+            member_rag, m.release = rag, {"case_release": True, "length_m": sizes[0][0], "width_m": sizes[0][1]}
         prepare_member(args, m, template, member_rag)
         members.append(m)
     jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
