@@ -1,0 +1,1181 @@
+#!/usr/bin/python3
+"""The clogging metrics of a rag carried through a centrifugal pump (issue 13), per run.
+
+    rag_metrics.py RUN_DIR CASE_DIR [--n-max-revolutions N] [--wrap-fraction F]
+                   [--contact-distance-m D] [--clean-operating-point FILE] [--structure NAME]
+
+RUN_DIR is a coupled run's output folder (structure.h5; forces.csv or coupling.h5 and
+openfoam/postProcessing for what the rag costs the pump), CASE_DIR the case folder (case.yaml,
+the collision surfaces: the rotating impeller STL and the casing STL with their named regions).
+Writes RUN_DIR/rag_metrics.csv (one row), RUN_DIR/rag_metrics.yaml (the same with the
+parameters and the definitions) and RUN_DIR/rag_summary.png (one page for a pump designer).
+docs/rag-metrics.md defines every metric exactly as computed here.
+
+As a module: write_metrics(run_dir, case_dir, **options) -> metrics dict (what the CLI does);
+compute_metrics(times, positions, grid_shape, geometry, threshold_m, ...) -> metrics dict from
+arrays (tests feed synthetic trajectories); PumpGeometry (the regions and the derived radii and
+heights); TriangleSet.distance (exact point-to-triangle-mesh distances).
+
+Frames and durations: the saved frames t_0 < ... < t_{n-1} of structure.h5; frame k stands for
+the times nearer to it than to any other frame, [e_k, e_{k+1}] with e_0 = t_0,
+e_k = (t_{k-1} + t_k) / 2, e_n = t_{n-1} (so the durations sum to the run). A contact lasting
+from frame a to frame b counts e_{b+1} - e_a: exact within one frame's duration.
+Frames of reference: the impeller at time t is its STL rotated by rate * t about the axis
+(right-hand rule); rag points are compared with the impeller's regions after rotating them by
+-rate * t, with the casing's regions as they are.
+"""
+
+import argparse
+import csv
+import math
+import os
+import sys
+
+import numpy as np
+
+try:
+    from scipy.spatial import cKDTree
+except ImportError as error:  # pragma: no cover - the Debian python3-scipy package
+    raise ImportError("rag_metrics.py needs scipy (python3-scipy): %s" % error)
+
+IMPELLER_REGIONS = ("blade_leading_edge", "blade_pressure_side", "blade_suction_side", "blade_trailing_edge",
+                    "hub", "shroud", "eye")
+CASING_REGIONS = ("inlet", "suction_wall", "volute_wall", "cut_water", "discharge_wall", "outlet")
+REQUIRED_IMPELLER = ("blade_leading_edge",)
+REQUIRED_CASING = ("suction_wall", "volute_wall", "cut_water", "discharge_wall")
+OPENINGS = ("inlet", "outlet")  # not walls: no contacts, no wall distance
+BLADE = ("blade_leading_edge", "blade_pressure_side", "blade_suction_side", "blade_trailing_edge")
+
+# Trap sites, in the order of the histogram, with what defines them (docs/rag-metrics.md).
+SITES = ("eye_and_hub", "shroud", "leading_edge", "blade_sides", "side_gap", "cut_water", "volute_wall",
+         "discharge", "suction")
+SITE_DEFINITIONS = {
+    "eye_and_hub": "the eye region; the hub inside the blade channel; the shroud's eye lip (a point on the "
+                   "suction side of the channel inside the eye radius)",
+    "shroud": "the shroud inside the blade channel (its channel face)",
+    "leading_edge": "blade_leading_edge",
+    "blade_sides": "blade_pressure_side, blade_suction_side, blade_trailing_edge",
+    "side_gap": "the hub or the shroud touched from outside the blade channel: a point beyond the blade outlet "
+                "radius, above the channel's hub-side bound, or below its shroud-side bound outside the eye radius",
+    "cut_water": "cut_water",
+    "volute_wall": "volute_wall (the spiral and the chamber's walls)",
+    "discharge": "discharge_wall",
+    "suction": "suction_wall (the suction pipe, and the sump when there is one)",
+}
+
+# Section 4.2 of the paper (the long rag, 15 cm x 5 cm). Its wrap fraction is of the simulated
+# time, about 5 revolutions (1.5 rev = 30 %, 2.4 rev = 50 %).
+PAPER = {
+    "Q_BEP": {"wrap_fraction_of_run": 0.30, "longest_wrap_revolutions": 1.5, "time_to_cut_water_s": 0.10},
+    "0.36 Q_BEP": {"wrap_fraction_of_run": 0.50, "longest_wrap_revolutions": 2.4, "time_to_cut_water_s": 0.14},
+    "max_strain": 0.03,
+}
+
+DEFAULTS = {
+    "n_max_revolutions": 10.0,
+    "wrap_fraction": 0.1,
+    "contact_distance_m": None,      # None: 1.5 d_c
+    "cut_water_distance_m": None,    # None: 2 d_c
+    "site_min_points": 1,
+    "self_contact_distance_m": None,  # None: d_c
+    "phase_bins": 12,
+    "settle_revolutions": None,      # None: 0 after a precursor, else 1 (write_metrics)
+    "clean_operating_point": None,
+    "structure": None,
+    "discharge_radius_m": None,      # None: the volute's outer radius from the geometry
+    "picture": True,
+}
+
+G = 9.81
+
+
+class MetricsError(Exception):
+    """A missing file, key or region, said with what is allowed."""
+
+
+# --------------------------------------------------------------------------------------------
+# Geometry: STL regions and exact distances
+
+
+def read_stl_regions(path):
+    """{solid name: triangles [n, 3, 3]} of an ASCII STL with named solids (the generator's
+    regions). Raises MetricsError for a missing file, a binary STL or a file without solids."""
+    if not os.path.isfile(path):
+        raise MetricsError("%s: no such file" % path)
+    with open(path, "rb") as f:
+        head = f.read(4096)
+    if not head.lstrip().lower().startswith(b"solid") or b"facet" not in head:
+        raise MetricsError("%s: not an ASCII STL with named solids (the regions are read from 'solid NAME' "
+                           "blocks; a binary STL has none)" % path)
+    regions, name, vertices = {}, None, []
+    with open(path, errors="replace") as f:
+        for line in f:
+            words = line.split()
+            if not words:
+                continue
+            key = words[0].lower()
+            if key == "vertex":
+                vertices.append((float(words[1]), float(words[2]), float(words[3])))
+            elif key == "solid":
+                name, vertices = (" ".join(words[1:]) or "unnamed"), []
+            elif key == "endsolid":
+                if len(vertices) % 3:
+                    raise MetricsError("%s: solid '%s' has %d vertices, not a multiple of 3" % (path, name, len(vertices)))
+                tri = np.array(vertices, float).reshape(-1, 3, 3)
+                regions[name] = np.concatenate([regions[name], tri]) if name in regions else tri
+                name, vertices = None, []
+    if not regions:
+        raise MetricsError("%s: no 'solid NAME ... endsolid' blocks" % path)
+    return regions
+
+
+def _dot(u, v):
+    return np.einsum("ij,ij->i", u, v)
+
+
+def closest_points_on_triangles(p, a, b, c):
+    """Closest points on triangles (a, b, c) to points p, all [m, 3] (Ericson, Real-Time
+    Collision Detection, 5.1.5: the Voronoi regions of the vertices, edges and face)."""
+    ab, ac, ap = b - a, c - a, p - a
+    d1, d2 = _dot(ab, ap), _dot(ac, ap)
+    bp = p - b
+    d3, d4 = _dot(ab, bp), _dot(ac, bp)
+    cp = p - c
+    d5, d6 = _dot(ab, cp), _dot(ac, cp)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    out = np.empty_like(p)
+    left = np.ones(len(p), bool)
+
+    def take(mask, value):
+        m = left & mask
+        out[m] = value(m)
+        left[m] = False
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        take((d1 <= 0) & (d2 <= 0), lambda m: a[m])
+        take((d3 >= 0) & (d4 <= d3), lambda m: b[m])
+        take((vc <= 0) & (d1 >= 0) & (d3 <= 0), lambda m: a[m] + (d1[m] / (d1[m] - d3[m]))[:, None] * ab[m])
+        take((d6 >= 0) & (d5 <= d6), lambda m: c[m])
+        take((vb <= 0) & (d2 >= 0) & (d6 <= 0), lambda m: a[m] + (d2[m] / (d2[m] - d6[m]))[:, None] * ac[m])
+        take((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0),
+             lambda m: b[m] + ((d4[m] - d3[m]) / ((d4[m] - d3[m]) + (d5[m] - d6[m])))[:, None] * (c[m] - b[m]))
+        denom = 1.0 / (va[left] + vb[left] + vc[left])
+        out[left] = a[left] + (vb[left] * denom)[:, None] * ab[left] + (vc[left] * denom)[:, None] * ac[left]
+    return out
+
+
+def point_triangle_distance(p, a, b, c):
+    """Exact distances of points p to triangles (a, b, c), all [m, 3]."""
+    return np.linalg.norm(p - closest_points_on_triangles(p, a, b, c), axis=1)
+
+
+class TriangleSet:
+    """A triangle set (one region, or several with a label per triangle) with exact distances.
+    Candidate triangles come from a k-d tree of the centroids: a triangle whose centroid is d
+    away is at least d - R away, R the largest centroid-to-vertex distance of the set, so the
+    k nearest centroids are enough once the best distance among them is <= d_k - R; otherwise
+    k grows (x4) for those points until that holds or k covers the set."""
+
+    PAIRS_PER_CHUNK = 1_500_000
+
+    def __init__(self, triangles, labels=None):
+        tri = np.asarray(triangles, float).reshape(-1, 3, 3)
+        labels = np.zeros(len(tri), int) if labels is None else np.asarray(labels)
+        area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+        keep = area2 > 1e-24  # degenerate (zero-area) triangles: their edges belong to neighbours
+        if not np.any(keep):
+            raise MetricsError("a triangle set with no triangle of non-zero area")
+        tri, self.labels = tri[keep], labels[keep]
+        self.a, self.b, self.c = tri[:, 0].copy(), tri[:, 1].copy(), tri[:, 2].copy()
+        self.centroids = tri.mean(axis=1)
+        self.rmax = float(np.max(np.linalg.norm(tri - self.centroids[:, None, :], axis=2)))
+        self.tree = cKDTree(self.centroids)
+        self.n = len(tri)
+        self.vertices = tri.reshape(-1, 3)
+
+    def distance(self, points, cap=None, return_index=False):
+        """Distances of points [m, 3] to the set. Without cap: exact. With cap (a number or one
+        per point): exact where the distance is <= cap, else some value > cap (inf when nothing
+        lies within cap + R). return_index: also the nearest triangle (-1 where unknown).
+        The points the k = 8 nearest centroids do not settle get every triangle whose centroid
+        lies within min(best, cap) + R (a ball query)."""
+        points = np.asarray(points, float).reshape(-1, 3)
+        m = len(points)
+        caps = np.full(m, np.inf) if cap is None else np.broadcast_to(np.asarray(cap, float), (m,)).copy()
+        best = np.full(m, np.inf)
+        nearest = np.full(m, -1)
+        k = min(8, self.n)
+        unresolved = []
+        step = max(1, self.PAIRS_PER_CHUNK // k)
+        for s in range(0, m, step):
+            rows = np.arange(s, min(m, s + step))
+            bound = float(np.max(caps[rows])) + self.rmax
+            dd, ii = self.tree.query(points[rows], k=k, distance_upper_bound=bound)
+            dd, ii = dd.reshape(len(rows), k), ii.reshape(len(rows), k)
+            valid = ii < self.n
+            d = np.full(dd.shape, np.inf)
+            r, j = np.nonzero(valid)
+            if r.size:
+                t = ii[r, j]
+                d[r, j] = point_triangle_distance(points[rows][r], self.a[t], self.b[t], self.c[t])
+            arg = np.argmin(d, axis=1)
+            b = d[np.arange(len(rows)), arg]
+            best[rows] = b
+            nearest[rows] = np.where(np.isfinite(b), ii[np.arange(len(rows)), arg], -1)
+            lower = dd[:, -1] - self.rmax  # every triangle not among the k is at least this far
+            done = (k >= self.n) | ~np.isfinite(dd[:, -1]) | (b <= lower) | (lower > caps[rows])
+            unresolved.append(rows[~done])
+        todo = np.concatenate(unresolved) if unresolved else np.zeros(0, int)
+        if todo.size:
+            radius = np.minimum(best[todo], caps[todo]) + self.rmax
+            # Ball queries in slices, so that the candidate pairs stay bounded in memory.
+            for s in range(0, todo.size, 2048):
+                rows = todo[s:s + 2048]
+                lists = self.tree.query_ball_point(points[rows], r=radius[s:s + 2048], return_sorted=False)
+                counts = np.fromiter((len(x) for x in lists), int, len(lists))
+                if not counts.sum():
+                    continue
+                tri = np.concatenate([np.asarray(x, int) for x in lists if len(x)])
+                owner = np.repeat(np.arange(len(rows)), counts)
+                for c0 in range(0, len(tri), self.PAIRS_PER_CHUNK):
+                    t = tri[c0:c0 + self.PAIRS_PER_CHUNK]
+                    o = owner[c0:c0 + self.PAIRS_PER_CHUNK]
+                    d = point_triangle_distance(points[rows][o], self.a[t], self.b[t], self.c[t])
+                    order = np.lexsort((d, o))  # per owner, nearest first
+                    first = order[np.r_[True, o[order][1:] != o[order][:-1]]]
+                    better = d[first] < best[rows[o[first]]]
+                    best[rows[o[first][better]]] = d[first][better]
+                    nearest[rows[o[first][better]]] = t[first][better]
+        return (best, nearest) if return_index else best
+
+    def lower_upper(self, points):
+        """Cheap bounds (lower, upper) of the distances: the best of the 8 nearest centroids'
+        triangles (upper) and min(upper, d_8 - R) (lower)."""
+        points = np.asarray(points, float).reshape(-1, 3)
+        k = min(8, self.n)
+        upper = np.empty(len(points))
+        lower = np.empty(len(points))
+        step = max(1, self.PAIRS_PER_CHUNK // k)
+        for s in range(0, len(points), step):
+            p = points[s:s + step]
+            dd, ii = self.tree.query(p, k=k)
+            dd, ii = dd.reshape(len(p), k), ii.reshape(len(p), k)
+            d = point_triangle_distance(np.repeat(p, k, axis=0), self.a[ii.ravel()], self.b[ii.ravel()],
+                                        self.c[ii.ravel()]).reshape(len(p), k)
+            upper[s:s + step] = d.min(axis=1)
+            lower[s:s + step] = upper[s:s + step] if k >= self.n else np.minimum(upper[s:s + step], dd[:, -1] - self.rmax)
+        return lower, upper
+
+
+def rotate(points, axis, angle, origin):
+    """Points [..., 3] rotated by angle (rad; scalar or one per leading index of a [F, N, 3]
+    array) about the unit axis through origin, right-hand rule (Rodrigues)."""
+    v = np.asarray(points, float) - origin
+    angle = np.asarray(angle, float)
+    if angle.ndim == 1:
+        angle = angle[:, None, None]
+    cos, sin = np.cos(angle), np.sin(angle)
+    cross = np.cross(axis, v)
+    along = (v @ axis)[..., None] * axis
+    return v * cos + cross * sin + along * (1.0 - cos) + origin
+
+
+class PumpGeometry:
+    """The impeller's and the casing's regions and what the metrics derive from them:
+    up            unit vector along the axis from the suction towards the impeller
+    entry_axial   the chamber's entry: the top of suction_wall (its largest axial coordinate)
+    volute_radius the largest distance from the axis of volute_wall and cut_water (or given)
+    blade_outlet_radius  the largest distance from the axis of the blade regions
+    channel       the blade channel's axial range: blade_trailing_edge's (else the blade's)
+    eye_radius    the eye region's largest distance from the axis (else the shroud's smallest)
+    le_hub_axial, le_shroud_axial  the leading edge's axial ends on the hub and the shroud side
+    Axial coordinates are (x - axis point) . up, in m."""
+
+    def __init__(self, impeller_regions, casing_regions, axis_point_m, axis_direction, rate_rad_per_s,
+                 discharge_radius_m=None, impeller_file="impeller", casing_file="casing"):
+        missing = [r for r in REQUIRED_IMPELLER if r not in impeller_regions]
+        if missing:
+            raise MetricsError("%s: no region %s (found %s; the metrics need %s)" % (
+                impeller_file, ", ".join(missing), ", ".join(sorted(impeller_regions)), ", ".join(REQUIRED_IMPELLER)))
+        missing = [r for r in REQUIRED_CASING if r not in casing_regions]
+        if missing:
+            raise MetricsError("%s: no region %s (found %s; the metrics need %s)" % (
+                casing_file, ", ".join(missing), ", ".join(sorted(casing_regions)), ", ".join(REQUIRED_CASING)))
+        axis = np.asarray(axis_direction, float)
+        if not np.linalg.norm(axis) > 0:
+            raise MetricsError("rotation axis_direction %s: not a direction" % list(axis_direction))
+        self.axis = axis / np.linalg.norm(axis)
+        self.origin = np.asarray(axis_point_m, float)
+        self.rate = float(rate_rad_per_s)
+        self.impeller = {k: np.asarray(v, float) for k, v in impeller_regions.items()}
+        self.casing = {k: np.asarray(v, float) for k, v in casing_regions.items()}
+        self.sets = {("impeller", k): TriangleSet(v) for k, v in self.impeller.items()}
+        self.sets.update({("casing", k): TriangleSet(v) for k, v in self.casing.items()})
+        low = self.casing["inlet"] if "inlet" in self.casing else self.casing["suction_wall"]
+        impeller_centre = np.concatenate([v.reshape(-1, 3) for v in self.impeller.values()]).mean(axis=0)
+        sign = 1.0 if (impeller_centre - low.reshape(-1, 3).mean(axis=0)) @ self.axis >= 0 else -1.0
+        self.up = sign * self.axis
+        self.entry_axial = float(np.max(self.axial(self.casing["suction_wall"].reshape(-1, 3))))
+        rim = np.concatenate([self.casing["volute_wall"].reshape(-1, 3), self.casing["cut_water"].reshape(-1, 3)])
+        self.volute_radius = float(discharge_radius_m) if discharge_radius_m else float(np.max(self.radius(rim)))
+        blade = np.concatenate([self.impeller[k].reshape(-1, 3) for k in BLADE if k in self.impeller])
+        self.blade_outlet_radius = float(np.max(self.radius(blade)))
+        channel = self.impeller.get("blade_trailing_edge", blade).reshape(-1, 3)
+        self.channel = (float(np.min(self.axial(channel))), float(np.max(self.axial(channel))))
+        if "eye" in self.impeller:
+            self.eye_radius = float(np.max(self.radius(self.impeller["eye"].reshape(-1, 3))))
+        elif "shroud" in self.impeller:
+            self.eye_radius = float(np.min(self.radius(self.impeller["shroud"].reshape(-1, 3))))
+        else:
+            self.eye_radius = 0.0
+        le = self.axial(self.impeller["blade_leading_edge"].reshape(-1, 3))
+        lo, hi = float(np.min(le)), float(np.max(le))
+        if "hub" in self.impeller and "shroud" in self.impeller:
+            hub_above = np.mean(self.axial(self.impeller["hub"].reshape(-1, 3))) > np.mean(
+                self.axial(self.impeller["shroud"].reshape(-1, 3)))
+            self.le_hub_axial, self.le_shroud_axial = (hi, lo) if hub_above else (lo, hi)
+            self.hub_above = bool(hub_above)
+        else:
+            self.le_hub_axial, self.le_shroud_axial = None, None
+            self.hub_above = True
+        walls = [k for k in self.casing if k not in OPENINGS]
+        self.casing_all = TriangleSet(np.concatenate([self.casing[k] for k in self.casing]),
+                                      np.concatenate([[k] * len(self.casing[k]) for k in self.casing]))
+        self.casing_walls = TriangleSet(np.concatenate([self.casing[k] for k in walls]),
+                                        np.concatenate([[k] * len(self.casing[k]) for k in walls]))
+        self.impeller_all = TriangleSet(np.concatenate([self.impeller[k] for k in self.impeller]),
+                                        np.concatenate([[k] * len(self.impeller[k]) for k in self.impeller]))
+
+    def axial(self, x):
+        return (np.asarray(x, float) - self.origin) @ self.up
+
+    def radius(self, x):
+        v = np.asarray(x, float) - self.origin
+        return np.linalg.norm(v - (v @ self.axis)[..., None] * self.axis, axis=-1)
+
+    def to_impeller_frame(self, times, positions):
+        """Positions [F, N, 3] at times [F] in the impeller's frame (rotated by -rate t)."""
+        return rotate(positions, self.axis, -self.rate * np.asarray(times, float), self.origin)
+
+    def describe(self):
+        return {"rotation_axis": [float(v) + 0.0 for v in self.axis], "axis_point_m": [float(v) + 0.0 for v in self.origin],
+                "rotation_rate_rad_per_s": self.rate, "up_towards_impeller": [float(v) + 0.0 for v in self.up],
+                "chamber_entry_axial_m": self.entry_axial, "volute_radius_m": self.volute_radius,
+                "blade_outlet_radius_m": self.blade_outlet_radius, "blade_channel_axial_m": list(self.channel),
+                "eye_radius_m": self.eye_radius,
+                "leading_edge_hub_end_axial_m": self.le_hub_axial, "leading_edge_shroud_end_axial_m": self.le_shroud_axial,
+                "impeller_regions": sorted(self.impeller), "casing_regions": sorted(self.casing)}
+
+
+# --------------------------------------------------------------------------------------------
+# Metrics from arrays
+
+
+def frame_edges(times):
+    """e_0 = t_0, e_k = (t_{k-1} + t_k) / 2, e_n = t_{n-1}: frame k stands for [e_k, e_{k+1}]."""
+    t = np.asarray(times, float)
+    return np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]])
+
+
+def clipped_durations(edges, lo, hi):
+    return np.clip(np.minimum(edges[1:], hi) - np.maximum(edges[:-1], lo), 0.0, None)
+
+
+def runs_of(flags):
+    """[(first, last)] of the runs of consecutive True."""
+    f = np.concatenate([[False], np.asarray(flags, bool), [False]])
+    d = np.diff(f.astype(int))
+    return list(zip(np.nonzero(d == 1)[0], np.nonzero(d == -1)[0] - 1))
+
+
+def grid_edges(grid_shape):
+    """Index pairs of the grid's edges: (i1, i2)-(i1+1, i2) and (i1, i2)-(i1, i2+1)."""
+    n1, n2 = int(grid_shape[0]), int(grid_shape[1]) if len(grid_shape) > 1 else 1
+    index = np.arange(n1 * n2).reshape(n1, n2)
+    pairs = [np.stack([index[:-1, :].ravel(), index[1:, :].ravel()], axis=1)]
+    if n2 > 1:
+        pairs.append(np.stack([index[:, :-1].ravel(), index[:, 1:].ravel()], axis=1))
+    return np.concatenate(pairs)
+
+
+def self_contacts(positions, grid_shape, distance):
+    """Per frame, the pairs of points closer than distance that are not grid neighbours
+    (|i1 - j1| <= 1 and |i2 - j2| <= 1)."""
+    n2 = int(grid_shape[1]) if len(grid_shape) > 1 else 1
+    counts = np.zeros(len(positions), int)
+    for f, x in enumerate(positions):
+        pairs = cKDTree(x).query_pairs(distance, output_type="ndarray")
+        if len(pairs):
+            i, j = pairs[:, 0], pairs[:, 1]
+            close = (np.linalg.norm(x[i] - x[j], axis=1) < distance)
+            far_on_grid = (np.abs(i // n2 - j // n2) > 1) | (np.abs(i % n2 - j % n2) > 1)
+            counts[f] = int(np.count_nonzero(close & far_on_grid))
+    return counts
+
+
+def phase_mean(t, y, rate, bins):
+    """Mean of y over the samples, phase-averaged when every one of `bins` impeller-angle bins
+    has samples (each bin's mean weighted equally: the once-per-revolution pulsation drops
+    out); else the plain mean. (value, phase_averaged) or (None, None) without samples."""
+    if len(y) == 0:
+        return None, None
+    phase = np.floor(np.mod(rate * np.asarray(t), 2 * math.pi) / (2 * math.pi) * bins).astype(int) % bins
+    counts = np.bincount(phase, minlength=bins)
+    if bins > 0 and np.all(counts > 0):
+        sums = np.bincount(phase, weights=y, minlength=bins)
+        return float(np.mean(sums / counts)), True
+    return float(np.mean(y)), False
+
+
+def _opt(x):
+    """None (an empty field: never reached, no data) or a float."""
+    return None if x is None or not math.isfinite(float(x)) else float(x)
+
+
+def analyse(times, positions, grid_shape, geometry, threshold_m, loads=None, clean=None, **options):
+    """(metrics, series) of a trajectory: times [F] (s), positions [F, N, 3] (m, lab frame),
+    grid_shape (n1, n2), a PumpGeometry, threshold_m = d_c. loads: optional
+    {"torque": (t, shaft torque N m), "head": (t, head m)}; clean: optional {"torque": N m,
+    "head": m} of the clean pump. options: see DEFAULTS. Metrics are SI floats, None where
+    undefined (never reached, no data: an empty field)."""
+    opt = dict(DEFAULTS)
+    unknown = set(options) - set(DEFAULTS)
+    if unknown:
+        raise MetricsError("unknown option(s) %s (allowed: %s)" % (", ".join(sorted(unknown)), ", ".join(DEFAULTS)))
+    opt.update({k: v for k, v in options.items() if v is not None})
+    t = np.asarray(times, float)
+    x = np.asarray(positions, float)
+    if x.ndim != 3 or x.shape[2] != 3 or len(t) != len(x) or len(t) < 1:
+        raise MetricsError("positions must be [n_frames, n_points, 3] with one time per frame (got %s and %d times)"
+                           % (x.shape, len(t)))
+    if np.any(np.diff(t) <= 0):
+        raise MetricsError("the frames' times must increase")
+    n_frames, n_points = x.shape[:2]
+    if int(np.prod(grid_shape)) != n_points:
+        raise MetricsError("grid_shape %s does not hold %d points" % (list(grid_shape), n_points))
+    d_c = float(threshold_m)
+    contact = float(opt["contact_distance_m"] or 1.5 * d_c)
+    cut_water_distance = float(opt["cut_water_distance_m"] or 2.0 * d_c)
+    self_distance = float(opt["self_contact_distance_m"] or d_c)
+    n_max = float(opt["n_max_revolutions"])
+    wrap_fraction = float(opt["wrap_fraction"])
+    min_points = int(opt["site_min_points"])
+    rate = geometry.rate
+    period = 2 * math.pi / abs(rate) if rate else float("inf")
+    rev = (lambda s: None if s is None or not rate else s * abs(rate) / (2 * math.pi))
+    edges = frame_edges(t)
+    durations = np.diff(edges)
+    flat = x.reshape(-1, 3)
+    xi = geometry.to_impeller_frame(t, x).reshape(-1, 3)
+    axial = geometry.axial(flat).reshape(n_frames, n_points)
+    radius = geometry.radius(flat).reshape(n_frames, n_points)
+
+    # Distances to each region, capped: exact up to the contact (cut-water) distance.
+    near = {}
+    for (body, name), tset in geometry.sets.items():
+        if name in OPENINGS:
+            continue
+        cap = max(contact, cut_water_distance) if name == "cut_water" else contact
+        near[name] = tset.distance(xi if body == "impeller" else flat, cap=cap).reshape(n_frames, n_points)
+    touching = {k: d <= contact for k, d in near.items()}
+    none = np.zeros((n_frames, n_points), bool)
+
+    def touch(name):
+        return touching.get(name, none)
+
+    # Outcome: the first frame with every point in the discharge.
+    entered = np.any(axial > geometry.entry_axial, axis=1)
+    entry = int(np.argmax(entered)) if np.any(entered) else None
+    exit_frame = None
+    candidates = np.nonzero(np.all(radius > geometry.volute_radius, axis=1))[0]
+    discharge = [geometry.sets[("casing", k)] for k in ("discharge_wall", "outlet") if ("casing", k) in geometry.sets]
+    others = [tset for (body, k), tset in geometry.sets.items()
+              if body == "casing" and k not in ("discharge_wall", "outlet")]
+    for s in range(0, len(candidates), 4):
+        frames = candidates[s:s + 4]
+        p = x[frames].reshape(-1, 3)
+        # Nearest casing region discharge_wall or outlet: an upper bound u of that distance
+        # first; the other regions only where they come nearer than u (then exactly).
+        u = np.min([tset.lower_upper(p)[1] for tset in discharge], axis=0)
+        d2 = np.min([tset.distance(p, cap=u) for tset in others], axis=0)
+        unsure = d2 <= u
+        if np.any(unsure):
+            d1 = np.min([tset.distance(p[unsure]) for tset in discharge], axis=0)
+            u[unsure] = d1
+        inside = np.all((u < d2).reshape(len(frames), n_points), axis=1)
+        if np.any(inside):
+            exit_frame = int(frames[np.argmax(inside)])
+            break
+    t_exit = float(t[exit_frame]) if exit_frame is not None else None
+    t_end = float(t[-1])
+    if t_exit is not None and (not rate or rev(t_exit) <= n_max + 1e-9):
+        outcome = "passed"
+    elif rate and (t_exit is not None or rev(t_end) >= n_max - 1e-9):
+        outcome = "hung_up"
+    else:
+        outcome = "running"
+
+    # Residence: from the chamber entry to the exit (or the end of the run).
+    t_entry = float(t[entry]) if entry is not None else None
+    t_out = t_exit if t_exit is not None else t_end
+    residence = (t_out - t_entry) if t_entry is not None else None
+    in_residence = clipped_durations(edges, t_entry, t_out) if t_entry is not None else np.zeros(n_frames)
+    in_run = clipped_durations(edges, 0.0, t_out)
+
+    # Cut-water.
+    cw = np.any(near["cut_water"] <= cut_water_distance, axis=1)
+    t_cut_water = float(t[np.argmax(cw)]) if np.any(cw) else None
+
+    # Wrap on the leading edge.
+    le = touch("blade_leading_edge")
+    le_fraction = le.mean(axis=1)
+    wrap = le_fraction >= wrap_fraction
+    wrap_in_residence = float(np.sum(in_residence[wrap]))
+    wrap_in_run = float(np.sum(in_run[wrap]))
+    episodes = runs_of(wrap)
+    longest = max((edges[b + 1] - edges[a] for a, b in episodes), default=0.0)
+    span = None
+    if np.any(wrap) and geometry.le_hub_axial is not None and geometry.le_shroud_axial != geometry.le_hub_axial:
+        weights = (le * durations[:, None])[wrap]
+        if weights.sum() > 0:
+            mean_axial = float(np.sum(weights * axial[wrap]) / np.sum(weights))
+            span = (mean_axial - geometry.le_hub_axial) / (geometry.le_shroud_axial - geometry.le_hub_axial)
+
+    # Trap sites.
+    lo, hi = geometry.channel
+    beyond_hub = axial > hi if geometry.hub_above else axial < lo
+    beyond_shroud = axial < lo if geometry.hub_above else axial > hi
+    outside_radius = radius > geometry.blade_outlet_radius
+    in_eye = beyond_shroud & (radius <= geometry.eye_radius)
+    outside_channel = outside_radius | beyond_hub | (beyond_shroud & ~in_eye)
+    discs = touch("hub") | touch("shroud")
+    site_points = {
+        "eye_and_hub": touch("eye") | (touch("hub") & ~outside_channel) | (touch("shroud") & in_eye),
+        "shroud": touch("shroud") & ~outside_channel & ~in_eye,
+        "leading_edge": le,
+        "blade_sides": touch("blade_pressure_side") | touch("blade_suction_side") | touch("blade_trailing_edge"),
+        "side_gap": discs & outside_channel,
+        "cut_water": touch("cut_water"),
+        "volute_wall": touch("volute_wall"),
+        "discharge": touch("discharge_wall"),
+        "suction": touch("suction_wall"),
+    }
+    site_frames = {k: np.count_nonzero(v, axis=1) >= min_points for k, v in site_points.items()}
+
+    # Mechanics.
+    pairs = grid_edges(grid_shape)
+    lengths = np.linalg.norm(x[:, pairs[:, 1]] - x[:, pairs[:, 0]], axis=2)
+    rest = lengths[0]
+    if np.any(rest <= 0):
+        raise MetricsError("frame 0 has grid edges of zero length: no rest length")
+    strain = np.max(lengths / rest - 1.0, axis=1)
+    k_strain = int(np.argmax(strain))
+    # The closest wall: exact from the capped distances when a point came within the contact
+    # distance of a wall; else from the points whose lower bound can beat the best upper bound.
+    wall_regions = [k for k in near]
+    stacked = np.stack([near[k].ravel() for k in wall_regions])
+    if np.min(stacked) <= contact:
+        flat_best = int(np.argmin(np.min(stacked, axis=0)))
+        wall_min = float(np.min(stacked[:, flat_best]))
+        region = wall_regions[int(np.argmin(stacked[:, flat_best]))]
+    else:
+        lower_i, upper_i = geometry.impeller_all.lower_upper(xi)
+        lower_c, upper_c = geometry.casing_walls.lower_upper(flat)
+        lower = np.minimum(lower_i, lower_c)
+        cand = np.nonzero(lower <= np.min(np.minimum(upper_i, upper_c)))[0]
+        di, ti = geometry.impeller_all.distance(xi[cand], return_index=True)
+        dc, tc = geometry.casing_walls.distance(flat[cand], return_index=True)
+        exact = np.minimum(di, dc)
+        j = int(np.argmin(exact))
+        flat_best, wall_min = int(cand[j]), float(exact[j])
+        region = geometry.impeller_all.labels[ti[j]] if di[j] <= dc[j] else geometry.casing_walls.labels[tc[j]]
+    frame_min = flat_best // n_points
+    selfc = self_contacts(x, grid_shape, self_distance)
+    k_self = int(np.argmax(selfc))
+
+    metrics = {
+        "outcome": outcome,
+        "exit_time_s": _opt(t_exit),
+        "exit_revolution": rev(t_exit),
+        "time_from_release_to_exit_s": _opt(t_exit),
+        "chamber_entry_time_s": _opt(t_entry),
+        "chamber_entry_revolution": rev(t_entry),
+        "residence_time_s": _opt(residence),
+        "residence_time_revolutions": rev(residence),
+        "residence_until": ("" if t_entry is None else "exit" if t_exit is not None else "end_of_run"),
+        "time_to_cut_water_s": _opt(t_cut_water),
+        "time_to_cut_water_revolutions": rev(t_cut_water),
+        "wrap_time_s": wrap_in_residence if residence else None,
+        "wrap_fraction_of_residence": wrap_in_residence / residence if residence else None,
+        "wrap_fraction_of_run": wrap_in_run / t_out if t_out > 0 else None,
+        "longest_wrap_s": float(longest),
+        "longest_wrap_revolutions": rev(float(longest)) if rate else None,
+        "wrap_episodes": len(episodes),
+        "wrap_span_fraction": _opt(span),
+    }
+    for site in SITES:
+        metrics["trap_contact_time_s." + site] = float(np.sum(durations[site_frames[site]]))
+    metrics.update(_cost(t, edges, wrap, loads, clean, rate, opt))
+    metrics.update({
+        "max_strain": float(strain[k_strain]),
+        "max_strain_time_s": float(t[k_strain]),
+        "min_wall_distance_m": wall_min,
+        "min_wall_distance_time_s": float(t[frame_min]),
+        "min_wall_distance_region": str(region),
+        "max_self_contacts": int(selfc[k_self]),
+        "max_self_contacts_time_s": float(t[k_self]),
+        "n_frames": int(n_frames),
+        "n_points": int(n_points),
+        "end_time_s": t_end,
+        "revolutions_run": rev(t_end),
+    })
+    parameters = {
+        "threshold_m": d_c, "contact_distance_m": contact, "cut_water_distance_m": cut_water_distance,
+        "self_contact_distance_m": self_distance, "n_max_revolutions": n_max, "wrap_fraction": wrap_fraction,
+        "site_min_points": min_points, "phase_bins": int(opt["phase_bins"]),
+        "settle_revolutions": float(opt["settle_revolutions"] or 0.0),
+    }
+    series = {"time_s": t, "strain": strain, "wrap": wrap, "le_fraction": le_fraction,
+              "self_contacts": selfc, "sites": site_frames, "entry_time_s": t_entry, "exit_time_s": t_exit,
+              "parameters": parameters, "period_s": period}
+    return metrics, series
+
+
+def compute_metrics(times, positions, grid_shape, geometry, threshold_m, loads=None, clean=None, **options):
+    """The metrics dict of analyse() (see there)."""
+    return analyse(times, positions, grid_shape, geometry, threshold_m, loads=loads, clean=clean, **options)[0]
+
+
+COST_KEYS = ("torque_wrap_n_m", "torque_rest_n_m", "torque_clean_n_m", "torque_wrap_minus_rest_n_m",
+             "torque_wrap_minus_clean_n_m", "torque_phase_averaged", "head_wrap_m", "head_rest_m", "head_clean_m",
+             "head_wrap_minus_rest_m", "head_wrap_minus_clean_m", "head_phase_averaged")
+
+
+def _cost(t, edges, wrap, loads, clean, rate, opt):
+    """Mean shaft torque and head over the samples whose nearest frame wraps, against the other
+    samples of the frames' time span after the settling revolutions, and against the clean pump."""
+    out = {k: None for k in COST_KEYS}
+    settle = float(opt["settle_revolutions"] or 0.0)
+    t_settle = settle * 2 * math.pi / abs(rate) if rate else 0.0
+    bins = int(opt["phase_bins"])
+    for name, unit in (("torque", "n_m"), ("head", "m")):
+        reference = (clean or {}).get(name)
+        if reference is not None:
+            out["%s_clean_%s" % (name, unit)] = float(reference)
+        series = (loads or {}).get(name)
+        if series is None:
+            continue
+        ts, ys = np.asarray(series[0], float), np.asarray(series[1], float)
+        keep = (ts >= edges[0]) & (ts <= edges[-1]) & (ts >= t_settle) & np.isfinite(ys)
+        ts, ys = ts[keep], ys[keep]
+        frame = np.clip(np.searchsorted(edges, ts, side="right") - 1, 0, len(wrap) - 1)
+        w = wrap[frame]
+        mw, pw = phase_mean(ts[w], ys[w], rate, bins)
+        mr, pr = phase_mean(ts[~w], ys[~w], rate, bins)
+        out["%s_wrap_%s" % (name, unit)] = _opt(mw)
+        out["%s_rest_%s" % (name, unit)] = _opt(mr)
+        if mw is not None and mr is not None:
+            out["%s_wrap_minus_rest_%s" % (name, unit)] = mw - mr
+        if mw is not None and reference is not None:
+            out["%s_wrap_minus_clean_%s" % (name, unit)] = mw - float(reference)
+        flags = [p for p in (pw, pr) if p is not None]
+        out["%s_phase_averaged" % name] = bool(all(flags)) if flags else None
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# Reading a run and a case
+
+
+def _yaml():
+    import yaml
+    return yaml
+
+
+def read_structure(run_dir, structure=None):
+    """(times [F], positions [F, N, 3], grid_shape, name, status, solver max stretch ratio or
+    None, config yaml text or None) of RUN_DIR/structure.h5."""
+    import h5py
+    path = os.path.join(run_dir, "structure.h5")
+    if not os.path.isfile(path):
+        raise MetricsError("%s: no such file (the rag's positions; RUN_DIR must be the output folder of a run "
+                           "with a structure)" % path)
+    with h5py.File(path, "r") as f:
+        if "time_s" not in f or "structures" not in f:
+            raise MetricsError("%s: no /time_s or /structures (docs/results.md describes the layout)" % path)
+        names = sorted(f["structures"].keys())
+        if not names:
+            raise MetricsError("%s: /structures is empty" % path)
+        if structure is None:
+            if len(names) > 1 and "rag" not in names:
+                raise MetricsError("%s: several structures (%s); say which with --structure" % (path, ", ".join(names)))
+            structure = names[0] if len(names) == 1 else "rag"
+        if structure not in names:
+            raise MetricsError("%s: no structure '%s' (allowed: %s)" % (path, structure, ", ".join(names)))
+        g = f["structures"][structure]
+        if "position_m" not in g:
+            raise MetricsError("%s: /structures/%s/position_m missing" % (path, structure))
+        t = f["time_s"][:]
+        x = g["position_m"][:]
+        n = min(len(t), len(x))
+        grid = [int(v) for v in g.attrs.get("grid_shape", [x.shape[1], 1])]
+        stretch = g["max_stretch_ratio"][:n] if "max_stretch_ratio" in g else None
+        status = f.attrs.get("status", "")
+        config = f.attrs.get("config_yaml", None)
+    decode = (lambda s: s.decode() if isinstance(s, bytes) else s)
+    if n < 1:
+        raise MetricsError("%s: no saved frame" % path)
+    return (t[:n], x[:n], grid, structure, decode(status),
+            float(np.max(stretch)) if stretch is not None and len(stretch) else None, decode(config))
+
+
+def read_config(run_dir, case_dir, h5_config=None):
+    """(config dict, where from): RUN_DIR/config.effective.yaml, else structure.h5's
+    config_yaml, else CASE_DIR/case.yaml."""
+    yaml = _yaml()
+    path = os.path.join(run_dir, "config.effective.yaml")
+    if os.path.isfile(path):
+        with open(path) as f:
+            return yaml.safe_load(f) or {}, path
+    if h5_config:
+        return yaml.safe_load(h5_config) or {}, os.path.join(run_dir, "structure.h5:config_yaml")
+    path = os.path.join(case_dir, "case.yaml")
+    if not os.path.isfile(path):
+        raise MetricsError("%s: no such file (and no %s/config.effective.yaml)" % (path, run_dir))
+    with open(path) as f:
+        return yaml.safe_load(f) or {}, path
+
+
+def load_geometry(case_dir, config, source="case.yaml", discharge_radius_m=None):
+    """(PumpGeometry, threshold d_c, target d_t, notes) from the collision surfaces of the
+    configuration: the impeller is the mesh surface with motion.rotation, the casing the other
+    mesh surface (fluid_side inside), else CASE_DIR/geometry/casing.stl."""
+    collisions = config.get("collisions") or {}
+    surfaces = collisions.get("surfaces") or []
+    impeller, static = None, []
+    for s in surfaces:
+        mesh = (s or {}).get("mesh")
+        if not mesh:
+            continue
+        rot = ((s.get("motion") or {}).get("rotation"))
+        if rot and impeller is None:
+            impeller = (mesh, rot)
+        elif not rot:
+            static.append(mesh)
+    inside = [m for m in static if m.get("fluid_side", "outside") == "inside"]
+    casing = (inside or static or [None])[0]
+    if impeller is None:
+        found = "; ".join("%s%s" % (", ".join(k for k in (s or {}) if k != "motion"),
+                                    " with motion %s" % ", ".join((s.get("motion") or {})) if (s or {}).get("motion") else "")
+                          for s in surfaces) or "none"
+        raise MetricsError("%s: collisions.surfaces has no mesh surface with motion.rotation (the impeller, an STL "
+                           "with named regions; surfaces found: %s)" % (source, found))
+    mesh, rot = impeller
+    if "file" not in mesh:
+        raise MetricsError("%s: the impeller's collisions.surfaces[].mesh has no 'file'" % source)
+
+    def resolve(p):
+        return p if os.path.isabs(p) else os.path.join(case_dir, p)
+
+    impeller_file = resolve(mesh["file"])
+    casing_file = resolve(casing["file"]) if casing and "file" in casing else os.path.join(case_dir, "geometry", "casing.stl")
+    if not os.path.isfile(casing_file):
+        raise MetricsError("%s: no such file (the casing with its regions: a collisions.surfaces[].mesh with "
+                           "fluid_side: inside, or CASE_DIR/geometry/casing.stl)" % casing_file)
+    if "rate_rad_per_s" not in rot:
+        raise MetricsError("%s: the impeller's motion.rotation has no rate_rad_per_s" % source)
+    geometry = PumpGeometry(read_stl_regions(impeller_file), read_stl_regions(casing_file),
+                            rot.get("axis_point_m", [0, 0, 0]), rot.get("axis_direction", [0, 0, 1]),
+                            float(rot["rate_rad_per_s"]), discharge_radius_m=discharge_radius_m,
+                            impeller_file=impeller_file, casing_file=casing_file)
+    notes = []
+    gpath = os.path.join(os.path.dirname(impeller_file), "geometry.yaml")
+    if os.path.isfile(gpath):
+        with open(gpath) as f:
+            gy = _yaml().safe_load(f) or {}
+        rate = gy.get("rotation_rate_rad_per_s")
+        if rate is not None and abs(float(rate) - geometry.rate) > 1e-6 * max(1.0, abs(geometry.rate)):
+            notes.append("%s: rotation_rate_rad_per_s %s differs from the case's %s (the case's is used)"
+                         % (gpath, rate, geometry.rate))
+    threshold = float(collisions.get("threshold_m", 0.004))
+    target = float(collisions.get("target_distance_m", 0.004))
+    return geometry, threshold, target, notes, {"impeller": impeller_file, "casing": casing_file}
+
+
+def read_loads(run_dir, geometry, config, impeller_index=None):
+    """{"torque": (t, shaft torque), "head": (t, head)} with what the run left; missing parts
+    are None. Torque: forces.csv (columns <body>.torque_{x,y,z}_n_m or body<k>.t{x,y,z}_n_m),
+    else coupling.h5 /rigid_bodies/<body>/torque_n_m; shaft torque = -axis . torque.
+    Head: (p_t,out - p_t,in) / (rho g) from openfoam/postProcessing (scripts/pump_point.py)."""
+    loads, notes = {"torque": None, "head": None}, []
+    torque = None
+    path = os.path.join(run_dir, "forces.csv")
+    if os.path.isfile(path):
+        with open(path) as f:
+            header = f.readline().strip().split(",")
+        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        bodies = {}
+        for k, name in enumerate(header):
+            for pattern in (".torque_%s_n_m", ".t%s_n_m"):
+                for c in "xyz":
+                    if name.endswith(pattern % c):
+                        bodies.setdefault(name[:-len(pattern % c)], {})[c] = k
+        bodies = {b: cols for b, cols in bodies.items() if len(cols) == 3}
+        chosen = _choose_body(bodies, impeller_index)
+        if chosen and len(data):
+            torque = (data[:, 0], np.stack([data[:, bodies[chosen][c]] for c in "xyz"], axis=1))
+            notes.append("torque: %s, body %s" % (path, chosen))
+    if torque is None and os.path.isfile(os.path.join(run_dir, "coupling.h5")):
+        import h5py
+        with h5py.File(os.path.join(run_dir, "coupling.h5"), "r") as f:
+            if "rigid_bodies" in f and "time_s" in f:
+                bodies = {b: None for b in f["rigid_bodies"]}
+                chosen = _choose_body(bodies, impeller_index)
+                if chosen:
+                    tq = f["rigid_bodies"][chosen]["torque_n_m"][:]
+                    tt = f["time_s"][:]
+                    n = min(len(tt), len(tq))
+                    torque = (tt[:n], tq[:n])
+                    notes.append("torque: coupling.h5, body %s" % chosen)
+    if torque is not None:
+        loads["torque"] = (torque[0], -(torque[1] @ geometry.axis))
+    else:
+        notes.append("no torque (no forces.csv or coupling.h5 with a rigid body)")
+    try:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import pump_point
+        t_in, p_in = pump_point.read_dat(run_dir, "inletTotalPressure")
+        t_out, p_out = pump_point.read_dat(run_dir, "outletTotalPressure")
+        rho = float(((config.get("fluid") or {}).get("openfoam") or {}).get("density_kg_per_m3", 1000.0))
+        loads["head"] = (t_out, (p_out[:, 0] - np.interp(t_out, t_in, p_in[:, 0])) / (rho * G))
+        notes.append("head: openfoam/postProcessing total pressures, rho = %g kg/m^3" % rho)
+    except (FileNotFoundError, ValueError, IndexError) as error:
+        notes.append("no head (%s)" % error)
+    return loads, notes
+
+
+def _choose_body(bodies, impeller_index):
+    if not bodies:
+        return None
+    if len(bodies) == 1:
+        return next(iter(bodies))
+    for name in ("surface%d" % (impeller_index or 0), "body0"):
+        if name in bodies:
+            return name
+    return sorted(bodies)[0]
+
+
+def read_clean(path):
+    if not path:
+        return None
+    if not os.path.isfile(path):
+        raise MetricsError("%s: no such file (--clean-operating-point: the clean pump's operating_point.yaml)" % path)
+    with open(path) as f:
+        point = _yaml().safe_load(f) or {}
+    if "shaft_torque_n_m" not in point and "head_m" not in point:
+        raise MetricsError("%s: neither shaft_torque_n_m nor head_m (an operating_point.yaml of "
+                           "scripts/pump_point.py is expected)" % path)
+    return {"torque": point.get("shaft_torque_n_m"), "head": point.get("head_m"),
+            "flow_rate_m3_per_s": point.get("flow_rate_m3_per_s")}
+
+
+# --------------------------------------------------------------------------------------------
+# Outputs
+
+DEFINITIONS = {
+    "outcome": "passed: every point in the discharge (below) at a frame with t * rate / 2 pi <= n_max_revolutions; "
+               "hung_up: not passed by then and the run (or the exit) reached n_max_revolutions; running: the run "
+               "ended before either. A point is in the discharge when its distance from the axis exceeds the "
+               "volute's outer radius (the largest of volute_wall and cut_water vertices) and its nearest casing "
+               "region is discharge_wall or outlet.",
+    "exit_time_s": "time of the first frame with every point in the discharge (from the release at t = 0)",
+    "exit_revolution": "exit_time_s * rate / 2 pi",
+    "time_from_release_to_exit_s": "= exit_time_s (the rag is released at t = 0)",
+    "chamber_entry_time_s": "first frame with a point above the top of suction_wall (axially, towards the impeller)",
+    "chamber_entry_revolution": "chamber_entry_time_s * rate / 2 pi",
+    "residence_time_s": "from chamber_entry_time_s to exit_time_s, or to the last frame when the rag has not left "
+                        "(residence_until says which)",
+    "residence_time_revolutions": "residence_time_s * rate / 2 pi",
+    "residence_until": "exit, end_of_run (the run ended first: a lower bound), or empty (never entered)",
+    "time_to_cut_water_s": "first frame with a point within cut_water_distance_m of cut_water",
+    "time_to_cut_water_revolutions": "time_to_cut_water_s * rate / 2 pi",
+    "wrap_time_s": "duration, within the residence, of the frames with at least wrap_fraction of the points within "
+                   "contact_distance_m of blade_leading_edge (in the impeller's frame)",
+    "wrap_fraction_of_residence": "wrap_time_s / residence_time_s",
+    "wrap_fraction_of_run": "wrap duration from t = 0 to the exit (or the end) over that time: the paper's measure",
+    "longest_wrap_s": "longest run of consecutive wrap frames, e_{last+1} - e_first",
+    "longest_wrap_revolutions": "longest_wrap_s * rate / 2 pi",
+    "wrap_episodes": "number of runs of consecutive wrap frames",
+    "wrap_span_fraction": "duration-weighted mean axial position of the points touching the leading edge in wrap "
+                          "frames, 0 at the leading edge's hub end, 1 at its shroud end",
+    "trap_contact_time_s.<site>": "sum of the durations of the frames with at least site_min_points points within "
+                                  "contact_distance_m of the site (sites: see sites)",
+    "torque_wrap_n_m": "mean shaft torque -axis . T over the force samples whose nearest frame wraps; phase-averaged "
+                       "over phase_bins impeller-angle bins when every bin has samples (torque_phase_averaged)",
+    "torque_rest_n_m": "the same over the other samples of the frames' time span after settle_revolutions",
+    "torque_clean_n_m": "shaft_torque_n_m of --clean-operating-point",
+    "torque_wrap_minus_rest_n_m": "torque_wrap_n_m - torque_rest_n_m (and torque_wrap_minus_clean_n_m)",
+    "torque_phase_averaged": "true when both the wrap and the rest means are phase-averaged, false when one is a plain "
+                             "mean (a phase bin without samples), empty without torque data",
+    "head_wrap_m": "as torque_wrap_n_m with the head (p_t,out - p_t,in) / (rho g) of openfoam/postProcessing (and "
+                   "head_rest_m, head_clean_m, head_wrap_minus_rest_m, head_wrap_minus_clean_m, head_phase_averaged)",
+    "max_strain": "largest |x_j - x_i| / L0_ij - 1 over the grid edges and frames, L0 the edge's length in frame 0 "
+                  "(max_strain_time_s: its frame)",
+    "min_wall_distance_m": "smallest distance of a point to any wall region (impeller in its frame, casing; not "
+                           "inlet or outlet) over the frames (min_wall_distance_time_s, min_wall_distance_region: "
+                           "where)",
+    "max_self_contacts": "largest number, over the frames, of point pairs closer than self_contact_distance_m that "
+                         "are not grid neighbours (|di1| <= 1 and |di2| <= 1) (max_self_contacts_time_s: its frame)",
+    "n_frames": "saved frames of structure.h5 (n_points: the rag's grid points)",
+    "end_time_s": "time of the last frame (revolutions_run: * rate / 2 pi)",
+    "solver_max_stretch_ratio": "the largest max_stretch_ratio the structure solver saved (length over its model's "
+                                "rest length, 1 = unstretched); empty when structure.h5 has none",
+}
+
+
+def _plain(v):
+    if isinstance(v, (np.floating, float)):
+        return None if not math.isfinite(float(v)) else float(v)
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
+    if isinstance(v, dict):
+        return {k: _plain(w) for k, w in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(w) for w in v]
+    return v
+
+
+def write_csv(path, metrics):
+    def cell(v):
+        v = _plain(v)
+        if v is None or v == "":
+            return ""
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, float):
+            return "%.9g" % v
+        return str(v)
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(list(metrics))
+        w.writerow([cell(v) for v in metrics.values()])
+
+
+def write_yaml(path, metrics, parameters, extra):
+    """The metrics at the top level (as in the CSV), then the parameters, the definitions and
+    the paper's values (lists of text, which tools that flatten the numbers pass over), the
+    sources and notes."""
+    yaml = _yaml()
+    doc = dict(_plain(metrics))
+    doc["parameters"] = _plain(parameters)
+    doc["definitions"] = ["%s: %s" % kv for kv in DEFINITIONS.items()] + [
+        "site %s: %s" % kv for kv in SITE_DEFINITIONS.items()]
+    doc["paper_section_4_2"] = [
+        "%s: on the leading edge %.0f %% of the simulated time, %.1f revolutions; at the cut-water %.2f s after "
+        "the release" % (q, 100 * v["wrap_fraction_of_run"], v["longest_wrap_revolutions"], v["time_to_cut_water_s"])
+        for q, v in PAPER.items() if isinstance(v, dict)] + ["strain kept under %.0f %%" % (100 * PAPER["max_strain"])]
+    doc.update(_plain(extra))
+    with open(path, "w") as f:
+        f.write("# The clogging metrics of the rag (scripts/rag_metrics.py; docs/rag-metrics.md), SI units;\n"
+                "# null: undefined (never reached, no data).\n")
+        yaml.safe_dump(doc, f, sort_keys=False, width=110)
+
+
+def picture(path, metrics, series, title=""):
+    """rag_summary.png: the outcome in big letters, the numbers a pump designer asks for, this
+    run against the paper, the trap sites, strain and leading-edge contact over time."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    m = {k: _plain(v) for k, v in metrics.items()}
+
+    def fmt(v, spec, unit="", none="—"):
+        return none if v is None or v == "" else (spec % v) + unit
+
+    def pct(v):
+        return None if v is None else 100.0 * v
+
+    fig = plt.figure(figsize=(11.7, 8.3))
+    grid = fig.add_gridspec(4, 3, height_ratios=[1.0, 1.25, 0.85, 0.85], hspace=0.75, wspace=0.45,
+                            left=0.1, right=0.93, top=0.97, bottom=0.07)
+    colour = {"passed": "#1a7f37", "hung_up": "#c62828", "running": "#b26a00"}[m["outcome"]]
+    text = fig.add_subplot(grid[0, :])
+    text.axis("off")
+    head = {"passed": "PASSED at %s s (revolution %s)" % (fmt(m["exit_time_s"], "%.3f"), fmt(m["exit_revolution"], "%.1f")),
+            "hung_up": "HUNG UP: still in the pump after %g revolutions" % series["parameters"]["n_max_revolutions"],
+            "running": "RUNNING: the run ended at %.3f s (%.1f rev) before an exit" % (m["end_time_s"], m["revolutions_run"])}
+    text.text(0.0, 1.0, head[m["outcome"]], fontsize=22, weight="bold", color=colour, va="top", transform=text.transAxes)
+    left = [
+        "residence in the pump: %s s = %s rev%s" % (
+            fmt(m["residence_time_s"], "%.3f"), fmt(m["residence_time_revolutions"], "%.1f"),
+            " (so far: the run ended first)" if m["residence_until"] == "end_of_run" else ""),
+        "on the leading edge: %s of the residence, longest %s rev" % (
+            fmt(pct(m["wrap_fraction_of_residence"]), "%.0f", " %"), fmt(m["longest_wrap_revolutions"], "%.2f")),
+        "    wrap at span %s (0 hub side, 1 shroud side)" % fmt(m["wrap_span_fraction"], "%.2f", none="— (no wrap)"),
+        "first at the cut-water: %s" % fmt(m["time_to_cut_water_s"], "%.3f", " s", none="not reached"),
+    ]
+    right = [
+        "shaft torque wrapped %s N m, rest %s, clean %s" % (
+            fmt(m["torque_wrap_n_m"], "%.2f"), fmt(m["torque_rest_n_m"], "%.2f"), fmt(m["torque_clean_n_m"], "%.2f")),
+        "head wrapped %s m, rest %s, clean %s" % (
+            fmt(m["head_wrap_m"], "%.2f"), fmt(m["head_rest_m"], "%.2f"), fmt(m["head_clean_m"], "%.2f")),
+        "rag: max strain %s (paper: under 3 %%), %d frames" % (fmt(pct(m["max_strain"]), "%.1f", " %"), m["n_frames"]),
+        "closest to a wall %s mm (%s), up to %d self-contacts" % (
+            fmt(1e3 * m["min_wall_distance_m"], "%.1f"), m["min_wall_distance_region"], m["max_self_contacts"]),
+    ]
+    for column, lines in ((0.0, left), (0.55, right)):
+        for i, line in enumerate(lines):
+            text.text(column, 0.55 - 0.19 * i, line, fontsize=10, va="top", transform=text.transAxes)
+    if title:
+        text.text(1.0, 1.0, title, fontsize=7, color="0.45", ha="right", va="bottom", transform=text.transAxes)
+
+    # Trap sites.
+    red = ("eye_and_hub", "leading_edge", "cut_water")
+    ax = fig.add_subplot(grid[1, 0])
+    times = [m["trap_contact_time_s." + s] for s in SITES]
+    y = np.arange(len(SITES))[::-1]
+    ax.barh(y, times, color=["C3" if s in red else "C0" for s in SITES])
+    ax.set_yticks(y)
+    ax.set_yticklabels([s.replace("_", " ") for s in SITES], fontsize=8)
+    ax.set_xlabel("contact time (s)", fontsize=8)
+    ax.tick_params(axis="x", labelsize=7)
+    ax.set_title("where the rag touched\n(red: the paper's trap sites)", fontsize=9)
+
+    # This run against the paper (section 4.2, the 15 cm x 5 cm rag).
+    cmp_grid = grid[1, 1:].subgridspec(1, 3, wspace=0.5)
+    for j, (key, label, scale, unit) in enumerate((("wrap_fraction_of_run", "on the leading edge\n(% of the run)", 100, "%.0f"),
+                                                   ("longest_wrap_revolutions", "longest wrap\n(revolutions)", 1, "%.2f"),
+                                                   ("time_to_cut_water_s", "release to cut-water\n(s)", 1, "%.3f"))):
+        ax = fig.add_subplot(cmp_grid[0, j])
+        values = [m[key], PAPER["Q_BEP"][key], PAPER["0.36 Q_BEP"][key]]
+        heights = [0 if v is None else scale * v for v in values]
+        bars = ax.bar(range(3), heights, color=[colour, "0.55", "0.8"])
+        for b, v in zip(bars, values):
+            ax.text(b.get_x() + b.get_width() / 2, b.get_height(), "n/a" if v is None else unit % (scale * v),
+                    ha="center", va="bottom", fontsize=7)
+        ax.set_xticks(range(3))
+        ax.set_xticklabels(["this\nrun", "paper\nQ_BEP", "paper\n0.36 Q"], fontsize=7)
+        ax.set_title(label, fontsize=8)
+        ax.tick_params(axis="y", labelsize=7)
+        ax.set_ylim(0, 1.2 * max(heights + [1e-9]))
+
+    # Over time: strain and leading-edge contact; contacts per site.
+    t = series["time_s"]
+    per = series["period_s"] if math.isfinite(series["period_s"]) else 1.0
+    rev = t / per
+    ax = fig.add_subplot(grid[2, :])
+    for a, b in runs_of(series["wrap"]):
+        ax.axvspan(rev[a], rev[min(b + 1, len(rev) - 1)], color="C3", alpha=0.12, lw=0)
+    ax.plot(rev, 100 * series["strain"], color="C2", lw=1.2, zorder=3)
+    ax.axhline(100 * PAPER["max_strain"], color="C2", ls="--", lw=0.7)
+    ax.set_ylabel("max strain (%)", color="C2", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax2 = ax.twinx()
+    ax2.plot(rev, 100 * series["le_fraction"], color="C3", lw=0.8, alpha=0.8)
+    ax2.set_ylabel("on the leading\nedge (% points)", color="C3", fontsize=8)
+    ax2.set_ylim(0, 105)
+    ax2.tick_params(labelsize=7)
+    for key, style in (("entry_time_s", ":"), ("exit_time_s", "-")):
+        if series[key] is not None:
+            ax.axvline(series[key] / per, color="k", ls=style, lw=0.8)
+    ax.set_title("strain (green; dashed: the paper's 3 %), points on the leading edge (red; shaded: wrapped), "
+                 "chamber entry (dotted), exit (solid)", fontsize=8)
+    ax3 = fig.add_subplot(grid[3, :], sharex=ax)
+    for i, s in enumerate(SITES):
+        for a, b in runs_of(series["sites"][s]):
+            ax3.plot([rev[a], rev[min(b + 1, len(rev) - 1)]], [len(SITES) - 1 - i] * 2, lw=4,
+                     color="C3" if s in red else "C0", solid_capstyle="butt")
+    ax3.set_yticks(range(len(SITES)))
+    ax3.set_yticklabels([s.replace("_", " ") for s in SITES][::-1], fontsize=6)
+    ax3.set_ylim(-0.7, len(SITES) - 0.3)
+    ax3.tick_params(axis="x", labelsize=7)
+    ax3.set_xlabel("revolutions since the release" if math.isfinite(series["period_s"]) else "time (s)", fontsize=8)
+    ax3.set_title("contacts over time", fontsize=8)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def write_metrics(run_dir, case_dir, **options):
+    """Reads RUN_DIR (structure.h5, forces.csv / coupling.h5, openfoam/postProcessing) and
+    CASE_DIR (case.yaml, the collision STL files), writes rag_metrics.csv, rag_metrics.yaml and
+    rag_summary.png into RUN_DIR, returns the metrics dict. Options: see DEFAULTS."""
+    unknown = set(options) - set(DEFAULTS)
+    if unknown:
+        raise MetricsError("unknown option(s) %s (allowed: %s)" % (", ".join(sorted(unknown)), ", ".join(DEFAULTS)))
+    opt = dict(DEFAULTS)
+    opt.update({k: v for k, v in options.items() if v is not None})
+    if not os.path.isdir(run_dir):
+        raise MetricsError("%s: not a folder (RUN_DIR: the run's output folder)" % run_dir)
+    if not os.path.isdir(case_dir):
+        raise MetricsError("%s: not a folder (CASE_DIR: the case folder with case.yaml)" % case_dir)
+    t, x, grid, name, status, solver_stretch, h5_config = read_structure(run_dir, opt["structure"])
+    config, source = read_config(run_dir, case_dir, h5_config)
+    geometry, d_c, d_t, notes, files = load_geometry(case_dir, config, source, opt["discharge_radius_m"])
+    surfaces = (config.get("collisions") or {}).get("surfaces") or []
+    index = next((k for k, s in enumerate(surfaces) if ((s or {}).get("motion") or {}).get("rotation")), 0)
+    loads, load_notes = read_loads(run_dir, geometry, config, index)
+    clean = read_clean(opt["clean_operating_point"])
+    if opt["settle_revolutions"] is None:
+        opt["settle_revolutions"] = 0.0 if os.path.isdir(os.path.join(run_dir, "precursor")) else 1.0
+    analysis = {k: opt[k] for k in DEFAULTS if k not in ("clean_operating_point", "structure", "discharge_radius_m",
+                                                          "picture")}
+    metrics, series = analyse(t, x, grid, geometry, d_c, loads=loads, clean=clean, **analysis)
+    metrics["solver_max_stretch_ratio"] = _opt(solver_stretch)
+    parameters = dict(series["parameters"], target_distance_m=d_t, structure=name,
+                      clean_operating_point=opt["clean_operating_point"], geometry=geometry.describe())
+    extra = {"sources": {"run_dir": os.path.abspath(run_dir), "case_dir": os.path.abspath(case_dir),
+                         "configuration": source, "structure_status": status, **files},
+             "notes": notes + load_notes}
+    if clean and clean.get("flow_rate_m3_per_s") is not None:
+        extra["sources"]["clean_flow_rate_m3_per_s"] = clean["flow_rate_m3_per_s"]
+    write_csv(os.path.join(run_dir, "rag_metrics.csv"), metrics)
+    write_yaml(os.path.join(run_dir, "rag_metrics.yaml"), metrics, parameters, extra)
+    if opt["picture"]:
+        picture(os.path.join(run_dir, "rag_summary.png"), metrics, series,
+                title="%s  (%s, structure '%s')" % (os.path.abspath(run_dir), status, name))
+    return metrics
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("run_dir", help="the run's output folder (structure.h5, forces.csv, openfoam/)")
+    p.add_argument("case_dir", help="the case folder (case.yaml, geometry/)")
+    p.add_argument("--n-max-revolutions", type=float, help="hung up when still in after this many (default 10)")
+    p.add_argument("--wrap-fraction", type=float, help="fraction of the points on the leading edge for a wrap (0.1)")
+    p.add_argument("--contact-distance-m", type=float, help="contact distance (default 1.5 d_c)")
+    p.add_argument("--cut-water-distance-m", type=float, help="distance that reaches the cut-water (default 2 d_c)")
+    p.add_argument("--clean-operating-point", help="operating_point.yaml of the clean pump at the same flow rate")
+    p.add_argument("--settle-revolutions", type=float,
+                   help="force samples before this many revolutions are left out of the cost (default: 0 after "
+                        "a precursor, else 1)")
+    p.add_argument("--structure", help="the structure's name in structure.h5 (default: the only one, or 'rag')")
+    p.add_argument("--no-picture", action="store_true", help="skip rag_summary.png")
+    a = p.parse_args(argv)
+    try:
+        metrics = write_metrics(a.run_dir, a.case_dir, n_max_revolutions=a.n_max_revolutions,
+                                wrap_fraction=a.wrap_fraction, contact_distance_m=a.contact_distance_m,
+                                cut_water_distance_m=a.cut_water_distance_m,
+                                clean_operating_point=a.clean_operating_point, structure=a.structure,
+                                settle_revolutions=a.settle_revolutions,
+                                picture=not a.no_picture)
+    except MetricsError as error:
+        sys.stderr.write("rag_metrics.py: %s\n" % error)
+        return 2
+    m = {k: _plain(v) for k, v in metrics.items()}
+
+    def say(v, spec, none):
+        return none if v is None else spec % v
+    print("%s; residence %s; wrap %s of the residence (longest %s); cut-water %s; max strain %.2f %%"
+          % (m["outcome"] + say(m["exit_time_s"], " at %.3f s", ""), say(m["residence_time_s"], "%.3f s", "-"),
+             say(None if m["wrap_fraction_of_residence"] is None else 100 * m["wrap_fraction_of_residence"], "%.0f %%", "-"),
+             say(m["longest_wrap_revolutions"], "%.2f rev", "-"), say(m["time_to_cut_water_s"], "at %.3f s", "not reached"),
+             100 * m["max_strain"]))
+    print("wrote %s/rag_metrics.csv, rag_metrics.yaml%s" % (a.run_dir, "" if a.no_picture else ", rag_summary.png"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
