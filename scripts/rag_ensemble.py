@@ -26,6 +26,7 @@ import csv
 import math
 import os
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -41,6 +42,9 @@ import pump_curve  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
 LOCK = threading.Lock()
+# The coupler's progress line: "step 1674/2000  t = 0.4185 s (84%)  wall 9m34s  ETA 112.0 s ..."
+# (the precursor counts as nothing: it is a few minutes, once per operating point).
+PROGRESS = re.compile(r"\bstep (\d+)/(\d+)\s.*\bETA (\S+(?: s)?)")
 
 
 def say(message):
@@ -155,9 +159,9 @@ def run_member(args, member):
             process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
             for raw in iter(process.stderr.readline, b""):
                 log.write(raw)
-                match = pump_curve.PROGRESS.search(raw.decode("utf-8", "replace").rstrip())
+                match = PROGRESS.search(raw.decode("utf-8", "replace").rstrip())
                 if match:
-                    member.progress = float(match.group(1)) / float(match.group(2))
+                    member.progress = int(match.group(1)) / int(match.group(2))
                     member.eta = match.group(3)
             code = process.wait()
         if code != 0:

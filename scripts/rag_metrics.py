@@ -775,7 +775,17 @@ def load_geometry(case_dir, config, source="case.yaml", discharge_radius_m=None)
         raise MetricsError("%s: the impeller's collisions.surfaces[].mesh has no 'file'" % source)
 
     def resolve(p):
-        return p if os.path.isabs(p) else os.path.join(case_dir, p)
+        """Relative to the case folder. config.effective.yaml names the files as the run was given
+        them (relative to where ./fsi ran: cases/rag-in-pump/geometry/casing.stl): the longest
+        tail of the path that is a file in the case folder."""
+        if os.path.isabs(p):
+            return p
+        parts = os.path.normpath(p).split(os.sep)
+        for k in range(len(parts)):
+            candidate = os.path.join(case_dir, *parts[k:])
+            if os.path.isfile(candidate):
+                return candidate
+        return os.path.join(case_dir, p)
 
     impeller_file = resolve(mesh["file"])
     casing_file = resolve(casing["file"]) if casing and "file" in casing else os.path.join(case_dir, "geometry", "casing.stl")
