@@ -11,7 +11,7 @@
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
-#   ./fsi bench [structure|transport|coupling|fluid|pump|mpi_coupling]  run a benchmark (fluid, pump: vs stock pimpleFoam;
+#   ./fsi bench [structure|transport|coupling|fluid|pump|pump_rag|mpi_coupling]  run a benchmark (fluid, pump: vs stock pimpleFoam;
 #                             mpi_coupling: the Lagrangian side of a step on 1 and 2 MPI ranks against the points;
 #                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
 #   ./fsi report [--quick] [--skip-speed]  speed-against-error report (report/REPORT.md,
@@ -197,9 +197,10 @@ cmd_bench() {
     coupling) shift || true; "$BUILD/bin/bench_coupling" "$@" ;;
     fluid) shift || true; /usr/bin/python3 "$ROOT/bench/fluid/bench_fluid.py" --bin-dir "$BUILD/bin" "$@" ;;
     pump) shift || true; /usr/bin/python3 "$ROOT/bench/pump/bench_pump.py" --bin-dir "$BUILD/bin" "$@" ;;
+    pump_rag) shift || true; /usr/bin/python3 "$ROOT/bench/pump/bench_rag_cost.py" --bin-dir "$BUILD/bin" "$@" ;;
     mpi_coupling) shift || true; /usr/bin/python3 "$ROOT/bench/fluid/bench_mpi_coupling.py" --bin-dir "$BUILD/bin" "$@" ;;
     mesh_surface|kernel_stencil|body_indicator|free_passage) shift || true; "$BUILD/bin/bench_$which" "$@" ;;
-    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, pump, mpi_coupling, mesh_surface, kernel_stencil, body_indicator, free_passage)" ;;
+    *) die "unknown benchmark '$which' (available: structure, transport, coupling, fluid, pump, pump_rag, mpi_coupling, mesh_surface, kernel_stencil, body_indicator, free_passage)" ;;
   esac
 }
 
