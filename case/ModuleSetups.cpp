@@ -49,14 +49,16 @@ fluid::PrecursorInputs precursor_inputs(const CaseConfig &config) {
   inputs.openfoam = *config.fluid->openfoam;
   const YAML::Node node = YAML::Load(effective_yaml(config));
   inputs.fluid_yaml = YAML::Dump(node["fluid"]);
-  if (node["collisions"]) {
-    // The STL files by name only: their contents are hashed on their own, and a copy of the case
-    // elsewhere (a pump-curve point, a rag-ensemble member) keeps its precursor valid.
-    YAML::Node collisions = YAML::Clone(node["collisions"]);
-    for (YAML::Node surface : collisions["surfaces"])
+  if (node["collisions"] && node["collisions"]["surfaces"]) {
+    // The rigid surfaces alone (the penalized bodies and their motion; the collision distances and
+    // self-collision are the structure's), their STL files by name only: the contents are hashed
+    // on their own, and a copy of the case elsewhere (a pump-curve point, a rag-ensemble member)
+    // keeps its precursor valid.
+    YAML::Node surfaces = YAML::Clone(node["collisions"]["surfaces"]);
+    for (YAML::Node surface : surfaces)
       if (surface["mesh"] && surface["mesh"]["file"])
         surface["mesh"]["file"] = std::filesystem::path(surface["mesh"]["file"].as<std::string>()).filename().string();
-    inputs.collisions_yaml = YAML::Dump(collisions);
+    inputs.collisions_yaml = YAML::Dump(surfaces);
   }
   if (config.collisions)
     for (const auto &surface : config.collisions->surfaces)

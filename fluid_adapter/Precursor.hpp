@@ -20,7 +20,7 @@ struct PrecursorInputs {
   std::optional<OpenFoamConfig> openfoam; ///< fluid.openfoam (absent: no precursor)
   double coupled_time_step_s = 0.0;       ///< run.time_step_s
   std::string fluid_yaml;                 ///< the effective `fluid` section (YAML)
-  std::string collisions_yaml;            ///< the effective `collisions` section ("" if none)
+  std::string collisions_yaml;            ///< the effective `collisions.surfaces` (YAML, files by name; "" if none)
   std::vector<std::filesystem::path> surface_stl_files; ///< STL files of the collision surfaces
 };
 

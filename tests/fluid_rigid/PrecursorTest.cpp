@@ -73,6 +73,11 @@ TEST(Precursor, FingerprintFollowsTheBodysFileContentsNotItsFolder) {
   const auto reference = precursor_of(with_body);
   EXPECT_EQ(reference.fingerprint(), precursor_of(with_body).fingerprint());
   EXPECT_NE(reference.fingerprint(), precursor_of(with_body, 0.2).fingerprint());
+  // The structure's collision settings do not touch the flow.
+  const std::string other_settings = case_yaml(1.2, 0.08) +
+                                     "collisions:\n  threshold_m: 0.002\n  self_collision: true\n  surfaces:\n"
+                                     "    - mesh: {file: geometry/body.stl}\n";
+  EXPECT_EQ(reference.fingerprint(), precursor_of(other_settings).fingerprint());
 }
 
 } // namespace
