@@ -133,6 +133,30 @@ void TheSuctionWallIsThePipeAndTheSump(const Built &b) {
   EXPECT_NEAR(casing.region_area_m2(casing.region_index("suction_wall")), expected, 0.02 * expected);
 }
 
+/// The casing as the collision model sees it (fluid inside, culled at the collision threshold):
+/// every point of the water in the suction pipe, the sump and the eye, across the plane where
+/// the pipe opens into the chamber, is on the fluid side at its true distance from the walls.
+void TheWaterAtThePipesMouthIsFluidForTheCollisions(const Built &b) {
+  geometry::TriangleMeshSurface casing((b.dir / "casing.stl").string(), geometry::TriangleMeshSurface::FluidSide::inside);
+  casing.prepare_culling(0.004);
+  const InletDesign &in = b.design.inlet;
+  const double z_low = 0.5 * (b.design.impeller.outlet_width_m - b.design.volute.base_width_m);
+  const double pipe_r = 0.5 * in.suction_pipe_diameter_m;
+  int wrong = 0, checked = 0;
+  for (double z = z_low - 0.03; z <= z_low + 0.005; z += 0.00037)
+    for (double r = 0.0; r < pipe_r - 0.005; r += 0.0023)
+      for (double phi = 0.0; phi < 2 * M_PI; phi += 0.41) {
+        const Vec3 p(r * std::cos(phi), r * std::sin(phi), z);
+        const double d = casing.distance(p).signed_distance_m;
+        ++checked;
+        if (!(d > 0.0)) {
+          if (++wrong <= 5)
+            ADD_FAILURE() << "point (" << p.transpose() << ") m: signed distance " << d << " m";
+        }
+      }
+  EXPECT_EQ(wrong, 0) << "of " << checked;
+}
+
 void TheBladeIsBuiltWithItsDesignWrapAndAngles(const Built &b) {
   EXPECT_NEAR(b.geometry.blade.wrap_deg, b.design.impeller.wrap_angle_deg, 1.0);
   EXPECT_NEAR(b.geometry.blade.wrap_on_mesh_deg, b.design.impeller.wrap_angle_deg, 1.0);
@@ -173,6 +197,10 @@ TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
   {
     SCOPED_TRACE("InletAndOutletDiscsHaveTheirDesignAreas");
     InletAndOutletDiscsHaveTheirDesignAreas(b);
+  }
+  {
+    SCOPED_TRACE("TheWaterAtThePipesMouthIsFluidForTheCollisions");
+    TheWaterAtThePipesMouthIsFluidForTheCollisions(b);
   }
   {
     SCOPED_TRACE("TheSuctionWallIsThePipeAndTheSump");
