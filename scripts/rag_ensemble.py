@@ -283,7 +283,7 @@ def report_progress(members, stop):
             "%s %.0f %% (ETA %s)" % (m.name, 100 * m.progress, m.eta or "?") for m in running) or "starting"))
 
 
-def main(argv):
+def parse_args(argv):
     parser = argparse.ArgumentParser(prog="./fsi rag-ensemble", description=__doc__.split("\n\n")[0])
     parser.add_argument("--bin-dir", required=True)
     parser.add_argument("--runs", type=int, default=8, help="members of the ensemble (default 8)")
@@ -303,58 +303,62 @@ def main(argv):
         raise SystemExit("rag-ensemble: --runs %d: at least 1" % args.runs)
     if args.flow_fraction <= 0:
         raise SystemExit("rag-ensemble: --flow-fraction %g: must be > 0" % args.flow_fraction)
-    for name in ("case.yaml", "pump.yaml", "flow_rate.yaml"):
-        if not os.path.isfile(os.path.join(args.case_dir, name)):
-            raise SystemExit("rag-ensemble: %s not found: a rag-in-pump case holds case.yaml, pump.yaml and "
-                             "flow_rate.yaml (cases/rag-in-pump)" % os.path.join(args.case_dir, name))
-    with open(os.path.join(args.case_dir, "pump.yaml")) as f:
-        design = yaml.safe_load(f)
-    if not float(design.get("inlet", {}).get("sump_diameter_m") or 0):
-        raise SystemExit("rag-ensemble: %s has no inlet sump (inlet.sump_diameter_m): the rags are released in it"
-                         % os.path.join(args.case_dir, "pump.yaml"))
-    with open(os.path.join(args.case_dir, "flow_rate.yaml")) as f:
-        case_fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
-    with open(os.path.join(args.case_dir, "case.yaml")) as f:
-        case = yaml.safe_load(f)
-    rags = case.get("structures") or []
-    if len(rags) != 1 or rags[0].get("model", "membrane") != "membrane":
-        raise SystemExit("rag-ensemble: %s/case.yaml: expected one membrane in structures (the rag)" % args.case_dir)
-    rag = rags[0]
-    sizes = parse_sizes(args.sizes) if args.sizes else [tuple(float(v) for v in rag["size_m"])]
-    collision_m = float((case.get("collisions") or {}).get("threshold_m", 0.004))
-    template = case["fluid"]["openfoam"]["case_directory"]
-    if args.resolution:
-        with open(os.path.join(args.case_dir, "presets", args.resolution + ".yaml")) as f:
-            preset = yaml.safe_load(f) or {}
-        template = ((preset.get("fluid") or {}).get("openfoam") or {}).get("case_directory", template)
-    try:  # the case's generated inputs (the pump's geometry) before the members copy the case
-        fsi_launch.prepare_case(args.case_dir, args.bin_dir)
-    except fsi_launch.UserError as e:
-        raise SystemExit("rag-ensemble: %s" % e)
-    fraction = case_fraction * args.flow_fraction
-    flow_rate = fraction * float(design["operation"]["design_flow_rate_m3_per_s"])
-    out = os.path.abspath(args.output or os.path.join(
-        args.case_dir, "output", "ensemble-q%.2f-s%d%s" % (args.flow_fraction, args.seed,
-                                                          "-" + args.resolution if args.resolution else "")))
-    os.makedirs(out, exist_ok=True)
-    args.fingerprint = pump_curve.case_fingerprint(args.case_dir)
+    return args
+
+
+class CaseInputs:
+    """What the ensemble takes from the case folder: the pump's design (with its sump), the case's
+    flow rate, its rag, the collision distance and the OpenFOAM folder of the preset."""
+
+    def __init__(self, args):
+        for name in ("case.yaml", "pump.yaml", "flow_rate.yaml"):
+            if not os.path.isfile(os.path.join(args.case_dir, name)):
+                raise SystemExit("rag-ensemble: %s not found: a rag-in-pump case holds case.yaml, pump.yaml and "
+                                 "flow_rate.yaml (cases/rag-in-pump)" % os.path.join(args.case_dir, name))
+        with open(os.path.join(args.case_dir, "pump.yaml")) as f:
+            self.design = yaml.safe_load(f)
+        if not float(self.design.get("inlet", {}).get("sump_diameter_m") or 0):
+            raise SystemExit("rag-ensemble: %s has no inlet sump (inlet.sump_diameter_m): the rags are released in it"
+                             % os.path.join(args.case_dir, "pump.yaml"))
+        with open(os.path.join(args.case_dir, "flow_rate.yaml")) as f:
+            self.case_fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
+        with open(os.path.join(args.case_dir, "case.yaml")) as f:
+            case = yaml.safe_load(f)
+        rags = case.get("structures") or []
+        if len(rags) != 1 or rags[0].get("model", "membrane") != "membrane":
+            raise SystemExit("rag-ensemble: %s/case.yaml: expected one membrane in structures (the rag)" % args.case_dir)
+        self.rag = rags[0]
+        self.sizes = parse_sizes(args.sizes) if args.sizes else [tuple(float(v) for v in self.rag["size_m"])]
+        self.collision_m = float((case.get("collisions") or {}).get("threshold_m", 0.004))
+        self.template = case["fluid"]["openfoam"]["case_directory"]
+        if args.resolution:
+            with open(os.path.join(args.case_dir, "presets", args.resolution + ".yaml")) as f:
+                preset = yaml.safe_load(f) or {}
+            self.template = ((preset.get("fluid") or {}).get("openfoam") or {}).get("case_directory", self.template)
+
+
+def plan_members(args, inputs, out, fraction, flow_rate):
+    """The members, their releases drawn from the seed, each in its own copy of the case."""
     rng = random.Random(args.seed)
     members = []
     for i in range(args.runs):
         m = Member(i, out, fraction, flow_rate)
-        member_rag, m.release = draw_release(rng, sizes[i % len(sizes)], rag, design, collision_m)
+        member_rag, m.release = draw_release(rng, inputs.sizes[i % len(inputs.sizes)], inputs.rag, inputs.design,
+                                             inputs.collision_m)
         if i == 0 and not args.sizes:  # the case's own rag as it is: the reference member
-            member_rag, m.release = rag, {"case_release": True, "length_m": sizes[0][0], "width_m": sizes[0][1]}
-        prepare_member(args, m, template, member_rag)
+            member_rag, m.release = inputs.rag, {"case_release": True, "length_m": inputs.sizes[0][0],
+                                                 "width_m": inputs.sizes[0][1]}
+        prepare_member(args, m, inputs.template, member_rag)
         members.append(m)
-    jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
-    say("%d runs at Q = %.4g m^3/s (%.3g of the case's), %d at once, into %s"
-        % (len(members), flow_rate, args.flow_fraction, jobs, out))
+    return members
+
+
+def run_members(args, members, jobs):
+    """The first member alone (its precursor serves the others), then the rest, `jobs` at once."""
     stop = threading.Event()
     threading.Thread(target=report_progress, args=(members, stop), daemon=True).start()
-    started = time.monotonic()
     try:
-        run_member(args, members[0])  # its precursor serves the others
+        run_member(args, members[0])
         for m in members[1:]:
             seed_precursor(os.path.join(members[0].folder, "precursor"), m)
         with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
@@ -364,8 +368,30 @@ def main(argv):
     for m in members:
         if m.state == "failed":
             say("%s failed: %s" % (m.name, m.error))
+
+
+def main(argv):
+    args = parse_args(argv)
+    inputs = CaseInputs(args)
+    try:  # the case's generated inputs (the pump's geometry) before the members copy the case
+        fsi_launch.prepare_case(args.case_dir, args.bin_dir)
+    except fsi_launch.UserError as e:
+        raise SystemExit("rag-ensemble: %s" % e)
+    fraction = inputs.case_fraction * args.flow_fraction
+    flow_rate = fraction * float(inputs.design["operation"]["design_flow_rate_m3_per_s"])
+    out = os.path.abspath(args.output or os.path.join(
+        args.case_dir, "output", "ensemble-q%.2f-s%d%s" % (args.flow_fraction, args.seed,
+                                                          "-" + args.resolution if args.resolution else "")))
+    os.makedirs(out, exist_ok=True)
+    args.fingerprint = pump_curve.case_fingerprint(args.case_dir)
+    members = plan_members(args, inputs, out, fraction, flow_rate)
+    jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
+    say("%d runs at Q = %.4g m^3/s (%.3g of the case's), %d at once, into %s"
+        % (len(members), flow_rate, args.flow_fraction, jobs, out))
+    started = time.monotonic()
+    run_members(args, members, jobs)
     summary = summarise(members, args.flow_fraction)
-    summary.update({"flow_rate_m3_per_s": flow_rate, "seed": args.seed, "sizes_m": [list(s) for s in sizes],
+    summary.update({"flow_rate_m3_per_s": flow_rate, "seed": args.seed, "sizes_m": [list(s) for s in inputs.sizes],
                     "wall_time_s": round(time.monotonic() - started, 1)})
     write_csv(members, os.path.join(out, "ensemble.csv"))
     with open(os.path.join(out, "ensemble.yaml"), "w") as f:
@@ -377,7 +403,6 @@ def main(argv):
         % (summary["p_hang_up"], summary["p_hang_up_95ci"], summary["runs_decided"],
            os.path.join(out, "ensemble.png")))
     return 0 if summary["failed"] < len(members) else 1
-
 
 if __name__ == "__main__":
     sys.exit(main(sys.argv[1:]))
