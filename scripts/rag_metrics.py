@@ -30,6 +30,7 @@ import csv
 import math
 import os
 import sys
+import types
 
 import numpy as np
 
@@ -438,62 +439,116 @@ def analyse(times, positions, grid_shape, geometry, threshold_m, loads=None, cle
     {"torque": (t, shaft torque N m), "head": (t, head m)}; clean: optional {"torque": N m,
     "head": m} of the clean pump. options: see DEFAULTS. Metrics are SI floats, None where
     undefined (never reached, no data: an empty field)."""
+    opt = _analysis_options(options)
+    run = _Trajectory(times, positions, grid_shape, geometry, threshold_m, opt)
+    exit_ = _outcome_and_exit(run, geometry)
+    stay = _residence(run, geometry, exit_.t_exit)
+    cut_water = _cut_water(run)
+    wrap = _wrap(run, geometry, stay)
+    sites = _trap_sites(run, geometry)
+    mechanics = _rag_mechanics(run, geometry, grid_shape)
+    cost = _cost(run.t, run.edges, wrap.flags, loads, clean, run.rate, opt)
+    metrics = {**exit_.metrics, **stay.metrics, **cut_water, **wrap.metrics, **sites.metrics, **cost,
+               **mechanics.metrics, **_run_extent(run)}
+    series = {"time_s": run.t, "strain": mechanics.strain, "wrap": wrap.flags, "le_fraction": wrap.le_fraction,
+              "self_contacts": mechanics.self_contacts, "sites": sites.frames, "entry_time_s": stay.t_entry,
+              "exit_time_s": exit_.t_exit, "parameters": _analysis_parameters(run, opt), "period_s": run.period}
+    return metrics, series
+
+
+def _analysis_options(options):
+    """DEFAULTS updated with the options given (None: the default); MetricsError for an unknown one."""
     opt = dict(DEFAULTS)
     unknown = set(options) - set(DEFAULTS)
     if unknown:
         raise MetricsError("unknown option(s) %s (allowed: %s)" % (", ".join(sorted(unknown)), ", ".join(DEFAULTS)))
     opt.update({k: v for k, v in options.items() if v is not None})
-    t = np.asarray(times, float)
-    x = np.asarray(positions, float)
-    if x.ndim != 3 or x.shape[2] != 3 or len(t) != len(x) or len(t) < 1:
-        raise MetricsError("positions must be [n_frames, n_points, 3] with one time per frame (got %s and %d times)"
-                           % (x.shape, len(t)))
-    if np.any(np.diff(t) <= 0):
-        raise MetricsError("the frames' times must increase")
-    n_frames, n_points = x.shape[:2]
-    if int(np.prod(grid_shape)) != n_points:
-        raise MetricsError("grid_shape %s does not hold %d points" % (list(grid_shape), n_points))
-    d_c = float(threshold_m)
-    contact = float(opt["contact_distance_m"] or 1.5 * d_c)
-    cut_water_distance = float(opt["cut_water_distance_m"] or 2.0 * d_c)
-    self_distance = float(opt["self_contact_distance_m"] or d_c)
-    n_max = float(opt["n_max_revolutions"])
-    wrap_fraction = float(opt["wrap_fraction"])
-    min_points = int(opt["site_min_points"])
-    rate = geometry.rate
-    period = 2 * math.pi / abs(rate) if rate else float("inf")
-    rev = (lambda s: None if s is None or not rate else s * abs(rate) / (2 * math.pi))
-    edges = frame_edges(t)
-    durations = np.diff(edges)
-    flat = x.reshape(-1, 3)
-    xi = geometry.to_impeller_frame(t, x).reshape(-1, 3)
-    axial = geometry.axial(flat).reshape(n_frames, n_points)
-    radius = geometry.radius(flat).reshape(n_frames, n_points)
+    return opt
 
-    # Distances to each region, capped: exact up to the contact (cut-water) distance.
-    near = {}
-    for (body, name), tset in geometry.sets.items():
-        if name in OPENINGS:
-            continue
-        cap = max(contact, cut_water_distance) if name == "cut_water" else contact
-        near[name] = tset.distance(xi if body == "impeller" else flat, cap=cap).reshape(n_frames, n_points)
-    touching = {k: d <= contact for k, d in near.items()}
-    none = np.zeros((n_frames, n_points), bool)
 
-    def touch(name):
-        return touching.get(name, none)
+class _Trajectory:
+    """A checked trajectory with what every metric group reads: the frames (t, x, edges,
+    durations), the distances, the points' axial and radial coordinates in the lab frame and
+    in the impeller's frame (xi), the distances to each wall region (near, capped: exact up to
+    the contact, for cut_water the cut-water, distance) and who touches what."""
 
-    # Outcome: the first frame with every point in the discharge.
-    entered = np.any(axial > geometry.entry_axial, axis=1)
-    entry = int(np.argmax(entered)) if np.any(entered) else None
-    exit_frame = None
-    candidates = np.nonzero(np.all(radius > geometry.volute_radius, axis=1))[0]
+    def __init__(self, times, positions, grid_shape, geometry, threshold_m, opt):
+        t = np.asarray(times, float)
+        x = np.asarray(positions, float)
+        if x.ndim != 3 or x.shape[2] != 3 or len(t) != len(x) or len(t) < 1:
+            raise MetricsError("positions must be [n_frames, n_points, 3] with one time per frame (got %s and %d "
+                               "times)" % (x.shape, len(t)))
+        if np.any(np.diff(t) <= 0):
+            raise MetricsError("the frames' times must increase")
+        n_frames, n_points = x.shape[:2]
+        if int(np.prod(grid_shape)) != n_points:
+            raise MetricsError("grid_shape %s does not hold %d points" % (list(grid_shape), n_points))
+        self.t, self.x, self.n_frames, self.n_points = t, x, n_frames, n_points
+        self.d_c = float(threshold_m)
+        self.contact = float(opt["contact_distance_m"] or 1.5 * self.d_c)
+        self.cut_water_distance = float(opt["cut_water_distance_m"] or 2.0 * self.d_c)
+        self.self_distance = float(opt["self_contact_distance_m"] or self.d_c)
+        self.n_max = float(opt["n_max_revolutions"])
+        self.wrap_fraction = float(opt["wrap_fraction"])
+        self.min_points = int(opt["site_min_points"])
+        self.rate = geometry.rate
+        self.period = 2 * math.pi / abs(self.rate) if self.rate else float("inf")
+        self.edges = frame_edges(t)
+        self.durations = np.diff(self.edges)
+        self.flat = x.reshape(-1, 3)
+        self.xi = geometry.to_impeller_frame(t, x).reshape(-1, 3)
+        self.axial = geometry.axial(self.flat).reshape(n_frames, n_points)
+        self.radius = geometry.radius(self.flat).reshape(n_frames, n_points)
+        self.near = {}
+        for (body, name), tset in geometry.sets.items():
+            if name in OPENINGS:
+                continue
+            cap = max(self.contact, self.cut_water_distance) if name == "cut_water" else self.contact
+            self.near[name] = tset.distance(self.xi if body == "impeller" else self.flat,
+                                            cap=cap).reshape(n_frames, n_points)
+        self.touching = {k: d <= self.contact for k, d in self.near.items()}
+        self._none = np.zeros((n_frames, n_points), bool)
+
+    def rev(self, s):
+        """s seconds in revolutions (None without a time or a rotation)."""
+        return None if s is None or not self.rate else s * abs(self.rate) / (2 * math.pi)
+
+    def touch(self, name):
+        """[F, N] points within the contact distance of region name (none when it is missing)."""
+        return self.touching.get(name, self._none)
+
+
+def _outcome_and_exit(run, geometry):
+    """outcome (passed, hung_up, running) and the exit: the first frame with every point in the discharge."""
+    exit_frame = _exit_frame(run, geometry)
+    t_exit = float(run.t[exit_frame]) if exit_frame is not None else None
+    t_end = float(run.t[-1])
+    rate, rev = run.rate, run.rev
+    if t_exit is not None and (not rate or rev(t_exit) <= run.n_max + 1e-9):
+        outcome = "passed"
+    elif rate and (t_exit is not None or rev(t_end) >= run.n_max - 1e-9):
+        outcome = "hung_up"
+    else:
+        outcome = "running"
+    metrics = {
+        "outcome": outcome,
+        "exit_time_s": _opt(t_exit),
+        "exit_revolution": rev(t_exit),
+        "time_from_release_to_exit_s": _opt(t_exit),
+    }
+    return types.SimpleNamespace(metrics=metrics, t_exit=t_exit)
+
+
+def _exit_frame(run, geometry):
+    """The first frame beyond the volute radius whose points are all nearer to discharge_wall or
+    outlet than to any other casing region (None: no such frame)."""
+    candidates = np.nonzero(np.all(run.radius > geometry.volute_radius, axis=1))[0]
     discharge = [geometry.sets[("casing", k)] for k in ("discharge_wall", "outlet") if ("casing", k) in geometry.sets]
     others = [tset for (body, k), tset in geometry.sets.items()
               if body == "casing" and k not in ("discharge_wall", "outlet")]
     for s in range(0, len(candidates), 4):
         frames = candidates[s:s + 4]
-        p = x[frames].reshape(-1, 3)
+        p = run.x[frames].reshape(-1, 3)
         # Nearest casing region discharge_wall or outlet: an upper bound u of that distance
         # first; the other regions only where they come nearer than u (then exactly).
         u = np.min([tset.lower_upper(p)[1] for tset in discharge], axis=0)
@@ -502,57 +557,84 @@ def analyse(times, positions, grid_shape, geometry, threshold_m, loads=None, cle
         if np.any(unsure):
             d1 = np.min([tset.distance(p[unsure]) for tset in discharge], axis=0)
             u[unsure] = d1
-        inside = np.all((u < d2).reshape(len(frames), n_points), axis=1)
+        inside = np.all((u < d2).reshape(len(frames), run.n_points), axis=1)
         if np.any(inside):
-            exit_frame = int(frames[np.argmax(inside)])
-            break
-    t_exit = float(t[exit_frame]) if exit_frame is not None else None
-    t_end = float(t[-1])
-    if t_exit is not None and (not rate or rev(t_exit) <= n_max + 1e-9):
-        outcome = "passed"
-    elif rate and (t_exit is not None or rev(t_end) >= n_max - 1e-9):
-        outcome = "hung_up"
-    else:
-        outcome = "running"
+            return int(frames[np.argmax(inside)])
+    return None
 
-    # Residence: from the chamber entry to the exit (or the end of the run).
-    t_entry = float(t[entry]) if entry is not None else None
-    t_out = t_exit if t_exit is not None else t_end
+
+def _residence(run, geometry, t_exit):
+    """Residence: from the chamber entry (the first frame with a point above the entry) to the
+    exit (or the end of the run); with each frame's duration inside it and inside the run."""
+    entered = np.any(run.axial > geometry.entry_axial, axis=1)
+    entry = int(np.argmax(entered)) if np.any(entered) else None
+    t_entry = float(run.t[entry]) if entry is not None else None
+    t_out = t_exit if t_exit is not None else float(run.t[-1])
     residence = (t_out - t_entry) if t_entry is not None else None
-    in_residence = clipped_durations(edges, t_entry, t_out) if t_entry is not None else np.zeros(n_frames)
-    in_run = clipped_durations(edges, 0.0, t_out)
+    in_residence = clipped_durations(run.edges, t_entry, t_out) if t_entry is not None else np.zeros(run.n_frames)
+    in_run = clipped_durations(run.edges, 0.0, t_out)
+    metrics = {
+        "chamber_entry_time_s": _opt(t_entry),
+        "chamber_entry_revolution": run.rev(t_entry),
+        "residence_time_s": _opt(residence),
+        "residence_time_revolutions": run.rev(residence),
+        "residence_until": ("" if t_entry is None else "exit" if t_exit is not None else "end_of_run"),
+    }
+    return types.SimpleNamespace(metrics=metrics, t_entry=t_entry, t_out=t_out, residence=residence,
+                                 in_residence=in_residence, in_run=in_run)
 
-    # Cut-water.
-    cw = np.any(near["cut_water"] <= cut_water_distance, axis=1)
-    t_cut_water = float(t[np.argmax(cw)]) if np.any(cw) else None
 
-    # Wrap on the leading edge.
-    le = touch("blade_leading_edge")
+def _cut_water(run):
+    """The first frame with a point within the cut-water distance of cut_water."""
+    cw = np.any(run.near["cut_water"] <= run.cut_water_distance, axis=1)
+    t_cut_water = float(run.t[np.argmax(cw)]) if np.any(cw) else None
+    return {"time_to_cut_water_s": _opt(t_cut_water), "time_to_cut_water_revolutions": run.rev(t_cut_water)}
+
+
+def _wrap(run, geometry, stay):
+    """Wrap on the leading edge: the frames with at least wrap_fraction of the points touching
+    blade_leading_edge; their time in the residence and in the run, the episodes, the span."""
+    le = run.touch("blade_leading_edge")
     le_fraction = le.mean(axis=1)
-    wrap = le_fraction >= wrap_fraction
-    wrap_in_residence = float(np.sum(in_residence[wrap]))
-    wrap_in_run = float(np.sum(in_run[wrap]))
+    wrap = le_fraction >= run.wrap_fraction
+    wrap_in_residence = float(np.sum(stay.in_residence[wrap]))
+    wrap_in_run = float(np.sum(stay.in_run[wrap]))
     episodes = runs_of(wrap)
-    longest = max((edges[b + 1] - edges[a] for a, b in episodes), default=0.0)
+    longest = max((run.edges[b + 1] - run.edges[a] for a, b in episodes), default=0.0)
     span = None
     if np.any(wrap) and geometry.le_hub_axial is not None and geometry.le_shroud_axial != geometry.le_hub_axial:
-        weights = (le * durations[:, None])[wrap]
+        weights = (le * run.durations[:, None])[wrap]
         if weights.sum() > 0:
-            mean_axial = float(np.sum(weights * axial[wrap]) / np.sum(weights))
+            mean_axial = float(np.sum(weights * run.axial[wrap]) / np.sum(weights))
             span = (mean_axial - geometry.le_hub_axial) / (geometry.le_shroud_axial - geometry.le_hub_axial)
+    residence, t_out = stay.residence, stay.t_out
+    metrics = {
+        "wrap_time_s": wrap_in_residence if residence else None,
+        "wrap_fraction_of_residence": wrap_in_residence / residence if residence else None,
+        "wrap_fraction_of_run": wrap_in_run / t_out if t_out > 0 else None,
+        "longest_wrap_s": float(longest),
+        "longest_wrap_revolutions": run.rev(float(longest)) if run.rate else None,
+        "wrap_episodes": len(episodes),
+        "wrap_span_fraction": _opt(span),
+    }
+    return types.SimpleNamespace(metrics=metrics, flags=wrap, le_fraction=le_fraction)
 
-    # Trap sites.
+
+def _trap_sites(run, geometry):
+    """Contact time per trap site (SITE_DEFINITIONS): the frames with at least site_min_points
+    points touching the site."""
+    touch = run.touch
     lo, hi = geometry.channel
-    beyond_hub = axial > hi if geometry.hub_above else axial < lo
-    beyond_shroud = axial < lo if geometry.hub_above else axial > hi
-    outside_radius = radius > geometry.blade_outlet_radius
-    in_eye = beyond_shroud & (radius <= geometry.eye_radius)
+    beyond_hub = run.axial > hi if geometry.hub_above else run.axial < lo
+    beyond_shroud = run.axial < lo if geometry.hub_above else run.axial > hi
+    outside_radius = run.radius > geometry.blade_outlet_radius
+    in_eye = beyond_shroud & (run.radius <= geometry.eye_radius)
     outside_channel = outside_radius | beyond_hub | (beyond_shroud & ~in_eye)
     discs = touch("hub") | touch("shroud")
     site_points = {
         "eye_and_hub": touch("eye") | (touch("hub") & ~outside_channel) | (touch("shroud") & in_eye),
         "shroud": touch("shroud") & ~outside_channel & ~in_eye,
-        "leading_edge": le,
+        "leading_edge": touch("blade_leading_edge"),
         "blade_sides": touch("blade_pressure_side") | touch("blade_suction_side") | touch("blade_trailing_edge"),
         "side_gap": discs & outside_channel,
         "cut_water": touch("cut_water"),
@@ -560,85 +642,75 @@ def analyse(times, positions, grid_shape, geometry, threshold_m, loads=None, cle
         "discharge": touch("discharge_wall"),
         "suction": touch("suction_wall"),
     }
-    site_frames = {k: np.count_nonzero(v, axis=1) >= min_points for k, v in site_points.items()}
+    frames = {k: np.count_nonzero(v, axis=1) >= run.min_points for k, v in site_points.items()}
+    metrics = {"trap_contact_time_s." + site: float(np.sum(run.durations[frames[site]])) for site in SITES}
+    return types.SimpleNamespace(metrics=metrics, frames=frames)
 
-    # Mechanics.
+
+def _rag_mechanics(run, geometry, grid_shape):
+    """The rag's largest strain (against frame 0's edge lengths), its closest approach to a wall,
+    its most self-contacts."""
     pairs = grid_edges(grid_shape)
-    lengths = np.linalg.norm(x[:, pairs[:, 1]] - x[:, pairs[:, 0]], axis=2)
+    lengths = np.linalg.norm(run.x[:, pairs[:, 1]] - run.x[:, pairs[:, 0]], axis=2)
     rest = lengths[0]
     if np.any(rest <= 0):
         raise MetricsError("frame 0 has grid edges of zero length: no rest length")
     strain = np.max(lengths / rest - 1.0, axis=1)
     k_strain = int(np.argmax(strain))
-    # The closest wall: exact from the capped distances when a point came within the contact
-    # distance of a wall; else from the points whose lower bound can beat the best upper bound.
-    wall_regions = [k for k in near]
-    stacked = np.stack([near[k].ravel() for k in wall_regions])
-    if np.min(stacked) <= contact:
+    flat_best, wall_min, region = _closest_wall(run, geometry)
+    frame_min = flat_best // run.n_points
+    selfc = self_contacts(run.x, grid_shape, run.self_distance)
+    k_self = int(np.argmax(selfc))
+    metrics = {
+        "max_strain": float(strain[k_strain]),
+        "max_strain_time_s": float(run.t[k_strain]),
+        "min_wall_distance_m": wall_min,
+        "min_wall_distance_time_s": float(run.t[frame_min]),
+        "min_wall_distance_region": str(region),
+        "max_self_contacts": int(selfc[k_self]),
+        "max_self_contacts_time_s": float(run.t[k_self]),
+    }
+    return types.SimpleNamespace(metrics=metrics, strain=strain, self_contacts=selfc)
+
+
+def _closest_wall(run, geometry):
+    """(flat index of the point, distance, region) of the closest approach to a wall: exact from
+    the capped distances when a point came within the contact distance of a wall; else from the
+    points whose lower bound can beat the best upper bound."""
+    wall_regions = [k for k in run.near]
+    stacked = np.stack([run.near[k].ravel() for k in wall_regions])
+    if np.min(stacked) <= run.contact:
         flat_best = int(np.argmin(np.min(stacked, axis=0)))
         wall_min = float(np.min(stacked[:, flat_best]))
         region = wall_regions[int(np.argmin(stacked[:, flat_best]))]
-    else:
-        lower_i, upper_i = geometry.impeller_all.lower_upper(xi)
-        lower_c, upper_c = geometry.casing_walls.lower_upper(flat)
-        lower = np.minimum(lower_i, lower_c)
-        cand = np.nonzero(lower <= np.min(np.minimum(upper_i, upper_c)))[0]
-        di, ti = geometry.impeller_all.distance(xi[cand], return_index=True)
-        dc, tc = geometry.casing_walls.distance(flat[cand], return_index=True)
-        exact = np.minimum(di, dc)
-        j = int(np.argmin(exact))
-        flat_best, wall_min = int(cand[j]), float(exact[j])
-        region = geometry.impeller_all.labels[ti[j]] if di[j] <= dc[j] else geometry.casing_walls.labels[tc[j]]
-    frame_min = flat_best // n_points
-    selfc = self_contacts(x, grid_shape, self_distance)
-    k_self = int(np.argmax(selfc))
+        return flat_best, wall_min, region
+    lower_i, upper_i = geometry.impeller_all.lower_upper(run.xi)
+    lower_c, upper_c = geometry.casing_walls.lower_upper(run.flat)
+    lower = np.minimum(lower_i, lower_c)
+    cand = np.nonzero(lower <= np.min(np.minimum(upper_i, upper_c)))[0]
+    di, ti = geometry.impeller_all.distance(run.xi[cand], return_index=True)
+    dc, tc = geometry.casing_walls.distance(run.flat[cand], return_index=True)
+    exact = np.minimum(di, dc)
+    j = int(np.argmin(exact))
+    region = geometry.impeller_all.labels[ti[j]] if di[j] <= dc[j] else geometry.casing_walls.labels[tc[j]]
+    return int(cand[j]), float(exact[j]), region
 
-    metrics = {
-        "outcome": outcome,
-        "exit_time_s": _opt(t_exit),
-        "exit_revolution": rev(t_exit),
-        "time_from_release_to_exit_s": _opt(t_exit),
-        "chamber_entry_time_s": _opt(t_entry),
-        "chamber_entry_revolution": rev(t_entry),
-        "residence_time_s": _opt(residence),
-        "residence_time_revolutions": rev(residence),
-        "residence_until": ("" if t_entry is None else "exit" if t_exit is not None else "end_of_run"),
-        "time_to_cut_water_s": _opt(t_cut_water),
-        "time_to_cut_water_revolutions": rev(t_cut_water),
-        "wrap_time_s": wrap_in_residence if residence else None,
-        "wrap_fraction_of_residence": wrap_in_residence / residence if residence else None,
-        "wrap_fraction_of_run": wrap_in_run / t_out if t_out > 0 else None,
-        "longest_wrap_s": float(longest),
-        "longest_wrap_revolutions": rev(float(longest)) if rate else None,
-        "wrap_episodes": len(episodes),
-        "wrap_span_fraction": _opt(span),
-    }
-    for site in SITES:
-        metrics["trap_contact_time_s." + site] = float(np.sum(durations[site_frames[site]]))
-    metrics.update(_cost(t, edges, wrap, loads, clean, rate, opt))
-    metrics.update({
-        "max_strain": float(strain[k_strain]),
-        "max_strain_time_s": float(t[k_strain]),
-        "min_wall_distance_m": wall_min,
-        "min_wall_distance_time_s": float(t[frame_min]),
-        "min_wall_distance_region": str(region),
-        "max_self_contacts": int(selfc[k_self]),
-        "max_self_contacts_time_s": float(t[k_self]),
-        "n_frames": int(n_frames),
-        "n_points": int(n_points),
-        "end_time_s": t_end,
-        "revolutions_run": rev(t_end),
-    })
-    parameters = {
-        "threshold_m": d_c, "contact_distance_m": contact, "cut_water_distance_m": cut_water_distance,
-        "self_contact_distance_m": self_distance, "n_max_revolutions": n_max, "wrap_fraction": wrap_fraction,
-        "site_min_points": min_points, "phase_bins": int(opt["phase_bins"]),
+
+def _run_extent(run):
+    """How much trajectory there was."""
+    t_end = float(run.t[-1])
+    return {"n_frames": int(run.n_frames), "n_points": int(run.n_points), "end_time_s": t_end,
+            "revolutions_run": run.rev(t_end)}
+
+
+def _analysis_parameters(run, opt):
+    """The distances and thresholds the metrics used (series["parameters"])."""
+    return {
+        "threshold_m": run.d_c, "contact_distance_m": run.contact, "cut_water_distance_m": run.cut_water_distance,
+        "self_contact_distance_m": run.self_distance, "n_max_revolutions": run.n_max,
+        "wrap_fraction": run.wrap_fraction, "site_min_points": run.min_points, "phase_bins": int(opt["phase_bins"]),
         "settle_revolutions": float(opt["settle_revolutions"] or 0.0),
     }
-    series = {"time_s": t, "strain": strain, "wrap": wrap, "le_fraction": le_fraction,
-              "self_contacts": selfc, "sites": site_frames, "entry_time_s": t_entry, "exit_time_s": t_exit,
-              "parameters": parameters, "period_s": period}
-    return metrics, series
 
 
 def compute_metrics(times, positions, grid_shape, geometry, threshold_m, loads=None, clean=None, **options):
@@ -993,6 +1065,9 @@ def write_yaml(path, metrics, parameters, extra):
         yaml.safe_dump(doc, f, sort_keys=False, width=110)
 
 
+TRAP_SITES_RED = ("eye_and_hub", "leading_edge", "cut_water")  # the paper's trap sites, red in the picture
+
+
 def picture(path, metrics, series, title=""):
     """rag_summary.png: the outcome in big letters, the numbers a pump designer asks for, this
     run against the paper, the trap sites, strain and leading-edge contact over time."""
@@ -1000,40 +1075,51 @@ def picture(path, metrics, series, title=""):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     m = {k: _plain(v) for k, v in metrics.items()}
-
-    def fmt(v, spec, unit="", none="—"):
-        return none if v is None or v == "" else (spec % v) + unit
-
-    def pct(v):
-        return None if v is None else 100.0 * v
-
     fig = plt.figure(figsize=(11.7, 8.3))
     grid = fig.add_gridspec(4, 3, height_ratios=[1.0, 1.25, 0.85, 0.85], hspace=0.75, wspace=0.45,
                             left=0.1, right=0.93, top=0.97, bottom=0.07)
     colour = {"passed": "#1a7f37", "hung_up": "#c62828", "running": "#b26a00"}[m["outcome"]]
-    text = fig.add_subplot(grid[0, :])
+    _picture_headline(fig.add_subplot(grid[0, :]), m, series, colour, title)
+    _picture_trap_sites(fig.add_subplot(grid[1, 0]), m)
+    _picture_against_paper(fig, grid[1, 1:], m, colour)
+    ax = _picture_strain_and_wrap(fig.add_subplot(grid[2, :]), series)
+    _picture_contacts(fig.add_subplot(grid[3, :], sharex=ax), series)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def _fmt(v, spec, unit="", none="—"):
+    return none if v is None or v == "" else (spec % v) + unit
+
+
+def _pct(v):
+    return None if v is None else 100.0 * v
+
+
+def _picture_headline(text, m, series, colour, title):
+    """The outcome in big letters and the numbers a pump designer asks for."""
     text.axis("off")
-    head = {"passed": "PASSED at %s s (revolution %s)" % (fmt(m["exit_time_s"], "%.3f"), fmt(m["exit_revolution"], "%.1f")),
+    head = {"passed": "PASSED at %s s (revolution %s)" % (_fmt(m["exit_time_s"], "%.3f"), _fmt(m["exit_revolution"], "%.1f")),
             "hung_up": "HUNG UP: still in the pump after %g revolutions" % series["parameters"]["n_max_revolutions"],
             "running": "RUNNING: the run ended at %.3f s (%.1f rev) before an exit" % (m["end_time_s"], m["revolutions_run"])}
     text.text(0.0, 1.0, head[m["outcome"]], fontsize=22, weight="bold", color=colour, va="top", transform=text.transAxes)
     left = [
         "residence in the pump: %s s = %s rev%s" % (
-            fmt(m["residence_time_s"], "%.3f"), fmt(m["residence_time_revolutions"], "%.1f"),
+            _fmt(m["residence_time_s"], "%.3f"), _fmt(m["residence_time_revolutions"], "%.1f"),
             " (so far: the run ended first)" if m["residence_until"] == "end_of_run" else ""),
         "on the leading edge: %s of the residence, longest %s rev" % (
-            fmt(pct(m["wrap_fraction_of_residence"]), "%.0f", " %"), fmt(m["longest_wrap_revolutions"], "%.2f")),
-        "    wrap at span %s (0 hub side, 1 shroud side)" % fmt(m["wrap_span_fraction"], "%.2f", none="— (no wrap)"),
-        "first at the cut-water: %s" % fmt(m["time_to_cut_water_s"], "%.3f", " s", none="not reached"),
+            _fmt(_pct(m["wrap_fraction_of_residence"]), "%.0f", " %"), _fmt(m["longest_wrap_revolutions"], "%.2f")),
+        "    wrap at span %s (0 hub side, 1 shroud side)" % _fmt(m["wrap_span_fraction"], "%.2f", none="— (no wrap)"),
+        "first at the cut-water: %s" % _fmt(m["time_to_cut_water_s"], "%.3f", " s", none="not reached"),
     ]
     right = [
         "shaft torque wrapped %s N m, rest %s, clean %s" % (
-            fmt(m["torque_wrap_n_m"], "%.2f"), fmt(m["torque_rest_n_m"], "%.2f"), fmt(m["torque_clean_n_m"], "%.2f")),
+            _fmt(m["torque_wrap_n_m"], "%.2f"), _fmt(m["torque_rest_n_m"], "%.2f"), _fmt(m["torque_clean_n_m"], "%.2f")),
         "head wrapped %s m, rest %s, clean %s" % (
-            fmt(m["head_wrap_m"], "%.2f"), fmt(m["head_rest_m"], "%.2f"), fmt(m["head_clean_m"], "%.2f")),
-        "rag: max strain %s (paper: under 3 %%), %d frames" % (fmt(pct(m["max_strain"]), "%.1f", " %"), m["n_frames"]),
+            _fmt(m["head_wrap_m"], "%.2f"), _fmt(m["head_rest_m"], "%.2f"), _fmt(m["head_clean_m"], "%.2f")),
+        "rag: max strain %s (paper: under 3 %%), %d frames" % (_fmt(_pct(m["max_strain"]), "%.1f", " %"), m["n_frames"]),
         "closest to a wall %s mm (%s), up to %d self-contacts" % (
-            fmt(1e3 * m["min_wall_distance_m"], "%.1f"), m["min_wall_distance_region"], m["max_self_contacts"]),
+            _fmt(1e3 * m["min_wall_distance_m"], "%.1f"), m["min_wall_distance_region"], m["max_self_contacts"]),
     ]
     for column, lines in ((0.0, left), (0.55, right)):
         for i, line in enumerate(lines):
@@ -1041,20 +1127,22 @@ def picture(path, metrics, series, title=""):
     if title:
         text.text(1.0, 1.0, title, fontsize=7, color="0.45", ha="right", va="bottom", transform=text.transAxes)
 
-    # Trap sites.
-    red = ("eye_and_hub", "leading_edge", "cut_water")
-    ax = fig.add_subplot(grid[1, 0])
+
+def _picture_trap_sites(ax, m):
+    """Contact time per trap site (red: the paper's)."""
     times = [m["trap_contact_time_s." + s] for s in SITES]
     y = np.arange(len(SITES))[::-1]
-    ax.barh(y, times, color=["C3" if s in red else "C0" for s in SITES])
+    ax.barh(y, times, color=["C3" if s in TRAP_SITES_RED else "C0" for s in SITES])
     ax.set_yticks(y)
     ax.set_yticklabels([s.replace("_", " ") for s in SITES], fontsize=8)
     ax.set_xlabel("contact time (s)", fontsize=8)
     ax.tick_params(axis="x", labelsize=7)
     ax.set_title("where the rag touched\n(red: the paper's trap sites)", fontsize=9)
 
-    # This run against the paper (section 4.2, the 15 cm x 5 cm rag).
-    cmp_grid = grid[1, 1:].subgridspec(1, 3, wspace=0.5)
+
+def _picture_against_paper(fig, cell, m, colour):
+    """This run against the paper (section 4.2, the 15 cm x 5 cm rag)."""
+    cmp_grid = cell.subgridspec(1, 3, wspace=0.5)
     for j, (key, label, scale, unit) in enumerate((("wrap_fraction_of_run", "on the leading edge\n(% of the run)", 100, "%.0f"),
                                                    ("longest_wrap_revolutions", "longest wrap\n(revolutions)", 1, "%.2f"),
                                                    ("time_to_cut_water_s", "release to cut-water\n(s)", 1, "%.3f"))):
@@ -1071,11 +1159,17 @@ def picture(path, metrics, series, title=""):
         ax.tick_params(axis="y", labelsize=7)
         ax.set_ylim(0, 1.2 * max(heights + [1e-9]))
 
-    # Over time: strain and leading-edge contact; contacts per site.
-    t = series["time_s"]
+
+def _picture_revolutions(series):
+    """(the frames' times in revolutions (in s without a rotation), the period or 1)."""
     per = series["period_s"] if math.isfinite(series["period_s"]) else 1.0
-    rev = t / per
-    ax = fig.add_subplot(grid[2, :])
+    return series["time_s"] / per, per
+
+
+def _picture_strain_and_wrap(ax, series):
+    """Over time: strain and leading-edge contact, the wraps shaded, the chamber entry and the exit.
+    Returns ax (the contacts share its time axis)."""
+    rev, per = _picture_revolutions(series)
     for a, b in runs_of(series["wrap"]):
         ax.axvspan(rev[a], rev[min(b + 1, len(rev) - 1)], color="C3", alpha=0.12, lw=0)
     ax.plot(rev, 100 * series["strain"], color="C2", lw=1.2, zorder=3)
@@ -1092,19 +1186,22 @@ def picture(path, metrics, series, title=""):
             ax.axvline(series[key] / per, color="k", ls=style, lw=0.8)
     ax.set_title("strain (green; dashed: the paper's 3 %), points on the leading edge (red; shaded: wrapped), "
                  "chamber entry (dotted), exit (solid)", fontsize=8)
-    ax3 = fig.add_subplot(grid[3, :], sharex=ax)
+    return ax
+
+
+def _picture_contacts(ax3, series):
+    """Over time: the contacts per trap site."""
+    rev, _ = _picture_revolutions(series)
     for i, s in enumerate(SITES):
         for a, b in runs_of(series["sites"][s]):
             ax3.plot([rev[a], rev[min(b + 1, len(rev) - 1)]], [len(SITES) - 1 - i] * 2, lw=4,
-                     color="C3" if s in red else "C0", solid_capstyle="butt")
+                     color="C3" if s in TRAP_SITES_RED else "C0", solid_capstyle="butt")
     ax3.set_yticks(range(len(SITES)))
     ax3.set_yticklabels([s.replace("_", " ") for s in SITES][::-1], fontsize=6)
     ax3.set_ylim(-0.7, len(SITES) - 0.3)
     ax3.tick_params(axis="x", labelsize=7)
     ax3.set_xlabel("revolutions since the release" if math.isfinite(series["period_s"]) else "time (s)", fontsize=8)
     ax3.set_title("contacts over time", fontsize=8)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
 
 
 def write_metrics(run_dir, case_dir, **options):
