@@ -28,6 +28,16 @@ struct Built {
 /// inlet sump (cases/rag-in-pump).
 enum class Variant { single_blade, two_blades, single_blade_with_sump };
 
+std::string variant_name(Variant v) {
+  switch (v) {
+  case Variant::single_blade: return "SingleBlade";
+  case Variant::two_blades: return "TwoBlades";
+  default: return "SingleBladeWithSump";
+  }
+}
+
+void PrintTo(Variant v, std::ostream *os) { *os << variant_name(v); } // gtest's name of the parameter
+
 const Built &built(Variant variant) {
   static std::map<Variant, Built> cache;
   auto found = cache.find(variant);
@@ -218,13 +228,7 @@ TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
 
 INSTANTIATE_TEST_SUITE_P(Designs, GeneratedPump,
                          testing::Values(Variant::single_blade, Variant::two_blades, Variant::single_blade_with_sump),
-                         [](const testing::TestParamInfo<Variant> &info) {
-                           switch (info.param) {
-                           case Variant::single_blade: return std::string("SingleBlade");
-                           case Variant::two_blades: return std::string("TwoBlades");
-                           default: return std::string("SingleBladeWithSump");
-                           }
-                         });
+                         [](const testing::TestParamInfo<Variant> &info) { return variant_name(info.param); });
 
 } // namespace
 } // namespace fsi::pump
