@@ -141,7 +141,8 @@ cmd_run() {
   fi
   # A case's own quantities (its README names them): cases/<case>/postprocess.py OUT CASE_DIR,
   # after the structure's pictures (it may redraw them), or after the flow alone (a pump's operating point).
-  local case_dir=${!#}
+  local case_dir  # the launcher's reading of the arguments: the case folder may come before the options
+  case_dir=$("${launch[@]}" --print-case-dir "$@" 2>/dev/null) || case_dir=${!#}
   if [ -n "$out" ] && { [ -f "$results" ] || [ -f "$out/forces.csv" ]; } && [ -f "$case_dir/postprocess.py" ]; then
     local made
     # scripts/ on PYTHONPATH: a copy of the case away from the repository imports its helpers too

@@ -97,6 +97,8 @@ def parse_args(argv):
                         help="show every line of every process (structure only: debug logging)")
     parser.add_argument("--print-output-dir", action="store_true",
                         help="print the case's results folder and exit")
+    parser.add_argument("--print-case-dir", action="store_true",
+                        help="print the case folder as given and exit (./fsi run: wherever it stands among the options)")
     parser.add_argument("case_dir", metavar="CASE_DIR", help="case folder holding case.yaml")
     return parser.parse_args(argv)
 
@@ -474,6 +476,9 @@ def main(argv):
     for name, value in OPENFOAM_ENVIRONMENT.items():
         os.environ.setdefault(name, value)
     args = parse_args(argv)
+    if args.print_case_dir:
+        print(args.case_dir)
+        return EXIT_OK
     if not os.path.isdir(args.bin_dir):
         raise UserError("build folder %s not found (build first: ./fsi build)" % args.bin_dir)
     if not os.path.isdir(args.case_dir):
