@@ -1100,7 +1100,9 @@ def _picture_headline(text, m, series, colour, title):
     """The outcome in big letters and the numbers a pump designer asks for."""
     text.axis("off")
     head = {"passed": "PASSED at %s s (revolution %s)" % (_fmt(m["exit_time_s"], "%.3f"), _fmt(m["exit_revolution"], "%.1f")),
-            "hung_up": "HUNG UP: still in the pump after %g revolutions" % series["parameters"]["n_max_revolutions"],
+            "hung_up": ("HUNG UP: still in the pump after %g revolutions" % series["parameters"]["n_max_revolutions"]
+                        if m["exit_time_s"] is None else "HUNG UP: still in after %g rev, out at %s s" % (
+                            series["parameters"]["n_max_revolutions"], _fmt(m["exit_time_s"], "%.3f"))),
             "running": "RUNNING: the run ended at %.3f s (%.1f rev) before an exit" % (m["end_time_s"], m["revolutions_run"])}
     text.text(0.0, 1.0, head[m["outcome"]], fontsize=22, weight="bold", color=colour, va="top", transform=text.transAxes)
     left = [
