@@ -130,6 +130,28 @@ def postprocess(args, point):
     point.state = "done"
 
 
+def launcher_command(args, out, case):
+    """fsi_launch.py on a copy of the case into `out`, with the run's preset and end time (also
+    ./fsi rag-ensemble's members)."""
+    command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", out]
+    if args.resolution:
+        command += ["--resolution", args.resolution]
+    if args.end_time:
+        command += ["--end-time", str(args.end_time)]
+    return command + [case]
+
+
+def run_logged(command, log_path, on_line):
+    """Runs `command`, its output into `log_path`, each line of its stderr also to on_line (the
+    progress); returns the exit code."""
+    with open(log_path, "wb") as log:
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
+        for raw in iter(process.stderr.readline, b""):
+            log.write(raw)
+            on_line(raw.decode("utf-8", "replace").rstrip())
+        return process.wait()
+
+
 def run_point(args, point, template):
     stamp_file = os.path.join(point.folder, "run.complete")
     stamp = "%s q=%r resolution=%s end=%r\n" % (args.fingerprint, point.flow_rate, args.resolution, args.end_time)
@@ -147,12 +169,7 @@ def run_point(args, point, template):
         os.remove(stamp_file)
     if point.method == "ibm":
         copy_case(args.case_dir, point, template)
-        command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", point.folder]
-        if args.resolution:
-            command += ["--resolution", args.resolution]
-        if args.end_time:
-            command += ["--end-time", str(args.end_time)]
-        command.append(point.case)
+        command = launcher_command(args, point.folder, point.case)
     else:  # the reference: scripts/pump_ami_run.py on the case's openfoam-ami-<resolution>
         os.makedirs(point.folder, exist_ok=True)
         point.case = args.case_dir
@@ -160,18 +177,15 @@ def run_point(args, point, template):
                    repr(point.flow_rate), "--end-time", repr(args.end_time or args.case_end_time), "-o", point.folder,
                    args.case_dir]
     point.state, point.started = "running", time.monotonic()
-    with open(os.path.join(point.folder, "pump_curve.log"), "wb") as log:
-        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
-        for raw in iter(process.stderr.readline, b""):
-            log.write(raw)
-            line = raw.decode("utf-8", "replace").rstrip()
-            if "flow alone (no structure)" in line or "pimpleFoam to t =" in line:
-                point.meshed.set()
-            match = PROGRESS.search(line)
-            if match:
-                point.progress = float(match.group(1)) / float(match.group(2))
-                point.eta = match.group(3)
-        code = process.wait()
+    def on_line(line):
+        if "flow alone (no structure)" in line or "pimpleFoam to t =" in line:
+            point.meshed.set()
+        match = PROGRESS.search(line)
+        if match:
+            point.progress = float(match.group(1)) / float(match.group(2))
+            point.eta = match.group(3)
+
+    code = run_logged(command, os.path.join(point.folder, "pump_curve.log"), on_line)
     point.meshed.set()
     if code != 0:
         point.state, point.error = "failed", "exit code %d (log: %s)" % (code, os.path.join(point.folder, "pump_curve.log"))

@@ -40,7 +40,6 @@ sys.path.insert(0, HERE)
 import fsi_launch  # noqa: E402
 import pump_curve  # noqa: E402
 
-LAUNCHER = os.path.join(HERE, "fsi_launch.py")
 LOCK = threading.Lock()
 # The coupler's progress line: "step 1674/2000  t = 0.4185 s (84%)  wall 9m34s  ETA 112.0 s ..."
 # (the precursor counts as nothing: it is a few minutes, once per operating point).
@@ -148,22 +147,16 @@ def run_member(args, member):
     if not (os.path.exists(stamp_file) and open(stamp_file).read() == stamp):
         if os.path.exists(stamp_file):
             os.remove(stamp_file)
-        command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", member.folder]
-        if args.resolution:
-            command += ["--resolution", args.resolution]
-        if args.end_time:
-            command += ["--end-time", str(args.end_time)]
-        command.append(member.case)
         member.state, started = "running", time.monotonic()
-        with open(os.path.join(member.folder, "rag_ensemble.log"), "wb") as log:
-            process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
-            for raw in iter(process.stderr.readline, b""):
-                log.write(raw)
-                match = PROGRESS.search(raw.decode("utf-8", "replace").rstrip())
-                if match:
-                    member.progress = int(match.group(1)) / int(match.group(2))
-                    member.eta = match.group(3)
-            code = process.wait()
+
+        def on_line(line):
+            match = PROGRESS.search(line)
+            if match:
+                member.progress = int(match.group(1)) / int(match.group(2))
+                member.eta = match.group(3)
+
+        code = pump_curve.run_logged(pump_curve.launcher_command(args, member.folder, member.case),
+                                     os.path.join(member.folder, "rag_ensemble.log"), on_line)
         if code != 0:
             member.state = "failed"
             member.error = "exit code %d (log: %s)" % (code, os.path.join(member.folder, "rag_ensemble.log"))
