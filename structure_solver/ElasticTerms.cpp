@@ -1,12 +1,14 @@
 #include "ElasticTerms.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fsi::structure {
 
 ElasticTerms::ElasticTerms(const LagrangianGrid &grid, const EdgeConditions &bc, const PointArray &initial_m,
-                           double tension_coefficient, double bending_rigidity, bool curved_rest_state)
-    : phi_(tension_coefficient), zeta_(bending_rigidity) {
+                           double tension_coefficient, double bending_rigidity, bool curved_rest_state,
+                           CompressionResponse compression)
+    : phi_(tension_coefficient), zeta_(bending_rigidity), compression_(compression) {
   add_tension_terms(grid, initial_m);
   if (!grid.is_filament())
     add_shear_terms(grid, initial_m);
@@ -113,7 +115,14 @@ void ElasticTerms::add_twist_terms(const LagrangianGrid &grid) {
 }
 
 double ElasticTerms::sigma(const TensionTerm &t, const PointArray &x) const {
-  return phi_ * ((x.row(t.b) - x.row(t.a)).squaredNorm() * t.inv_ds_squared - t.rest_value);
+  const double s = phi_ * ((x.row(t.b) - x.row(t.a)).squaredNorm() * t.inv_ds_squared - t.rest_value);
+  return compression_ == CompressionResponse::slack ? std::max(0.0, s) : s;
+}
+
+double ElasticTerms::tension_stiffness(const TensionTerm &t, const PointArray &x) const {
+  if (compression_ == CompressionResponse::elastic)
+    return phi_;
+  return (x.row(t.b) - x.row(t.a)).squaredNorm() * t.inv_ds_squared > t.rest_value ? phi_ : 0.0;
 }
 
 namespace {

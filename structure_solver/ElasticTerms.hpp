@@ -14,6 +14,7 @@
 // X_ghost = X_inner -/+ 2 ds t, t the prescribed tangent, folded into a constant c.
 
 #include "BoundaryConditions.hpp"
+#include "CompressionResponse.hpp"
 #include "LagrangianGrid.hpp"
 #include "common/Types.hpp"
 
@@ -70,8 +71,10 @@ class ElasticTerms {
 public:
   /// Builds all stencils for `grid` with conditions `bc`; rest lengths from `initial_m`.
   /// With `curved_rest_state`, the bending rest values are those of the initial shape.
+  /// `compression` says whether compressed edges push back (elastic) or go slack.
   ElasticTerms(const LagrangianGrid &grid, const EdgeConditions &bc, const PointArray &initial_m,
-               double tension_coefficient, double bending_rigidity, bool curved_rest_state);
+               double tension_coefficient, double bending_rigidity, bool curved_rest_state,
+               CompressionResponse compression = CompressionResponse::elastic);
 
   ElasticEnergy energy(const PointArray &x, const Eigen::Matrix3d &clamp_rotation) const;
   /// Adds -grad E at x to `forces` (N, one row per point).
@@ -81,7 +84,10 @@ public:
   /// Index of the point at the more stretched end of the most stretched edge.
   int most_stretched_point(const PointArray &x) const;
 
+  /// Stretching tension phi (T - T0) of an edge; zero in compression when slack.
   double sigma(const TensionTerm &t, const PointArray &x) const;
+  /// d sigma / d T of an edge at x: phi, or zero for a slack edge in compression.
+  double tension_stiffness(const TensionTerm &t, const PointArray &x) const;
   double sigma(const ShearTerm &t, const PointArray &x) const;
   Vec3 bending_value(const BendingTerm &t, const PointArray &x, const Eigen::Matrix3d &clamp_rotation) const;
 
@@ -100,6 +106,7 @@ private:
   void add_twist_terms(const LagrangianGrid &grid);
 
   double phi_, zeta_;
+  CompressionResponse compression_;
   std::vector<TensionTerm> tension_;
   std::vector<ShearTerm> shear_;
   std::vector<BendingTerm> bending_;

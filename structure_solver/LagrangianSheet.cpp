@@ -11,7 +11,7 @@ LagrangianSheet::LagrangianSheet(SheetSetup setup)
     : setup_(std::move(setup)), measure_(setup_.grid.point_measures()), prescribed_(prescribed_points()),
       has_prescribed_(std::find(prescribed_.begin(), prescribed_.end(), true) != prescribed_.end()) {
   terms_ = std::make_unique<ElasticTerms>(setup_.grid, setup_.edges, setup_.shape_body_m, setup_.tension_coefficient,
-                                          setup_.bending_rigidity, setup_.curved_rest_state);
+                                          setup_.bending_rigidity, setup_.curved_rest_state, setup_.compression);
   const StepSettings step{*terms_,
                           measure_,
                           setup_.mass_per_measure,

@@ -30,6 +30,7 @@ struct SheetSetup {
   double bending_rigidity = 0.0;        ///< zeta (N m or N m^2)
   double damping_per_measure = 0.0;     ///< lambda (kg/(m^2 s) or kg/(m s))
   bool curved_rest_state = false;
+  CompressionResponse compression = CompressionResponse::elastic;
   Vec3 gravity_m_per_s2 = Vec3::Zero();
   double time_step_s = 1e-4;
   LinearSolver linear_solver = LinearSolver::automatic;

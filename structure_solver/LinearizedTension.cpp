@@ -36,7 +36,8 @@ void LinearizedTension::build_block_pattern() {
 
 void LinearizedTension::fill_material_blocks(const PointArray &x, double *values) const {
   // Material part of the tension Hessian (the change of sigma with X), scale 1:
-  //   edge:  2 phi m / ds^4 d d^T on (a,a), (b,b) and minus it on (a,b), (b,a);
+  //   edge:  2 phi m / ds^4 d d^T on (a,a), (b,b) and minus it on (a,b), (b,a) (zero for a
+  //          slack edge in compression: its sigma does not change with X there);
   //   shear: phi m v_r v_c^T with v_r = dT_12 / dX_r = coef_a[r] b + coef_b[r] a.
   const StepSlots &s = system_.slots();
   const ElasticTerms &terms = system_.terms();
@@ -50,7 +51,7 @@ void LinearizedTension::fill_material_blocks(const PointArray &x, double *values
   for (std::size_t k = 0; k < s.tension.size(); ++k) {
     const auto &t = terms.tension()[k];
     const Vec3 d = (x.row(t.b) - x.row(t.a)).transpose();
-    const Eigen::Matrix3d block = 2.0 * phi * t.measure * t.inv_ds_squared * t.inv_ds_squared * d * d.transpose();
+    const Eigen::Matrix3d block = 2.0 * terms.tension_stiffness(t, x) * t.measure * t.inv_ds_squared * t.inv_ds_squared * d * d.transpose();
     add(s.tension[k][0], block), add(s.tension[k][1], -block), add(s.tension[k][2], -block);
     add(s.tension[k][3], block);
   }

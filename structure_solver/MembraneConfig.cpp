@@ -38,6 +38,7 @@ std::unique_ptr<StructureModel> MembraneConfig::build(const BuildContext &contex
   setup.tension_coefficient = material.tension_coefficient();
   setup.bending_rigidity = material.bending_rigidity();
   setup.damping_per_measure = material.damping_kg_per_m2_s;
+  setup.compression = material.compression;
   return std::make_unique<LagrangianSheet>(std::move(setup));
 }
 

@@ -3,6 +3,7 @@
 // material coordinates. Units: rho_1 in kg/m^2, phi in N/m, zeta in N m.
 
 #include "BoundaryConditions.hpp"
+#include "CompressionResponse.hpp"
 #include "ModelConfig.hpp"
 
 namespace fsi::structure {
@@ -34,6 +35,7 @@ struct SheetElasticModuli {
 struct SheetMaterial {
   double mass_per_area_kg_per_m2 = 0.08;
   double damping_kg_per_m2_s = 0.0;
+  CompressionResponse compression = CompressionResponse::elastic;
   std::optional<SheetCoefficients> coefficients;
   std::optional<SheetElasticModuli> elastic_moduli;
 
@@ -42,6 +44,9 @@ struct SheetMaterial {
              "rho_1 = rho_s - rho_f c: sheet mass per area minus displaced fluid.");
     v.number("damping_kg_per_m2_s", damping_kg_per_m2_s, common::Range::non_negative("kg/(m^2 s)"),
              "lambda: structural damping of Eq. (4).");
+    v.choice("compression", compression, compression_response_names(),
+             "Stretching tension in compression: 'elastic' pushes back (the paper), 'slack' carries none "
+             "(cloth wrinkles instead; keeps stiff rags stable when the flow crumples them).");
     v.optional_section("coefficients", coefficients, "Give phi and zeta directly (default when neither is given).");
     v.optional_section("elastic_moduli", elastic_moduli, "Or derive phi and zeta from E, thickness and nu.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
