@@ -63,9 +63,12 @@ CorrectionStats CollisionSet::correct(PointArray &positions_m, double time_s) co
   for (std::size_t i = 0; i < n_points; ++i)
     active[i] = static_cast<Eigen::Index>(i);
   std::vector<char> was_corrected(n_points, 0), moved(n_points, 0);
+  std::vector<Eigen::Isometry3d> poses;
+  for (const Body &body : bodies_)
+    poses.push_back(body.motion->pose_at(time_s));
   for (int pass = 0; pass < max_passes_ && !active.empty(); ++pass) {
-    for (const Body &body : bodies_) {
-      correct_against(body, positions_m, time_s, active, moved, was_corrected, stats);
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      correct_against(b, poses, positions_m, active, moved, was_corrected, stats);
     }
     ++stats.n_passes;
     std::vector<Eigen::Index> next;
@@ -81,21 +84,35 @@ CorrectionStats CollisionSet::correct(PointArray &positions_m, double time_s) co
   return stats;
 }
 
-void CollisionSet::correct_against(const Body &body, PointArray &positions_m, double time_s,
-                                   const std::vector<Eigen::Index> &active,
+CollisionSet::Clearance CollisionSet::nearest_wall(const Vec3 &world_m,
+                                                   const std::vector<Eigen::Isometry3d> &poses) const {
+  Clearance nearest{std::numeric_limits<double>::infinity(), Vec3::Zero()};
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const Vec3 body_m = poses[b].inverse() * world_m;
+    if (!bodies_[b].surface->may_be_within(body_m, threshold_m_))
+      continue;
+    const geometry::SurfaceDistance d = bodies_[b].surface->distance(body_m);
+    if (d.signed_distance_m < nearest.signed_distance_m)
+      nearest = {d.signed_distance_m, poses[b].linear() * d.normal_into_fluid};
+  }
+  return nearest;
+}
+
+void CollisionSet::correct_against(std::size_t b, const std::vector<Eigen::Isometry3d> &poses,
+                                   PointArray &positions_m, const std::vector<Eigen::Index> &active,
                                    std::vector<char> &moved, std::vector<char> &was_corrected,
                                    CorrectionStats &stats) const {
-  const Eigen::Isometry3d body_to_world = body.motion->pose_at(time_s);
-  const Eigen::Isometry3d world_to_body = body_to_world.inverse();
-  const Eigen::Matrix3d rotation = body_to_world.linear();
+  const Body &body = bodies_[b];
+  const Eigen::Isometry3d world_to_body = poses[b].inverse();
+  const Eigen::Matrix3d rotation = poses[b].linear();
   const double trigger_m = threshold_m_ - kSettledTolerance_m;
   // Each point is corrected on its own (its own row, its own flags), so the points are split
-  // among threads; the count and the minimum are reduced exactly, and the result does not
+  // among threads; the counts and the minimum are reduced exactly, and the result does not
   // depend on the number of threads.
   const auto n_active = static_cast<std::ptrdiff_t>(active.size());
-  std::size_t n_corrections = 0;
+  std::size_t n_corrections = 0, n_pinched = 0;
   double min_signed_distance_m = stats.min_signed_distance_m;
-#pragma omp parallel for schedule(dynamic, 256) reduction(+ : n_corrections) \
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : n_corrections, n_pinched) \
     reduction(min : min_signed_distance_m) if (active.size() >= kMinPointsForThreads)
   for (std::ptrdiff_t k = 0; k < n_active; ++k) {
     const Eigen::Index i = active[static_cast<std::size_t>(k)];
@@ -109,15 +126,28 @@ void CollisionSet::correct_against(const Body &body, PointArray &positions_m, do
     if (!(d.signed_distance_m < trigger_m))
       continue;
     // Eq. 11: X_c = X + n_w (d_t - eps_c), with n_w rotated from the body to the world.
-    const Vec3 shift_m =
-        rotation * (d.normal_into_fluid * (target_distance_m_ - d.signed_distance_m));
-    positions_m.row(i) += shift_m.transpose();
+    const Vec3 normal = rotation * d.normal_into_fluid;
+    const double full_m = target_distance_m_ - d.signed_distance_m;
+    double move_m = full_m;
+    // A facing wall B within d_c of the end of the move: the gap is narrower than 2 d_t.
+    // Along the move s, the distance to this wall grows as eps_c + s and the distance to B
+    // falls as eps_B + c (full - s), c = -n_B . n_w; stop where the two are equal.
+    const Clearance end = nearest_wall(world_m + full_m * normal, poses);
+    const double facing = -end.normal_into_fluid.dot(normal);
+    if (end.signed_distance_m < trigger_m && facing > 0.5) {
+      move_m = (end.signed_distance_m + facing * full_m - d.signed_distance_m) / (1.0 + facing);
+      move_m = std::clamp(move_m, -std::max(d.signed_distance_m, 0.0), full_m);
+      ++n_pinched;
+    }
+    positions_m.row(i) += move_m * normal.transpose();
     min_signed_distance_m = std::min(min_signed_distance_m, d.signed_distance_m);
     was_corrected[static_cast<std::size_t>(i)] = 1;
-    moved[static_cast<std::size_t>(i)] = 1;
+    if (std::abs(move_m) > kSettledTolerance_m)
+      moved[static_cast<std::size_t>(i)] = 1;
     ++n_corrections;
   }
   stats.n_corrections += n_corrections;
+  stats.n_pinched += n_pinched;
   stats.min_signed_distance_m = min_signed_distance_m;
 }
 

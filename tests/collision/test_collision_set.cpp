@@ -9,6 +9,7 @@
 #include "geometry/BoxSurface.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
 #include "geometry/CylinderSurface.hpp"
+#include "geometry/MeshGenerators.hpp"
 #include "geometry/PlaneSurface.hpp"
 #include "geometry/TriangleMeshSurface.hpp"
 
@@ -127,6 +128,34 @@ TEST(CollisionSet, PointsBetweenFloorAndPoleClearBoth) {
   }
 }
 
+/// z of a point between a floor at z = 0 and a ceiling at z = gap after correction (d_c = d_t
+/// = 4 mm), with the number of pinched corrections.
+std::pair<double, std::size_t> corrected_in_gap(double gap_m, double z_m) {
+  CollisionSet set(0.004, 0.004);
+  set.add_surface(std::make_unique<PlaneSurface>(Vec3(0, 0, 0), Vec3(0, 0, 1)), at_rest());
+  set.add_surface(std::make_unique<PlaneSurface>(Vec3(0, 0, gap_m), Vec3(0, 0, -1)), at_rest());
+  PointArray points(1, 3);
+  points << 0.1, 0.2, z_m;
+  const CorrectionStats stats = set.correct(points, 0.0);
+  EXPECT_EQ(points(0, 0), 0.1); // along the normal only
+  return {points(0, 2), stats.n_pinched};
+}
+
+TEST(CollisionSet, APointPinchedInAGapNarrowerThanTwiceTheTargetStaysMidway) {
+  // A 5 mm gap (the pump's blade-to-shroud-lip slot is 3.7 mm): d_t = 4 mm from one wall is
+  // 1 mm from the other. Without the pinch rule the point was thrown from wall to wall and,
+  // after an even number of passes, left inside a solid (measured: 0.23 mm deep in the pump).
+  for (const double z : {0.001, -0.0003, 0.0042, 0.0052}) {
+    const auto [z_after, pinched] = corrected_in_gap(0.005, z);
+    EXPECT_NEAR(z_after, 0.0025, 1e-12) << "from z = " << z;
+    EXPECT_GE(pinched, 1u);
+  }
+  // A gap wider than 2 d_t: Eq. 11 as it is, d_t from the near wall, nothing pinched.
+  const auto [z_wide, pinched_wide] = corrected_in_gap(0.010, 0.001);
+  EXPECT_NEAR(z_wide, 0.004, 1e-15);
+  EXPECT_EQ(pinched_wide, 0u);
+}
+
 /// A collision set holding one mesh surface that follows `motion`.
 CollisionSet mesh_collision_set(const TriangleSoup &soup, FluidSide side,
                                 const std::shared_ptr<const motion::RigidMotion> &motion,
@@ -158,6 +187,25 @@ void expect_cloud_cleared(const CollisionSet &set, const TriangleSoup &soup, Flu
     const double floor_m = moved ? set.target_distance_m() : set.threshold_m();
     ASSERT_GE(eps_m, floor_m - 1e-9) << "point " << i << " at t = " << time_s;
   }
+}
+
+TEST(CollisionSet, ASlotInOneMeshHoldsAPinchedPointMidway) {
+  // Two boxes 3.7 mm apart in one closed mesh (one surface): the slot between a blade and a
+  // shroud lip. A point 0.23 mm inside one box ends in the slot, 1.85 mm from both faces.
+  TriangleSoup soup = make_box(Vec3(-0.02, -0.02, -0.02), Vec3(0.02, 0.02, 0.0));
+  const TriangleSoup upper = make_box(Vec3(-0.02, -0.02, 0.0037), Vec3(0.02, 0.02, 0.02));
+  const auto n_vertices = soup.vertices_m.rows();
+  soup.vertices_m.conservativeResize(n_vertices + upper.vertices_m.rows(), 3);
+  soup.vertices_m.bottomRows(upper.vertices_m.rows()) = upper.vertices_m;
+  const auto n_triangles = soup.triangles.rows();
+  soup.triangles.conservativeResize(n_triangles + upper.triangles.rows(), 3);
+  soup.triangles.bottomRows(upper.triangles.rows()) = upper.triangles.array() + static_cast<int>(n_vertices);
+  const CollisionSet set = mesh_collision_set(soup, FluidSide::outside, at_rest(), 0.004, 0.004);
+  PointArray points(1, 3);
+  points << 0.001, 0.002, -0.00023;
+  const CorrectionStats stats = set.correct(points, 0.0);
+  EXPECT_NEAR(points(0, 2), 0.00185, 1e-9);
+  EXPECT_GE(stats.n_pinched, 1u);
 }
 
 TEST(CollisionSet, StaticSphereCloudEndsOutsideAtTargetDistance) {
