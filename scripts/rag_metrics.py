@@ -664,6 +664,7 @@ def _rag_mechanics(run, geometry, grid_shape):
     metrics = {
         "max_strain": float(strain[k_strain]),
         "max_strain_time_s": float(run.t[k_strain]),
+        "strain_over_limit_fraction": float(np.mean(strain > PAPER["max_strain"])),
         "min_wall_distance_m": wall_min,
         "min_wall_distance_time_s": float(run.t[frame_min]),
         "min_wall_distance_region": str(region),
@@ -1003,6 +1004,9 @@ DEFINITIONS = {
                    "head_rest_m, head_clean_m, head_wrap_minus_rest_m, head_wrap_minus_clean_m, head_phase_averaged)",
     "max_strain": "largest |x_j - x_i| / L0_ij - 1 over the grid edges and frames, L0 the edge's length in frame 0 "
                   "(max_strain_time_s: its frame)",
+    "strain_over_limit_fraction": "fraction of the frames whose largest edge strain is above the paper's 3 %: a peak "
+                                  "in a few frames of contact (the rag draped over the rotating hub) against a rag "
+                                  "stretched all along",
     "min_wall_distance_m": "smallest distance of a point to any wall region (impeller in its frame, casing; not "
                            "inlet or outlet) over the frames (min_wall_distance_time_s, min_wall_distance_region: "
                            "where)",
@@ -1119,7 +1123,9 @@ def _picture_headline(text, m, series, colour, title):
             _fmt(m["torque_wrap_n_m"], "%.2f"), _fmt(m["torque_rest_n_m"], "%.2f"), _fmt(m["torque_clean_n_m"], "%.2f")),
         "head wrapped %s m, rest %s, clean %s" % (
             _fmt(m["head_wrap_m"], "%.2f"), _fmt(m["head_rest_m"], "%.2f"), _fmt(m["head_clean_m"], "%.2f")),
-        "rag: max strain %s (paper: under 3 %%), %d frames" % (_fmt(_pct(m["max_strain"]), "%.1f", " %"), m["n_frames"]),
+        "rag: max strain %s (paper: under 3 %%; over it in %s of %d frames)" % (
+            _fmt(_pct(m["max_strain"]), "%.1f", " %"), _fmt(_pct(m["strain_over_limit_fraction"]), "%.0f", " %"),
+            m["n_frames"]),
         "closest to a wall %s mm (%s), up to %d self-contacts" % (
             _fmt(1e3 * m["min_wall_distance_m"], "%.1f"), m["min_wall_distance_region"], m["max_self_contacts"]),
     ]

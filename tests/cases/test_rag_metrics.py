@@ -410,6 +410,7 @@ class Mechanics(unittest.TestCase):
         m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)
         self.assertAlmostEqual(m["max_strain"], 0.05, delta=1e-9)
         self.assertEqual(m["max_strain_time_s"], t[2])
+        self.assertAlmostEqual(m["strain_over_limit_fraction"], 1 / 5, delta=1e-12)  # only the 5 % frame
         self.assertEqual(m["n_frames"], 5)
         self.assertEqual(m["n_points"], 20)
         self.assertEqual(m["max_self_contacts"], 0)
