@@ -4,12 +4,14 @@ clogging metrics (scripts/rag_metrics.py: outcome, residence time, time to the c
 the leading edge, trap sites, what the rag costs the pump, strain and wall distance) written to
 rag_metrics.csv, rag_metrics.yaml and rag_summary.png; and the pictures of the passage
 (scripts/plot_rag_in_pump.py: rag_sequence.png as the paper's Figs. 12-13, rag_wrap.png as its
-Fig. 14, rag_passage.mp4).
+Fig. 14, rag_passage.mp4); and the impeller at its pose of every saved frame for ParaView
+(scripts/impeller_xdmf.py: impeller.xdmf beside structure.xdmf).
 Usage: postprocess.py RESULTS_DIR CASE_DIR [--no-animation]"""
 
 import sys
 
-import plot_rag_in_pump  # scripts/, on PYTHONPATH (./fsi run, ./fsi rag-ensemble)
+import impeller_xdmf  # scripts/, on PYTHONPATH (./fsi run, ./fsi rag-ensemble)
+import plot_rag_in_pump
 import rag_metrics
 
 
@@ -20,6 +22,7 @@ def main(argv):
     out, case_dir = args
     metrics = rag_metrics.write_metrics(out, case_dir)
     files = plot_rag_in_pump.write_pictures(out, case_dir, animation="--no-animation" not in argv)
+    files.append(impeller_xdmf.write(out, case_dir))
     print("rag %s%s; rag_metrics.csv, rag_summary.png, %s"
           % (metrics.get("outcome", "?"),
              " at t = %.3g s" % metrics["exit_time_s"] if metrics.get("exit_time_s") is not None else "",

@@ -19,6 +19,7 @@ import csv
 import math
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -35,6 +36,7 @@ except ImportError as error:  # ctest reports exit code 77 as "skipped", with th
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 sys.dont_write_bytecode = True
+import impeller_xdmf  # noqa: E402  (scripts/impeller_xdmf.py)
 import rag_metrics  # noqa: E402  (scripts/rag_metrics.py)
 
 RATE = 2 * math.pi * 10.0          # rad/s: T = 0.1 s
@@ -576,6 +578,46 @@ class Files(unittest.TestCase):
         self.assertTrue(any(d.startswith("site side_gap: ") for d in doc["definitions"]))
         png = os.path.join(self.run_dir, "rag_summary.png")
         self.assertGreater(os.path.getsize(png), 10000)
+
+    def test_impeller_for_paraview(self):
+        """impeller.h5 holds the impeller's STL at its pose of every saved frame (against to_lab,
+        the rotation written out), and both ParaView readers show that frame's points."""
+        xdmf = impeller_xdmf.write(self.run_dir, self.case)
+        with h5py.File(os.path.join(self.run_dir, "impeller.h5"), "r") as f:
+            t, x = f["time_s"][:], f["position_m"][:]
+            triangles, region, names = f["connectivity"][:], f["region"][:], list(f["region_names"].asstr()[:])
+        with h5py.File(os.path.join(self.run_dir, "structure.h5"), "r") as f:
+            np.testing.assert_array_equal(t, f["time_s"][:])
+        self.assertEqual(names, sorted(IMPELLER))
+        self.assertEqual(len(triangles), 12 * sum(len(v) for v in IMPELLER.values()))
+        corners = np.concatenate([box_triangles(lo, hi) for k in names for lo, hi in IMPELLER[k]])
+        # frame 0 rebuilds every STL triangle, each with its region
+        np.testing.assert_allclose(x[0][triangles], corners, atol=1e-7)
+        np.testing.assert_array_equal(region, np.repeat(np.arange(len(names)),
+                                                        [12 * len(IMPELLER[k]) for k in names]))
+        for k in (1, len(t) // 3, len(t) - 1):
+            np.testing.assert_allclose(x[k], to_lab(x[0].astype(float), t[k]), atol=1e-6)
+        if shutil.which("pvbatch") is None:
+            self.skipTest("no pvbatch (Debian's paraview): the readers were not checked")
+        frame = len(t) // 3
+        script = os.path.join(self.tmp, "open.py")
+        with open(script, "w") as f:
+            f.write("import sys\nfrom paraview import simple\n"
+                    "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+                    "for r in (simple.OpenDataFile(sys.argv[1]), simple.XDMFReader(FileNames=[sys.argv[1]])):\n"
+                    "    r.UpdatePipeline(%r)\n"
+                    "    d = r.GetClientSideObject().GetOutputDataObject(0)\n"
+                    "    print(len(r.TimestepValues), r.GetDataInformation().GetNumberOfCells(), "
+                    "' '.join('%%.9g' %% v for v in vtk_to_numpy(d.GetPoints().GetData()).ravel()))\n"
+                    % float(t[frame]))
+        out = subprocess.run(["pvbatch", "--force-offscreen-rendering", script, xdmf], cwd=self.run_dir,
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+        lines = [line for line in out.stdout.splitlines() if line[:1].isdigit()]
+        self.assertEqual(len(lines), 2, out.stdout[-2000:])
+        for line in lines:
+            n_times, n_cells, *points = line.split()
+            self.assertEqual((int(n_times), int(n_cells)), (len(t), len(triangles)))
+            np.testing.assert_allclose(np.array(points, float).reshape(-1, 3), x[frame], atol=1e-7)
 
     def test_cli(self):
         code = rag_metrics.main([self.run_dir, self.case, "--n-max-revolutions", "2", "--wrap-fraction", "0.5",
