@@ -64,14 +64,24 @@ int CouplingRun::run() {
     receive_initial_state();
     check_stability();
     start_ = last_progress_ = Clock::now();
+    long n_done = n_steps_;
     for (step = 0; step < n_steps_; ++step) {
       advance_one_step(step);
       record_step(step + 1);
-      report_progress(step + 1, step + 1 == n_steps_);
+      const bool past = structures_past_stop_plane();
+      report_progress(step + 1, step + 1 == n_steps_ || past);
+      if (past) {
+        n_done = step + 1;
+        spdlog::info("every structure point is past run.stop_when_past at t = {} s (step {} of {}): the run ends here",
+                     static_cast<double>(n_done) * dt_, n_done, n_steps_);
+        break;
+      }
     }
-    participants_->shutdown_all("run completed", true, static_cast<std::uint64_t>(n_steps_));
+    participants_->shutdown_all(n_done < n_steps_ ? "run completed: every structure point is past run.stop_when_past"
+                                                  : "run completed",
+                                true, static_cast<std::uint64_t>(n_done));
     results_->set_status("completed");
-    spdlog::info("completed: {} steps; timings and FSI force in {}", n_steps_, results_->path().string());
+    spdlog::info("completed: {} steps; timings and FSI force in {}", n_done, results_->path().string());
     return 0;
   } catch (const ParticipantFailed &e) {
     if (stop_signal() != 0) // Ctrl-C reaches every process: a participant may stop first
@@ -364,6 +374,11 @@ void CouplingRun::check_stability() const {
                    "law (rho_1 = {:.3g}); the run is expected to diverge: lower the penalty constant or the time step",
                    s.name(), dt_, limit, rho);
   }
+}
+
+bool CouplingRun::structures_past_stop_plane() const {
+  // x_now_ holds X^{n+1} of every structure, as the structure solver sent it (after Eq. 11).
+  return config_.run.stop_when_past && config_.run.stop_when_past->all_past(x_now_);
 }
 
 void CouplingRun::record_step(long n) {

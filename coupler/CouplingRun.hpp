@@ -47,6 +47,8 @@ private:
   void welcome(const std::string &id, bool with_structures);
   proto::Message &await(const std::string &peer, proto::v2::Envelope::BodyCase body, long step, const std::string &what);
   void check_stability() const;
+  /// run.stop_when_past holds for the structures' latest positions.
+  bool structures_past_stop_plane() const;
   void record_step(long n);
   void record_rigid_body_loads(const proto::v2::AdvanceReply &reply);
   void report_progress(long n, bool force);

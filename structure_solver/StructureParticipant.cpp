@@ -64,6 +64,12 @@ int StructureParticipant::run() {
     for (step = 0; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
       const proto::Message &message = session_->next_request();
       const proto::Envelope &request = message.envelope();
+      if (request.has_shutdown() && request.shutdown().success()) { // run.stop_when_past, seen by the coupler
+        run_.finish("completed", step);
+        spdlog::info("completed at step {} of {}: the coupler ended the run ({})", step, run_.n_steps(),
+                     request.shutdown().reason());
+        return 0;
+      }
       check_request(request, step);
       unpack_loads(message);
       take_rigid_poses(request.structure_advance());

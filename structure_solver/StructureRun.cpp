@@ -207,6 +207,16 @@ void StructureRun::finish(const std::string &status, long n_completed) {
   results_->set_status(status);
 }
 
+bool StructureRun::structures_past_stop_plane() const {
+  const auto &plane = config_.run.stop_when_past;
+  if (!plane)
+    return false;
+  for (const auto &s : scene_->structures())
+    if (!plane->all_past(s->positions_m()))
+      return false;
+  return !scene_->structures().empty();
+}
+
 int StructureRun::run() {
   start();
   const long n = n_steps();
@@ -216,6 +226,12 @@ int StructureRun::run() {
       return common::exit_code_run_failed;
     if (outcome.kind == StepOutcome::Kind::interrupted)
       return common::exit_code_interrupted;
+    if (structures_past_stop_plane()) {
+      spdlog::info("every structure point is past run.stop_when_past at t = {} s (step {} of {}): the run ends here",
+                   static_cast<double>(step + 1) * config_.run.time_step_s, step + 1, n);
+      finish("completed", step + 1);
+      break;
+    }
   }
   results_->set_status("completed");
   spdlog::info("completed: {} saved steps in {} (open {} in ParaView)", results_->n_saved(),

@@ -48,6 +48,8 @@ public:
   StepOutcome advance_step(long n, const std::vector<PointArray> *load_densities);
   /// After n_completed steps: writes X^{n_completed} if not written yet and sets the status.
   void finish(const std::string &status, long n_completed);
+  /// run.stop_when_past holds for every structure (a run without a coupler checks it itself).
+  bool structures_past_stop_plane() const;
   Scene &scene() { return *scene_; }
   long n_steps() const;
   const StructureSetup &config() const { return config_; }

@@ -256,5 +256,52 @@ class CleanShutdown(TempDirTest):
                          "the final Shutdown (launcher code, coupling status, structure status)" % len(bad))
 
 
+class StopWhenPast(TempDirTest):
+    """run.stop_when_past: the sheet carried by a uniform flow crosses a plane; the coupled run
+    ends, completed, at the first step where every point is past it, and so does the same
+    scene in a structure run of its own (the sheet falling under gravity)."""
+
+    def assert_stopped_at_the_crossing(self, out, plane_x, end_time_s, dt):
+        r = StructureResults(out)
+        x = r.structures["sheet"]["position_m"]
+        t = r.time_s
+        self.assertLess(t[-1], end_time_s - dt / 2, "the run did not stop early")
+        self.assertTrue(np.all(x[-1][:, 0] > plane_x), "the last frame is not past the plane")
+        self.assertFalse(np.all(x[-2][:, 0] > plane_x), "an earlier frame was already past the plane")
+        self.assertEqual(status_of(os.path.join(out, "structure.h5")), "completed")
+        return t[-1]
+
+    def test_coupled_run_ends_when_the_sheet_has_passed(self):
+        c = load_case(case_dir("sheet-in-uniform-flow"))
+        c["run"]["stop_when_past"] = {"point_m": [0.02, 0, 0], "normal": [1, 0, 0]}
+        case = write_case(os.path.join(self.tmp, "case"), c)
+        out = os.path.join(self.tmp, "out")
+        code, stderr = self.launch(case, out)
+        self.assert_run_completed(out, code, stderr)
+        dt, end = float(c["run"]["time_step_s"]), float(c["run"]["end_time_s"])
+        t_stop = self.assert_stopped_at_the_crossing(out, 0.02, end, dt)
+        # The sheet's trailing edge x = 0 moves as U_x (t - tau (1 - exp(-t/tau))) (the penalty
+        # relaxation, Relaxation above): it reaches 0.02 m at about 0.146 s.
+        K, rho = float(c["coupling"]["stiffness_n_per_m_per_measure"]), 0.08
+        tau = rho / (K * dt)
+        expected = next(tk for tk in np.arange(0, end, dt) if 0.2 * (tk - tau * (1 - math.exp(-tk / tau))) > 0.02)
+        self.assertAlmostEqual(t_stop, expected, delta=0.005)
+        with __import__("h5py").File(os.path.join(out, "coupling.h5"), "r") as f:
+            self.assertAlmostEqual(f["time_s"][-1], t_stop, delta=dt / 2)
+
+    def test_structure_run_ends_when_the_sheet_has_passed(self):
+        c = load_case(case_dir("sheet-in-uniform-flow"))
+        del c["fluid"], c["coupling"]
+        c["gravity_m_per_s2"] = [9.81, 0, 0]
+        c["run"]["stop_when_past"] = {"point_m": [0.02, 0, 0], "normal": [1, 0, 0]}
+        case = write_case(os.path.join(self.tmp, "case"), c)
+        out = os.path.join(self.tmp, "out")
+        code, stderr = self.launch(case, out)
+        self.assertEqual(code, 0, stderr[-3000:])
+        t_stop = self.assert_stopped_at_the_crossing(out, 0.02, float(c["run"]["end_time_s"]),
+                                                     float(c["run"]["time_step_s"]))
+        self.assertAlmostEqual(t_stop, math.sqrt(2 * 0.02 / 9.81), delta=0.005)  # free fall by 2 cm
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -65,6 +65,11 @@ TEST(RunBehaviour, ImpossibleTimeStepIsRejected) {
   expect_bad_input(with("end_time_s: 0.01", "end_time_s: 1.0e-6"), "end_time_s must be at least one time step");
 }
 
+TEST(RunBehaviour, AStopPlaneWithoutANormalIsRejected) {
+  expect_bad_input(with("output_interval_s: 0.005}", "output_interval_s: 0.005,\n     stop_when_past: {point_m: [0.3, 0, 0], normal: [0, 0, 0]}}"),
+                   "run.stop_when_past.normal");
+}
+
 TEST(RunBehaviour, MissingMeshFileIsNamed) {
   expect_bad_input(std::string(valid_case) + "collisions:\n  surfaces:\n    - mesh: {file: impeller.stl}\n",
                    "impeller.stl': file not found");
