@@ -962,6 +962,28 @@ def read_clean(path):
             "flow_rate_m3_per_s": point.get("flow_rate_m3_per_s")}
 
 
+def clean_from_precursor(run_dir, geometry, config, impeller_index):
+    """{"torque", "head", "flow_rate_m3_per_s": None, "source"} of the clean pump at the run's
+    operating point: the means over the last whole revolution of RUN_DIR/precursor (the flow
+    alone that started the run); None without a precursor or without its loads. A whole
+    revolution averages every impeller angle, so the means are phase-averaged."""
+    folder = os.path.join(run_dir, "precursor")
+    if not os.path.isdir(folder) or not geometry.rate:
+        return None
+    loads, _ = read_loads(folder, geometry, config, impeller_index)
+    period = 2 * math.pi / abs(geometry.rate)
+    clean = {"torque": None, "head": None, "flow_rate_m3_per_s": None,
+             "source": "%s: last revolution" % folder}
+    for name in ("torque", "head"):
+        if loads[name] is None:
+            continue
+        t, y = loads[name]
+        last = t >= t[-1] - period - 1e-12
+        if len(t) and t[-1] - t[0] >= period - 1e-12 and np.count_nonzero(last) > 1:
+            clean[name] = float(np.trapz(y[last], t[last]) / (t[last][-1] - t[last][0]))
+    return clean if clean["torque"] is not None or clean["head"] is not None else None
+
+
 # --------------------------------------------------------------------------------------------
 # Outputs
 
@@ -996,7 +1018,8 @@ DEFINITIONS = {
     "torque_wrap_n_m": "mean shaft torque -axis . T over the force samples whose nearest frame wraps; phase-averaged "
                        "over phase_bins impeller-angle bins when every bin has samples (torque_phase_averaged)",
     "torque_rest_n_m": "the same over the other samples of the frames' time span after settle_revolutions",
-    "torque_clean_n_m": "shaft_torque_n_m of --clean-operating-point",
+    "torque_clean_n_m": "shaft_torque_n_m of --clean-operating-point; without it, the mean over the last revolution "
+                        "of the run's precursor (the flow alone at the same operating point)",
     "torque_wrap_minus_rest_n_m": "torque_wrap_n_m - torque_rest_n_m (and torque_wrap_minus_clean_n_m)",
     "torque_phase_averaged": "true when both the wrap and the rest means are phase-averaged, false when one is a plain "
                              "mean (a phase bin without samples), empty without torque data",
@@ -1231,7 +1254,7 @@ def write_metrics(run_dir, case_dir, **options):
     surfaces = (config.get("collisions") or {}).get("surfaces") or []
     index = next((k for k, s in enumerate(surfaces) if ((s or {}).get("motion") or {}).get("rotation")), 0)
     loads, load_notes = read_loads(run_dir, geometry, config, index)
-    clean = read_clean(opt["clean_operating_point"])
+    clean = read_clean(opt["clean_operating_point"]) or clean_from_precursor(run_dir, geometry, config, index)
     if opt["settle_revolutions"] is None:
         opt["settle_revolutions"] = 0.0 if os.path.isdir(os.path.join(run_dir, "precursor")) else 1.0
     analysis = {k: opt[k] for k in DEFAULTS if k not in ("clean_operating_point", "structure", "discharge_radius_m",
@@ -1245,6 +1268,8 @@ def write_metrics(run_dir, case_dir, **options):
              "notes": notes + load_notes}
     if clean and clean.get("flow_rate_m3_per_s") is not None:
         extra["sources"]["clean_flow_rate_m3_per_s"] = clean["flow_rate_m3_per_s"]
+    if clean and clean.get("source"):
+        extra["sources"]["clean_pump"] = clean["source"]
     write_csv(os.path.join(run_dir, "rag_metrics.csv"), metrics)
     write_yaml(os.path.join(run_dir, "rag_metrics.yaml"), metrics, parameters, extra)
     if opt["picture"]:
