@@ -962,26 +962,44 @@ def read_clean(path):
             "flow_rate_m3_per_s": point.get("flow_rate_m3_per_s")}
 
 
+PRECURSOR_SETTLED = 0.02  # the last two revolutions' means of a settled precursor differ by at most 2 %
+
+
 def clean_from_precursor(run_dir, geometry, config, impeller_index):
-    """{"torque", "head", "flow_rate_m3_per_s": None, "source"} of the clean pump at the run's
-    operating point: the means over the last whole revolution of RUN_DIR/precursor (the flow
-    alone that started the run); None without a precursor or without its loads. A whole
-    revolution averages every impeller angle, so the means are phase-averaged."""
+    """({"torque", "head", "flow_rate_m3_per_s": None, "source"} or None, notes): the clean pump
+    at the run's operating point, the means over the last whole revolution of RUN_DIR/precursor
+    (the flow alone that started the run). A whole revolution averages every impeller angle, so
+    the means are phase-averaged. A quantity whose last two revolutions differ by more than
+    PRECURSOR_SETTLED was still settling: it is left out, and the notes say so."""
     folder = os.path.join(run_dir, "precursor")
     if not os.path.isdir(folder) or not geometry.rate:
-        return None
+        return None, []
     loads, _ = read_loads(folder, geometry, config, impeller_index)
     period = 2 * math.pi / abs(geometry.rate)
     clean = {"torque": None, "head": None, "flow_rate_m3_per_s": None,
              "source": "%s: last revolution" % folder}
+    notes = []
     for name in ("torque", "head"):
         if loads[name] is None:
             continue
         t, y = loads[name]
-        last = t >= t[-1] - period - 1e-12
-        if len(t) and t[-1] - t[0] >= period - 1e-12 and np.count_nonzero(last) > 1:
-            clean[name] = float(np.trapz(y[last], t[last]) / (t[last][-1] - t[last][0]))
-    return clean if clean["torque"] is not None or clean["head"] is not None else None
+        if not len(t) or t[-1] - t[0] < 2 * period - 1e-9:
+            notes.append("clean %s: the precursor is shorter than two revolutions" % name)
+            continue
+
+        def mean(lo, hi):
+            inside = (t >= lo - 1e-12) & (t <= hi + 1e-12)
+            return float(np.trapz(y[inside], t[inside]) / (t[inside][-1] - t[inside][0]))
+        last, before = mean(t[-1] - period, t[-1]), mean(t[-1] - 2 * period, t[-1] - period)
+        if abs(last - before) > PRECURSOR_SETTLED * max(abs(last), abs(before)):
+            notes.append("clean %s: not taken from the precursor, still settling (last two revolutions %.4g and "
+                         "%.4g; give --clean-operating-point or a longer fluid.openfoam.precursor_time_s)"
+                         % (name, before, last))
+            continue
+        clean[name] = last
+    if clean["torque"] is None and clean["head"] is None:
+        return None, notes
+    return clean, notes
 
 
 # --------------------------------------------------------------------------------------------
@@ -1019,7 +1037,8 @@ DEFINITIONS = {
                        "over phase_bins impeller-angle bins when every bin has samples (torque_phase_averaged)",
     "torque_rest_n_m": "the same over the other samples of the frames' time span after settle_revolutions",
     "torque_clean_n_m": "shaft_torque_n_m of --clean-operating-point; without it, the mean over the last revolution "
-                        "of the run's precursor (the flow alone at the same operating point)",
+                        "of the run's precursor (the flow alone at the same operating point), when it had settled "
+                        "(its last two revolutions within 2 %)",
     "torque_wrap_minus_rest_n_m": "torque_wrap_n_m - torque_rest_n_m (and torque_wrap_minus_clean_n_m)",
     "torque_phase_averaged": "true when both the wrap and the rest means are phase-averaged, false when one is a plain "
                              "mean (a phase bin without samples), empty without torque data",
@@ -1254,7 +1273,9 @@ def write_metrics(run_dir, case_dir, **options):
     surfaces = (config.get("collisions") or {}).get("surfaces") or []
     index = next((k for k, s in enumerate(surfaces) if ((s or {}).get("motion") or {}).get("rotation")), 0)
     loads, load_notes = read_loads(run_dir, geometry, config, index)
-    clean = read_clean(opt["clean_operating_point"]) or clean_from_precursor(run_dir, geometry, config, index)
+    clean, clean_notes = read_clean(opt["clean_operating_point"]), []
+    if clean is None:
+        clean, clean_notes = clean_from_precursor(run_dir, geometry, config, index)
     if opt["settle_revolutions"] is None:
         opt["settle_revolutions"] = 0.0 if os.path.isdir(os.path.join(run_dir, "precursor")) else 1.0
     analysis = {k: opt[k] for k in DEFAULTS if k not in ("clean_operating_point", "structure", "discharge_radius_m",
@@ -1265,7 +1286,7 @@ def write_metrics(run_dir, case_dir, **options):
                       clean_operating_point=opt["clean_operating_point"], geometry=geometry.describe())
     extra = {"sources": {"run_dir": os.path.abspath(run_dir), "case_dir": os.path.abspath(case_dir),
                          "configuration": source, "structure_status": status, **files},
-             "notes": notes + load_notes}
+             "notes": notes + load_notes + clean_notes}
     if clean and clean.get("flow_rate_m3_per_s") is not None:
         extra["sources"]["clean_flow_rate_m3_per_s"] = clean["flow_rate_m3_per_s"]
     if clean and clean.get("source"):

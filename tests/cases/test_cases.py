@@ -346,7 +346,7 @@ class RagInPump(CaseTest):
     def test_rag_rises_from_the_sump_and_the_metrics_are_written(self):
         need_openfoam(self)
         case = self.copy_case("rag-in-pump")
-        self.edit(os.path.join(case, "case.yaml"), "precursor_time_s: 0.25", "precursor_time_s: 0.0025")
+        self.edit(os.path.join(case, "case.yaml"), "precursor_time_s: 0.5", "precursor_time_s: 0.0025")
         with open(os.path.join(case, "case.yaml")) as f:
             config = load_case_yaml(f)
         dt = config["run"]["time_step_s"]
