@@ -104,7 +104,15 @@ bool Precursor::is_current() const {
 
 void Precursor::mark_complete() const { std::ofstream(stamp_file()) << fingerprint_ << "\n"; }
 
-void Precursor::invalidate() const { fs::remove(stamp_file()); }
+void Precursor::invalidate() const {
+  // Every earlier file goes, unlinked rather than overwritten: a precursor folder seeded with
+  // hard links (./fsi rag-ensemble's members, a copy made with cp -al) then never writes into
+  // the files it shares with another run's precursor.
+  std::error_code error;
+  if (fs::is_directory(folder_))
+    for (const auto &entry : fs::directory_iterator(folder_))
+      fs::remove_all(entry.path(), error);
+}
 
 fs::path Precursor::latest_time_directory(const fs::path &folder) {
   fs::path latest;

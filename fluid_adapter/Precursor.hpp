@@ -54,7 +54,8 @@ public:
   bool is_current() const;
   /// Records a completed precursor (after its fields are written).
   void mark_complete() const;
-  /// Forgets any earlier result (before a new precursor run starts).
+  /// Forgets any earlier result (before a new precursor run starts): removes the folder's
+  /// files, so that files hard-linked from elsewhere are left as they are.
   void invalidate() const;
 
   /// Copies every field of the precursor's last time into the coupled case's start time (0/),

@@ -65,8 +65,6 @@ struct Process {
 fs::path prepare_case(const Process &process, const CaseConfig &config, const std::string &case_dir,
                       const fs::path &base, const Precursor &precursor) {
   const auto &foam = *config.fluid->openfoam;
-  if (process.role == Role::precursor)
-    precursor.invalidate();
   const fs::path foam_case = fsi::fluid::prepare_openfoam_case(case_dir, foam.case_directory, base);
   if (!foam.initial_fields_from.empty() && process.role != Role::precursor) {
     fs::path source = foam.initial_fields_from;
@@ -197,17 +195,20 @@ int main(int argc, char **argv) {
       return fsi::common::exit_code_bad_input;
     }
     const fs::path base = process.role == Role::precursor ? precursor.folder() : out;
+    if (process.role == Role::precursor && !process.under_mpirun) {
+      if (precursor.is_current()) {
+        spdlog::info("precursor: {} is up to date (fingerprint {}): reused", precursor.folder().string(),
+                     precursor.fingerprint());
+        return fsi::common::exit_code_success;
+      }
+      precursor.invalidate(); // before its log opens: nothing of an earlier precursor is written into
+    }
     if (!process.under_mpirun) {
       fs::create_directories(base);
       fsi::common::add_log_file(base / "fluid.log");
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    if (process.role == Role::precursor && !process.under_mpirun && precursor.is_current()) {
-      spdlog::info("precursor: {} is up to date (fingerprint {}): reused", precursor.folder().string(),
-                   precursor.fingerprint());
-      return fsi::common::exit_code_success;
-    }
     const fs::path foam_case =
         process.under_mpirun ? base / "openfoam" : prepare_case(process, config, case_dir, base, precursor);
     const bool precursor_run = process.role == Role::precursor;

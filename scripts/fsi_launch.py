@@ -203,7 +203,10 @@ def run_precursors(args, plan):
         # Its own progress lines (stderr) show; the solver's residuals (stdout) go to a log.
         folder = os.path.join(plan.output_dir, "precursor")
         os.makedirs(folder, exist_ok=True)
-        with open(os.path.join(folder, "%s.console" % name), "wb") as console:
+        console_path = os.path.join(folder, "%s.console" % name)
+        if os.path.lexists(console_path):  # a new file, not the one a hard-linked copy shares
+            os.remove(console_path)
+        with open(console_path, "wb") as console:
             code = subprocess.call(command, stdin=subprocess.DEVNULL,
                                    stdout=None if args.verbose else console)
         if code != 0:

@@ -23,6 +23,7 @@ Each test prints its measured errors, loads and wall time (ctest -V shows them).
 
 import math
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -301,10 +302,18 @@ class Precursor(PenalizationTest):
         second_wall = time.monotonic() - start
         self.assertIn("is up to date", second)
         self.assertEqual(stamp, os.path.getmtime(os.path.join(pre, "completed.fingerprint")))
-        # A different precursor time: run again.
+        # A different precursor time: run again. The precursor folder's files are shared by hard
+        # links with another folder (as ./fsi rag-ensemble seeds its members): the new run
+        # writes files of its own and leaves the shared ones as they were.
+        shared = os.path.join(self.tmp, "shared-precursor")
+        shutil.copytree(pre, shared, copy_function=os.link)
+        before = {os.path.relpath(os.path.join(d, f), shared): open(os.path.join(d, f), "rb").read()
+                  for d, _, files in os.walk(shared) for f in files}
         self.write(case, 0.5 * self.PRE_END, [0.185, 0.094, 0.004])
         third = self.launch(case, out)
         self.assertNotIn("is up to date", third)
+        changed = [name for name, data in before.items() if open(os.path.join(shared, name), "rb").read() != data]
+        self.assertEqual(changed, [], "the rerun wrote into files it shares with another precursor")
         last = latest_time_dir(os.path.join(pre, "openfoam"))
         self.assertAlmostEqual(float(os.path.basename(last)), 0.5 * self.PRE_END, places=9)
         print("precursor: %d steps, then %d coupled steps; first coupled drag %.5g N against the precursor's last "
