@@ -962,41 +962,45 @@ def read_clean(path):
             "flow_rate_m3_per_s": point.get("flow_rate_m3_per_s")}
 
 
-PRECURSOR_SETTLED = 0.02  # the last two revolutions' means of a settled precursor differ by at most 2 %
+PRECURSOR_SETTLED = 0.10  # the two halves of a settled precursor's window differ by at most 10 %
 
 
 def clean_from_precursor(run_dir, geometry, config, impeller_index):
     """({"torque", "head", "flow_rate_m3_per_s": None, "source"} or None, notes): the clean pump
-    at the run's operating point, the means over the last whole revolution of RUN_DIR/precursor
-    (the flow alone that started the run). A whole revolution averages every impeller angle, so
-    the means are phase-averaged. A quantity whose last two revolutions differ by more than
-    PRECURSOR_SETTLED was still settling: it is left out, and the notes say so."""
+    at the run's operating point, the means over the second half of RUN_DIR/precursor (the flow
+    alone that started the run), in whole revolutions (at least two): whole revolutions average
+    every impeller angle, so the means are phase-averaged, and several of them the pump's slow
+    swings (rag-in-pump's head swings by +/- 6 % over about six revolutions). A quantity whose
+    window's two halves differ by more than PRECURSOR_SETTLED was still settling: it is left
+    out, and the notes say so."""
     folder = os.path.join(run_dir, "precursor")
     if not os.path.isdir(folder) or not geometry.rate:
         return None, []
     loads, _ = read_loads(folder, geometry, config, impeller_index)
     period = 2 * math.pi / abs(geometry.rate)
-    clean = {"torque": None, "head": None, "flow_rate_m3_per_s": None,
-             "source": "%s: last revolution" % folder}
+    clean = {"torque": None, "head": None, "flow_rate_m3_per_s": None, "source": None}
     notes = []
     for name in ("torque", "head"):
         if loads[name] is None:
             continue
         t, y = loads[name]
-        if not len(t) or t[-1] - t[0] < 2 * period - 1e-9:
-            notes.append("clean %s: the precursor is shorter than two revolutions" % name)
+        n = int(math.floor((t[-1] - t[0]) / period / 2 + 1e-9)) if len(t) else 0
+        if n < 2:
+            notes.append("clean %s: the precursor is shorter than four revolutions" % name)
             continue
 
         def mean(lo, hi):
             inside = (t >= lo - 1e-12) & (t <= hi + 1e-12)
             return float(np.trapz(y[inside], t[inside]) / (t[inside][-1] - t[inside][0]))
-        last, before = mean(t[-1] - period, t[-1]), mean(t[-1] - 2 * period, t[-1] - period)
-        if abs(last - before) > PRECURSOR_SETTLED * max(abs(last), abs(before)):
-            notes.append("clean %s: not taken from the precursor, still settling (last two revolutions %.4g and "
-                         "%.4g; give --clean-operating-point or a longer fluid.openfoam.precursor_time_s)"
-                         % (name, before, last))
+        start, middle = t[-1] - n * period, t[-1] - (n // 2) * period
+        early, late = mean(start, middle), mean(middle, t[-1])
+        if abs(late - early) > PRECURSOR_SETTLED * max(abs(late), abs(early)):
+            notes.append("clean %s: not taken from the precursor, still settling (%.4g then %.4g over its last %d "
+                         "revolutions; give --clean-operating-point or a longer fluid.openfoam.precursor_time_s)"
+                         % (name, early, late, n))
             continue
-        clean[name] = last
+        clean[name] = mean(start, t[-1])
+        clean["source"] = "%s: the last %d revolutions" % (folder, n)
     if clean["torque"] is None and clean["head"] is None:
         return None, notes
     return clean, notes
@@ -1036,9 +1040,9 @@ DEFINITIONS = {
     "torque_wrap_n_m": "mean shaft torque -axis . T over the force samples whose nearest frame wraps; phase-averaged "
                        "over phase_bins impeller-angle bins when every bin has samples (torque_phase_averaged)",
     "torque_rest_n_m": "the same over the other samples of the frames' time span after settle_revolutions",
-    "torque_clean_n_m": "shaft_torque_n_m of --clean-operating-point; without it, the mean over the last revolution "
-                        "of the run's precursor (the flow alone at the same operating point), when it had settled "
-                        "(its last two revolutions within 2 %)",
+    "torque_clean_n_m": "shaft_torque_n_m of --clean-operating-point; without it, the mean over the second half of "
+                        "the run's precursor (the flow alone at the same operating point; whole revolutions), when it "
+                        "had settled (the two halves of that window within 10 %)",
     "torque_wrap_minus_rest_n_m": "torque_wrap_n_m - torque_rest_n_m (and torque_wrap_minus_clean_n_m)",
     "torque_phase_averaged": "true when both the wrap and the rest means are phase-averaged, false when one is a plain "
                              "mean (a phase bin without samples), empty without torque data",

@@ -580,26 +580,26 @@ class Files(unittest.TestCase):
         self.assertGreater(os.path.getsize(png), 10000)
 
     def test_clean_pump_from_the_precursor(self):
-        """Without --clean-operating-point, the clean pump is the precursor's last revolution:
-        a torque of 9 + 3 sin(rate t) N m averages to 9 over it, whatever came before (50 N m);
-        a precursor still settling (the torque's last two revolutions 9 and 10 N m) gives none."""
+        """Without --clean-operating-point, the clean pump is the second half of the precursor, in
+        whole revolutions: over 4.5 revolutions, a torque of 9 + 3 sin(rate t) N m averages to 9
+        over the last 2, whatever came before (50 N m); a precursor still settling (9 then 12 N m
+        over those 2) gives none."""
         folder = os.path.join(self.run_dir, "precursor")
         os.makedirs(folder)
-        ts = np.arange(0, 2501) * 1e-4  # 2.5 revolutions
-        with open(os.path.join(folder, "forces.csv"), "w") as f:
-            f.write("time_s,body0.fx_n,body0.fy_n,body0.fz_n,body0.tx_n_m,body0.ty_n_m,body0.tz_n_m\n")
-            for tk in ts:
-                # shaft torque = -axis . T = T_z (axis -z)
-                f.write("%.10g,0,0,0,0,0,%.17g\n" % (tk, 50.0 if tk < 0.05 else 9 + 3 * math.sin(RATE * tk)))
+        ts = np.arange(0, 4501) * 1e-4
+
+        def write(torque):
+            with open(os.path.join(folder, "forces.csv"), "w") as f:
+                f.write("time_s,body0.fx_n,body0.fy_n,body0.fz_n,body0.tx_n_m,body0.ty_n_m,body0.tz_n_m\n")
+                for tk in ts:  # shaft torque = -axis . T = T_z (axis -z)
+                    f.write("%.10g,0,0,0,0,0,%.17g\n" % (tk, torque(tk)))
+        write(lambda tk: 50.0 if tk < 0.25 else 9 + 3 * math.sin(RATE * tk))
         m = rag_metrics.write_metrics(self.run_dir, self.case)
         self.assertAlmostEqual(m["torque_clean_n_m"], 9.0, delta=1e-9)
         self.assertAlmostEqual(m["torque_rest_n_m"] - m["torque_clean_n_m"], 1.0, delta=0.05)
         with open(os.path.join(self.run_dir, "rag_metrics.yaml")) as f:
-            self.assertIn("precursor: last revolution", f.read())
-        with open(os.path.join(folder, "forces.csv"), "w") as f:
-            f.write("time_s,body0.fx_n,body0.fy_n,body0.fz_n,body0.tx_n_m,body0.ty_n_m,body0.tz_n_m\n")
-            for tk in ts:
-                f.write("%.10g,0,0,0,0,0,%.17g\n" % (tk, 9.0 if tk < 0.15 else 10.0))
+            self.assertIn("precursor: the last 2 revolutions", f.read())
+        write(lambda tk: 9.0 if tk < 0.35 else 12.0)
         m = rag_metrics.write_metrics(self.run_dir, self.case)
         self.assertIsNone(m["torque_clean_n_m"])
         with open(os.path.join(self.run_dir, "rag_metrics.yaml")) as f:
