@@ -80,16 +80,23 @@ def parse_sizes(text):
 def draw_release(rng, size, rag, design, collision_m):
     """A rag standing upright (its first grid direction vertical) on the sump's floor: its lower
     edge 1 cm above the floor, its centre at a uniformly random point of the disc that keeps
-    every point 2 collision distances inside the sump's wall, its plane turned by a uniform angle
-    about the vertical."""
+    every point 2 collision distances inside the sump's wall, and inside the suction pipe's wall
+    too when the rag reaches up into the pipe, its plane turned by a uniform angle about the
+    vertical."""
     inlet = design["inlet"]
     radius = 0.5 * float(inlet["sump_diameter_m"])
     b2, b3 = design["impeller"]["outlet_width_m"], design["volute"]["base_width_m"]
     floor = 0.5 * (b2 - b3) - float(inlet["suction_pipe_length_m"]) - float(inlet["sump_height_m"])
     length, width = size
     room = radius - 0.5 * width - 2.0 * collision_m
+    into_pipe = floor + 0.01 + length > floor + float(inlet["sump_height_m"]) - 2.0 * collision_m
+    if into_pipe:  # its top stands in the suction pipe (the case's long rag: by 1 cm)
+        pipe = 0.5 * float(inlet.get("suction_pipe_diameter_m", 0.1))
+        room = min(room, pipe - 0.5 * width - 2.0 * collision_m)
     if room <= 0:
-        raise SystemExit("rag-ensemble: a rag %g m wide does not fit the sump (diameter %g m)" % (width, 2 * radius))
+        raise SystemExit("rag-ensemble: a rag %g m wide does not fit the %s (diameter %g m)"
+                         % (width, "suction pipe it reaches into" if into_pipe else "sump",
+                            2 * (pipe if into_pipe else radius)))
     r, phi, turn = room * math.sqrt(rng.random()), 2 * math.pi * rng.random(), math.pi * rng.random()
     across = [math.cos(turn), math.sin(turn), 0.0]
     centre = [r * math.cos(phi), r * math.sin(phi)]

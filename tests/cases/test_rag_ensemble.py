@@ -64,11 +64,18 @@ class Releases(unittest.TestCase):
     def test_every_point_is_in_the_sump_with_room_to_spare_and_the_rag_upright(self):
         rng = random.Random(7)
         d_c = 0.004
+        reached_pipe = False
         for k in range(200):
             size = (0.1, 0.1) if k % 2 else (0.15, 0.05)
             rag, release = rag_ensemble.draw_release(rng, size, self.rag, self.design, d_c)
             p = self.points(rag)
             self.assertLessEqual(np.hypot(p[:, 0], p[:, 1]).max(), self.radius - 2 * d_c + 1e-12)
+            # the part standing in the suction pipe (above the sump's roof) inside the pipe's wall
+            in_pipe = p[:, 2] > self.floor + self.design["inlet"]["sump_height_m"] - 2 * d_c
+            if np.any(in_pipe):
+                pipe = 0.5 * self.design["inlet"]["suction_pipe_diameter_m"]
+                self.assertLessEqual(np.hypot(p[in_pipe, 0], p[in_pipe, 1]).max(), pipe - 2 * d_c + 1e-12)
+                reached_pipe = True
             self.assertAlmostEqual(p[:, 2].min(), self.floor + 0.01, places=12)
             self.assertEqual(rag["s1_direction"], [0, 0, 1])
             self.assertEqual(rag["size_m"], list(size))
@@ -76,6 +83,7 @@ class Releases(unittest.TestCase):
             self.assertAlmostEqual(size[0] / (rag["n_points"][0] - 1), spacing, delta=0.1 * spacing)
             self.assertAlmostEqual(math.hypot(release["centre_x_m"], release["centre_y_m"]),
                                    np.hypot(*p[:, :2].mean(0)), places=9)
+        self.assertTrue(reached_pipe, "no draw reached into the suction pipe: the pipe's check was not exercised")
 
     def test_a_seed_reproduces_its_draw_and_another_seed_does_not(self):
         def draw(seed):
