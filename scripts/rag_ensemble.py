@@ -88,8 +88,9 @@ def draw_release(rng, size, rag, design, collision_m):
     b2, b3 = design["impeller"]["outlet_width_m"], design["volute"]["base_width_m"]
     floor = 0.5 * (b2 - b3) - float(inlet["suction_pipe_length_m"]) - float(inlet["sump_height_m"])
     length, width = size
+    lift = 0.01  # the rag's lower edge above the floor
     room = radius - 0.5 * width - 2.0 * collision_m
-    into_pipe = floor + 0.01 + length > floor + float(inlet["sump_height_m"]) - 2.0 * collision_m
+    into_pipe = lift + length > float(inlet["sump_height_m"]) - 2.0 * collision_m
     if into_pipe:  # its top stands in the suction pipe (the case's long rag: by 1 cm)
         pipe = 0.5 * float(inlet.get("suction_pipe_diameter_m", 0.1))
         room = min(room, pipe - 0.5 * width - 2.0 * collision_m)
@@ -106,7 +107,7 @@ def draw_release(rng, size, rag, design, collision_m):
     rag["n_points"] = [max(2, int(round(length / spacing)) + 1), max(2, int(round(width / spacing)) + 1)]
     rag["s1_direction"] = [0, 0, 1]
     rag["s2_direction"] = across
-    rag["origin_m"] = [centre[0] - 0.5 * width * across[0], centre[1] - 0.5 * width * across[1], floor + 0.01]
+    rag["origin_m"] = [centre[0] - 0.5 * width * across[0], centre[1] - 0.5 * width * across[1], floor + lift]
     return rag, {"centre_x_m": centre[0], "centre_y_m": centre[1], "turn_deg": math.degrees(turn),
                  "length_m": length, "width_m": width}
 
