@@ -2,7 +2,7 @@
 # fsi: the one entry point. Installs missing Debian packages, configures and builds with
 # CMake (Release), then runs a case, validates it, runs the tests or the benchmarks.
 #
-#   ./fsi run [-o DIR] [-v] [--resolution coarse|medium|fine] [--end-time S] CASE_DIR
+#   ./fsi run [-o DIR] [-v] [--resolution coarse|medium|fine] [--end-time S] [--restart] CASE_DIR
 #                             build, then run the case (results in CASE_DIR/output/): the
 #                             structure solver alone, or the coupler and its participants
 #                             (after the fluid's precursor run, if the case has one)
@@ -109,7 +109,7 @@ prepare() {
 # The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
 # and starts them; the picture is drawn where the structure ran.
 cmd_run() {
-  [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--resolution NAME] [--end-time S] [--participant NAME] CASE_DIR"
+  [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--resolution NAME] [--end-time S] [--restart] [--participant NAME] CASE_DIR"
   prepare "${RUN_TARGETS[@]}"
   local launch=(/usr/bin/python3 "$ROOT/scripts/fsi_launch.py" --bin-dir "$BUILD/bin")
   local status=0 out="" participant="" prev=""

@@ -72,17 +72,31 @@ CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::st
   return config;
 }
 
-std::string CaseConfig::fingerprint() const {
+namespace {
+
+/// The case's effective configuration without what may differ between runs of the same case.
+std::string fingerprint_of(CaseConfig &config, const std::vector<std::string> &run_keys_left_out) {
   // The emitter only reads; visit() is non-const because the reader shares it.
-  YAML::Node node = YAML::Load(common::to_yaml(const_cast<CaseConfig &>(*this)));
+  YAML::Node node = YAML::Load(common::to_yaml(config));
   node["run"].remove("output_directory");
   node["run"].remove("progress_interval_s");
+  for (const auto &key : run_keys_left_out)
+    node["run"].remove(key);
   if (node["coupling"])
     node["coupling"].remove("endpoint");
   const std::string text = YAML::Dump(node);
   common::Fnv1a hash;
   hash.add_bytes(text);
   return hash.hex();
+}
+
+} // namespace
+
+std::string CaseConfig::fingerprint() const { return fingerprint_of(const_cast<CaseConfig &>(*this), {}); }
+
+std::string CaseConfig::restart_fingerprint() const {
+  // What a restart may change: where the run ends and how often it checkpoints.
+  return fingerprint_of(const_cast<CaseConfig &>(*this), {"end_time_s", "checkpoint_interval_s", "checkpoint_keep"});
 }
 
 } // namespace fsi::case_config

@@ -62,6 +62,9 @@ struct CaseConfig {
   /// Hash (16 hex digits) of the effective configuration without what may differ between
   /// the processes of one run (output folder, endpoint): participants must agree on it.
   std::string fingerprint() const;
+  /// The fingerprint a checkpoint carries: the case's, without run.end_time_s and the
+  /// checkpoint settings (a restart may run further, or checkpoint more often).
+  std::string restart_fingerprint() const;
 
 private:
   void validate(common::ConfigReader &v) const;

@@ -1,7 +1,7 @@
 #pragma once
 // The command-line options every process of a run takes to find its case (fsi-structure,
 // fsi-coupler, fsi-prescribed-flow, fsi-openfoam-fluid): the case folder, the results folder,
-// the preset and an earlier end time. The launcher passes the same values to every process,
+// the preset, an earlier end time, and a restart. The launcher passes the same values to every process,
 // so all of them load the same configuration (and agree on its fingerprint). Header-only: only
 // the executables link CLI11.
 
@@ -19,6 +19,7 @@ namespace fsi::case_config {
 struct CaseOptions {
   std::string case_dir, output_dir, preset;
   double end_time_s = 0.0; ///< 0: run.end_time_s of the case
+  bool restart = false;    ///< resume from the newest complete checkpoint in the results folder
 
   void add_to(CLI::App &app, bool case_required = true) {
     auto *option = app.add_option("case_dir", case_dir, "Case folder holding case.yaml");
@@ -37,6 +38,9 @@ struct CaseOptions {
                          : "must be a time in seconds > 0, got '" + text + "'";
             },
             "SECONDS > 0"));
+    app.add_flag("--restart", restart,
+                 "Resume from the newest complete checkpoint in the results folder (run.checkpoint_interval_s), "
+                 "appending to its results");
   }
 
   /// The case file with the preset merged over it and the end time applied.

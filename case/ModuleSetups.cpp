@@ -18,6 +18,7 @@ structure::StructureSetup structure_setup(CaseConfig config) {
   structure::StructureSetup setup;
   setup.case_yaml = effective_yaml(config);
   setup.case_fingerprint = config.fingerprint();
+  setup.restart_fingerprint = config.restart_fingerprint();
   setup.run = config.run;
   setup.gravity_m_per_s2 = config.gravity_m_per_s2;
   setup.collisions = std::move(config.collisions);

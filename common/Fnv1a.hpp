@@ -2,6 +2,7 @@
 // FNV-1a, 64 bit: a content hash stable across builds and machines (unlike std::hash), for
 // fingerprints (of a case, of a precursor's inputs, of a mesh's inputs). Not cryptographic.
 
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +19,12 @@ public:
     for (const unsigned char c : text)
       hash_ = (hash_ ^ c) * 1099511628211ull;
   }
+  /// `size` raw bytes at `data` (a binary file's body).
+  void add_raw(const void *data, std::size_t size) {
+    const auto *bytes = static_cast<const unsigned char *>(data);
+    for (std::size_t i = 0; i < size; ++i)
+      hash_ = (hash_ ^ bytes[i]) * 1099511628211ull;
+  }
   /// `text` and a separator: "ab" + "c" hashes differently from "a" + "bc".
   void add(const std::string &text) {
     add_bytes(text);
@@ -30,6 +37,7 @@ public:
     contents << in.rdbuf();
     add(contents.str());
   }
+  std::uint64_t value() const { return hash_; }
   /// 16 hex digits.
   std::string hex() const {
     char text[17];

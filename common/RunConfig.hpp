@@ -6,6 +6,7 @@
 #include "common/Range.hpp"
 #include "common/Types.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -42,6 +43,8 @@ struct RunConfig {
   std::string output_directory = "output";
   double progress_interval_s = 5.0;
   std::optional<StopPlane> stop_when_past;
+  double checkpoint_interval_s = 0.0;
+  int checkpoint_keep = 2;
 
   template <class V> void visit(V &v) {
     v.number("end_time_s", end_time_s, common::Range::positive("s"), "Simulated time to reach.");
@@ -56,6 +59,16 @@ struct RunConfig {
                        "End the run early, completed, at the first step where every point of every structure is "
                        "past this plane (a rag that has left through a pump's discharge); the coupler checks it in "
                        "a coupled run, the structure solver in a run of its own.");
+    v.number("checkpoint_interval_s", checkpoint_interval_s, common::Range::non_negative("s"),
+             "Simulated time between checkpoints (rounded to whole steps; 0: none): every process writes its "
+             "whole state to <output>/checkpoints/, from which ./fsi run --restart resumes exactly (docs/restart.md).");
+    v.integer("checkpoint_keep", checkpoint_keep, common::Range::at_least(1, "1"),
+              "Complete checkpoints kept (older ones are removed as new ones complete).");
+  }
+
+  /// Steps between checkpoints (0: none).
+  long checkpoint_every() const {
+    return checkpoint_interval_s > 0.0 ? std::max(1L, std::lround(checkpoint_interval_s / time_step_s)) : 0L;
   }
 
   /// Number of steps from t = 0 to the end time.

@@ -5,7 +5,7 @@
   executables   */main.cpp, fluid_adapter/foam_smoke/, tests/, bench/   (may include anything)
   case          the whole case.yaml, its options and schema
   physics       structure_solver, coupler, prescribed_flow, fluid_adapter, pump (never each other)
-  foundations   proto, geometry, hdf5, motion (geometry may use motion)
+  foundations   proto, geometry, hdf5, checkpoint, motion (geometry may use motion)
   common        configuration framework, logging, types, exit codes
 
 A file's module is the first folder of its path; an include's module is the first folder of
@@ -20,7 +20,7 @@ import re
 import sys
 
 PHYSICS = {"structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump"}
-FOUNDATIONS = {"proto", "geometry", "hdf5", "motion"}
+FOUNDATIONS = {"proto", "geometry", "hdf5", "checkpoint", "motion"}
 # What each module may include besides itself.
 ALLOWED = {
     "case": PHYSICS | FOUNDATIONS | {"common"},
@@ -28,6 +28,7 @@ ALLOWED = {
     "proto": {"common"},
     "geometry": {"motion", "common"},
     "hdf5": {"common"},
+    "checkpoint": {"common"},
     "motion": {"common"},
     "common": set(),
 }

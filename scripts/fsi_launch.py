@@ -93,6 +93,9 @@ def parse_args(argv):
                         help="preset of the case (presets/NAME.yaml over case.yaml): coarse, medium, fine...")
     parser.add_argument("--end-time", metavar="SECONDS", type=float, dest="end_time",
                         help="stop at this simulated time instead of run.end_time_s (a quick look)")
+    parser.add_argument("--restart", action="store_true",
+                        help="resume from the newest complete checkpoint in the results folder "
+                             "(run.checkpoint_interval_s), appending to its results")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="show every line of every process (structure only: debug logging)")
     parser.add_argument("--print-output-dir", action="store_true",
@@ -130,6 +133,7 @@ def output_args(args):
     """Options every process gets: the output folder, the case preset and the end time, if given."""
     extra = ["-o", args.output_dir] if args.output_dir else []
     extra += ["--resolution", args.resolution] if args.resolution else []
+    extra += ["--restart"] if getattr(args, "restart", False) else []
     return extra + (["--end-time", repr(args.end_time)] if args.end_time else [])
 
 
@@ -493,6 +497,9 @@ def main(argv):
         print(plan.output_dir)
         return EXIT_OK
     coupled = "coupler" in plan.names()
+    if args.restart and plan.names() != ["structure"]:
+        raise UserError("--restart: only a structure's run of its own resumes from a checkpoint so far; this case "
+                        "runs %s (docs/restart.md)" % ", ".join(plan.names()))
 
     if args.endpoint and not coupled:
         raise UserError("--endpoint applies only to coupled scenes (this case runs %s alone)"

@@ -106,6 +106,23 @@ void LagrangianSheet::restore_state(const PointArray &x_m, const PointArray &v_m
   time_s_ = time_s;
 }
 
+void LagrangianSheet::save_state(checkpoint::StateArchive &archive, const std::string &prefix) const {
+  archive.put_points(prefix + "x_m", x_);
+  archive.put_points(prefix + "x_previous_m", x_prev_);
+  archive.put_points(prefix + "velocity_m_per_s", v_);
+  archive.put_double(prefix + "time_s", time_s_);
+}
+
+void LagrangianSheet::load_state(const checkpoint::StateArchive &archive, const std::string &prefix) {
+  // X^{n-1} is read, not rebuilt from V^n: after a collision correction V^n = (X^n - X^{n-1}) / dt
+  // holds, but X^n - dt V^n rounds differently, and the next step would not be the same step.
+  const long n = x_.rows();
+  x_ = archive.points(prefix + "x_m", n);
+  x_prev_ = archive.points(prefix + "x_previous_m", n);
+  v_ = archive.points(prefix + "velocity_m_per_s", n);
+  time_s_ = archive.number(prefix + "time_s");
+}
+
 StructureEnergy LagrangianSheet::energy() const {
   StructureEnergy e;
   const Eigen::VectorXd mass = setup_.mass_per_measure * measure_;

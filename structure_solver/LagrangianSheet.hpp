@@ -62,6 +62,8 @@ public:
   void correct_positions(const std::function<void(PointArray &)> &correction) override;
 
   void restore_state(const PointArray &x_m, const PointArray &v_m_per_s, double time_s) override;
+  void save_state(checkpoint::StateArchive &archive, const std::string &prefix) const override;
+  void load_state(const checkpoint::StateArchive &archive, const std::string &prefix) override;
   StructureEnergy energy() const override;
   double max_stretch_ratio() const override { return terms_->max_stretch_ratio(x_); }
   double stretch_limit() const override { return setup_.max_stretch_ratio; }

@@ -3,6 +3,7 @@
 // Lagrangian points and advances them one time step given nodal loads; the scene applies
 // collisions (Eq. 11) through correct_positions().
 
+#include "checkpoint/StateArchive.hpp"
 #include "common/Types.hpp"
 
 #include <functional>
@@ -54,6 +55,13 @@ public:
   /// Puts the model back to a saved state (positions and velocities at the current time);
   /// used to write the last good state after a divergence.
   virtual void restore_state(const PointArray &x_m, const PointArray &v_m_per_s, double time_s) = 0;
+
+  /// Puts everything the next step depends on (for Eq. 4: X^n, X^{n-1}, V^n and the time, bit
+  /// for bit) into `archive` under `prefix` ("structures/<name>/"), for an exact restart.
+  virtual void save_state(checkpoint::StateArchive &archive, const std::string &prefix) const = 0;
+  /// Takes the state save_state() wrote; throws checkpoint::CheckpointError naming the entry when
+  /// one is missing or of another size (a checkpoint of another grid).
+  virtual void load_state(const checkpoint::StateArchive &archive, const std::string &prefix) = 0;
 
   virtual StructureEnergy energy() const = 0;
   virtual double max_stretch_ratio() const = 0;

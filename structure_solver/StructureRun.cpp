@@ -1,6 +1,10 @@
 #include "StructureRun.hpp"
 
+#include "checkpoint/ArchiveFile.hpp"
+#include "checkpoint/CheckpointError.hpp"
 #include "common/ConfigError.hpp"
+#include "common/UserError.hpp"
+#include "structure_solver/output/ResultsReplay.hpp"
 #include "common/FormatDuration.hpp"
 #include "common/Logging.hpp"
 #include "common/ExitCodes.hpp"
@@ -55,6 +59,13 @@ std::vector<std::string> StructureRun::time_step_warnings(const Scene &scene, do
   return warnings;
 }
 
+namespace {
+constexpr char checkpoint_part[] = "structure.ckpt";
+/// The results of the run being resumed, while a restart copies what it keeps of them (a restart
+/// stopped during the copy finds them here).
+constexpr char results_before_restart[] = "structure.before-restart.h5";
+} // namespace
+
 void StructureRun::open_results() {
   std::filesystem::create_directories(output_dir_);
   std::ofstream(output_dir_ / "config.effective.yaml") << config_yaml_ << "\n";
@@ -77,6 +88,59 @@ void StructureRun::open_probes() {
   for (const std::string &name : probes_->names())
     results_->add_probe(name);
   probe_csv_ = std::make_unique<output::ProbeCsv>(csv_path, probes_->names());
+}
+
+/// A restart's results: the saved steps up to `last_step` of the run it resumes, then this run's.
+void StructureRun::resume_results(long last_step) {
+  const auto h5 = output_dir_ / "structure.h5", before = output_dir_ / results_before_restart;
+  if (!std::filesystem::exists(before)) {
+    if (!std::filesystem::exists(h5))
+      throw common::UserError("--restart: the checkpoint is there but its results file " + h5.string() +
+                              " is not; a restart continues a results folder as a whole");
+    std::filesystem::rename(h5, before);
+  }
+  open_results();
+  std::vector<std::string> structures, probe_names;
+  for (const auto &s : scene_->structures())
+    structures.push_back(s->name());
+  if (!probes_->empty())
+    probe_names = probes_->names();
+  const auto kept =
+      output::replay_results(before, *results_, probe_csv_.get(), structures, probe_names, last_step, output_every());
+  std::filesystem::remove(before);
+  last_written_step_ = kept.last_step;
+}
+
+long StructureRun::output_every() const {
+  return std::max(1L, std::lround(config_.run.output_interval_s / config_.run.time_step_s));
+}
+
+std::string StructureRun::write_checkpoint_part(const std::filesystem::path &folder, long n_completed) const {
+  checkpoint::StateArchive archive;
+  archive.put_integer("step", n_completed);
+  archive.put_double("time_s", scene_->time_s());
+  for (const auto &s : scene_->structures())
+    s->save_state(archive, "structures/" + s->name() + "/");
+  checkpoint::write_archive(folder / checkpoint_part, archive);
+  return checkpoint_part;
+}
+
+void StructureRun::read_checkpoint_part(const std::filesystem::path &folder, long n_completed) {
+  const checkpoint::StateArchive archive = checkpoint::read_archive(folder / checkpoint_part);
+  if (archive.integer("step") != n_completed)
+    throw checkpoint::CheckpointError((folder / checkpoint_part).string() + ": holds step " +
+                                      std::to_string(archive.integer("step")) + ", the set is of step " +
+                                      std::to_string(n_completed));
+  for (const auto &s : scene_->structures())
+    s->load_state(archive, "structures/" + s->name() + "/");
+}
+
+/// A run of its own checkpoints itself: its part, then the set is complete.
+void StructureRun::checkpoint_alone(long n_completed) {
+  const auto folder = checkpoints_->begin(n_completed);
+  const std::string part = write_checkpoint_part(folder, n_completed);
+  checkpoints_->complete(n_completed, scene_->time_s(), {part});
+  spdlog::debug("checkpoint of step {} in {}", n_completed, folder.string());
 }
 
 std::vector<output::ProbeState> StructureRun::probe_states() const {
@@ -135,10 +199,11 @@ void StructureRun::report_progress(long step, long n_steps, bool force) {
     return;
   last_progress_ = now;
   const double wall = std::chrono::duration<double>(now - start_).count();
-  const double eta = step > 0 ? wall * static_cast<double>(n_steps - step) / static_cast<double>(step) : 0.0;
+  const long done = step - first_step_; // steps of this process (a restart starts later)
+  const double eta = done > 0 ? wall * static_cast<double>(n_steps - step) / static_cast<double>(done) : 0.0;
   spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step", step, n_steps, scene_->time_s(),
                100.0 * static_cast<double>(step) / static_cast<double>(n_steps), common::format_duration(wall),
-               common::format_duration(eta), step > 0 ? 1e3 * wall / static_cast<double>(step) : 0.0);
+               common::format_duration(eta), done > 0 ? 1e3 * wall / static_cast<double>(done) : 0.0);
 }
 
 void StructureRun::stop_with(const std::string &status, long last_good_step) {
@@ -161,11 +226,35 @@ void StructureRun::start() {
   scene_ = std::make_unique<Scene>(config_);
   for (const auto &warning : time_step_warnings(*scene_, config_.run.time_step_s))
     spdlog::warn("{}", warning);
-  open_results();
+  checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_fingerprint,
+                                                             config_.run.checkpoint_keep);
+  if (config_.restart) {
+    std::vector<std::string> skipped;
+    const auto found = checkpoints_->newest(skipped);
+    for (const auto &why : skipped)
+      spdlog::warn("restart: skipped a checkpoint: {}", why);
+    if (!found)
+      throw common::UserError("--restart: no complete checkpoint of this case in " + checkpoints_->root().string() +
+                              (skipped.empty() ? std::string(" (run.checkpoint_interval_s makes them)")
+                                               : " (" + std::to_string(skipped.size()) + " skipped, above)"));
+    try {
+      read_checkpoint_part(found->folder, found->step);
+    } catch (const checkpoint::CheckpointError &e) {
+      throw common::UserError(std::string("--restart: ") + e.what() +
+                              " (a checkpoint this build cannot resume from exactly; remove its folder to resume from "
+                              "an older one)");
+    }
+    first_step_ = found->step;
+    resume_results(found->step);
+    spdlog::info("restart: resumed from the checkpoint of step {} (t = {} s) in {}", found->step, found->time_s,
+                 found->folder.string());
+  } else {
+    open_results();
+    write_state(0);
+  }
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   start_ = last_progress_ = std::chrono::steady_clock::now();
-  write_state(0);
   last_good_x_.resize(scene_->structures().size());
   last_good_v_.resize(scene_->structures().size());
 }
@@ -194,8 +283,7 @@ StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *lo
     return {StepOutcome::Kind::interrupted, "interrupted by signal " + std::to_string(int(received_stop_signal))};
   }
   const long n_total = n_steps();
-  const long output_every = std::max(1L, std::lround(config_.run.output_interval_s / config_.run.time_step_s));
-  if (step % output_every == 0 || step == n_total)
+  if (step % output_every() == 0 || step == n_total)
     write_state(step);
   report_progress(step, n_total, step == n_total);
   return {};
@@ -219,13 +307,21 @@ bool StructureRun::structures_past_stop_plane() const {
 
 int StructureRun::run() {
   start();
-  const long n = n_steps();
-  for (long step = 0; step < n; ++step) {
+  const long n = n_steps(), every = config_.run.checkpoint_every();
+  for (long step = first_step_; step < n; ++step) {
     const StepOutcome outcome = advance_step(step, nullptr);
     if (outcome.kind == StepOutcome::Kind::diverged)
       return common::exit_code_run_failed;
-    if (outcome.kind == StepOutcome::Kind::interrupted)
+    if (outcome.kind == StepOutcome::Kind::interrupted) {
+      if (every > 0) { // a clean stop: resume from here
+        checkpoint_alone(step + 1);
+        spdlog::warn("checkpoint of step {} written: ./fsi run --restart resumes from it", step + 1);
+      }
       return common::exit_code_interrupted;
+    }
+    // Every interval, and at the end: a later --restart with a later end time runs further.
+    if (every > 0 && ((step + 1) % every == 0 || step + 1 == n))
+      checkpoint_alone(step + 1);
     if (structures_past_stop_plane()) {
       spdlog::info("every structure point is past run.stop_when_past at t = {} s (step {} of {}): the run ends here",
                    static_cast<double>(step + 1) * config_.run.time_step_s, step + 1, n);

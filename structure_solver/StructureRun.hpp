@@ -3,12 +3,16 @@
 // rule, steps to the end time with progress and ETA in the log, writes HDF5/XDMF results (and
 // the probes of the case: /probes in the HDF5 file, probes.csv) at the output interval, and
 // stops cleanly (last good state on disk, status in the file) on divergence or on SIGINT/SIGTERM.
+// With run.checkpoint_interval_s it checkpoints its whole state (docs/restart.md); with
+// StructureSetup::restart it resumes from the newest complete checkpoint, exactly.
 
 #include "ProbeSet.hpp"
 #include "Scene.hpp"
 #include "StructureSetup.hpp"
 #include "structure_solver/output/ProbeCsv.hpp"
 #include "structure_solver/output/ResultsWriter.hpp"
+
+#include "checkpoint/CheckpointSet.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -39,8 +43,18 @@ public:
   int run();
 
   // The pieces of run(), for drivers that take the loads from elsewhere (a coupled run):
-  /// Builds the scene, opens the results, writes step 0, installs the stop-signal handler.
+  /// Builds the scene, opens the results, writes step 0, installs the stop-signal handler. On a
+  /// restart: takes the state of the newest complete checkpoint, keeps the results up to it.
   void start();
+  /// The first step to advance: 0, or the checkpoint's step on a restart.
+  long first_step() const { return first_step_; }
+  /// This process's part of a checkpoint set (structure.ckpt in `folder`): every structure's
+  /// state after `n_completed` steps. Returns the part's file name.
+  std::string write_checkpoint_part(const std::filesystem::path &folder, long n_completed) const;
+  /// Takes the state of a checkpoint set's part (after start()'s scene is built).
+  void read_checkpoint_part(const std::filesystem::path &folder, long n_completed);
+  /// The run's checkpoint sets (<output>/checkpoints).
+  const checkpoint::CheckpointSet &checkpoints() const { return *checkpoints_; }
   /// Advances step n, from t^n to t^{n+1} (0-based, as Envelope.step of the protocol), under
   /// the given load densities (nullptr: none), checks for divergence (then the last good state
   /// is on disk), writes results at the output interval. Saved states are numbered as the
@@ -61,6 +75,10 @@ public:
 
 private:
   void open_results();
+  void resume_results(long last_step);
+  /// Steps between saved steps (run.output_interval_s in whole steps).
+  long output_every() const;
+  void checkpoint_alone(long n_completed);
   void open_probes();
   void write_state(long step);
   std::vector<output::ProbeState> probe_states() const;
@@ -78,6 +96,8 @@ private:
   std::vector<PointArray> last_good_x_, last_good_v_;
   std::chrono::steady_clock::time_point start_, last_progress_;
   long last_written_step_ = -1;
+  long first_step_ = 0;
+  std::unique_ptr<checkpoint::CheckpointSet> checkpoints_;
 };
 
 } // namespace fsi::structure

@@ -25,6 +25,9 @@ struct StructureSetup {
   std::vector<ProbeConfig> probes;
   std::string case_yaml;        ///< the effective configuration of the whole case (YAML)
   std::string case_fingerprint; ///< the case's fingerprint (16 hex digits), as the coupler has it
+  std::string restart_fingerprint; ///< the fingerprint its checkpoints carry (without the end time)
+  /// Resume from the newest complete checkpoint of the results folder (--restart).
+  bool restart = false;
   /// A coupled run: the moving rigid surfaces take the poses the coupler sends
   /// (motion::CoupledMotion) instead of evaluating their motions here.
   bool rigid_motions_from_coupler = false;

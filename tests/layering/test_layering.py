@@ -15,7 +15,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 CHECK = os.path.join(ROOT, "scripts", "check_layering.py")
 MODULES = ["case", "structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump", "proto", "geometry", "hdf5",
-           "motion", "common"]
+           "checkpoint", "motion", "common"]
 
 
 def check(root):

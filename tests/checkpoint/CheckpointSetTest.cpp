@@ -1,0 +1,114 @@
+// Checkpoint sets: a set counts only with its manifest and every part it lists intact; the
+// newest good set of this case is found, newer bad ones are passed over with their reason; only
+// `keep` complete sets stay.
+
+#include "checkpoint/ArchiveFile.hpp"
+#include "checkpoint/CheckpointError.hpp"
+#include "checkpoint/CheckpointSet.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using fsi::checkpoint::CheckpointSet;
+using fsi::checkpoint::StateArchive;
+
+namespace {
+
+fs::path fresh_root(const std::string &name) {
+  const fs::path dir = fs::temp_directory_path() / ("fsi_checkpoint_set_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir / "checkpoints";
+}
+
+void write_set(const CheckpointSet &sets, long step, bool complete = true) {
+  const fs::path folder = sets.begin(step);
+  StateArchive part;
+  part.put_integer("step", step);
+  fsi::checkpoint::write_archive(folder / "structure.ckpt", part);
+  fsi::checkpoint::write_archive(folder / "coupler.ckpt", part);
+  if (complete)
+    sets.complete(step, 1e-3 * static_cast<double>(step), {"structure.ckpt", "coupler.ckpt"});
+}
+
+long newest_step(const CheckpointSet &sets, std::vector<std::string> &skipped) {
+  const auto found = sets.newest(skipped);
+  return found ? found->step : -1;
+}
+
+bool mentions(const std::vector<std::string> &messages, const std::string &text) {
+  for (const auto &m : messages)
+    if (m.find(text) != std::string::npos)
+      return true;
+  return false;
+}
+
+} // namespace
+
+TEST(CheckpointSet, OnlyTheKeptCompleteSetsStayAndTheNewestIsFound) {
+  const CheckpointSet sets(fresh_root("keep"), "fp", 2);
+  for (long step : {10, 20, 30})
+    write_set(sets, step);
+  EXPECT_FALSE(fs::exists(sets.folder(10)));
+  EXPECT_TRUE(fs::exists(sets.folder(20)));
+  std::vector<std::string> skipped;
+  const auto found = sets.newest(skipped);
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->step, 30);
+  EXPECT_DOUBLE_EQ(found->time_s, 0.03);
+  EXPECT_TRUE(skipped.empty());
+}
+
+TEST(CheckpointSet, ASetWithoutItsManifestDoesNotCount) {
+  const CheckpointSet sets(fresh_root("incomplete"), "fp", 3);
+  write_set(sets, 10);
+  write_set(sets, 20, false); // a process died before the set was complete
+  std::vector<std::string> skipped;
+  EXPECT_EQ(newest_step(sets, skipped), 10);
+}
+
+TEST(CheckpointSet, ABadNewestSetIsSkippedWithItsReasonAndThePreviousUsed) {
+  const auto root = fresh_root("bad");
+  const CheckpointSet sets(root, "fp", 3);
+  write_set(sets, 10);
+  write_set(sets, 20);
+  const fs::path part = sets.folder(20) / "structure.ckpt";
+  std::vector<std::string> skipped;
+
+  fs::resize_file(part, fs::file_size(part) - 3); // truncated
+  EXPECT_EQ(newest_step(sets, skipped), 10);
+  EXPECT_TRUE(mentions(skipped, part.string() + ": truncated")) << skipped.front();
+
+  write_set(sets, 20);
+  StateArchive other; // a part of another checkpoint, intact on its own
+  other.put_integer("step", 99);
+  fsi::checkpoint::write_archive(part, other);
+  skipped.clear();
+  EXPECT_EQ(newest_step(sets, skipped), 10);
+  EXPECT_TRUE(mentions(skipped, "the manifest says")) << skipped.front();
+
+  write_set(sets, 20);
+  fs::remove(sets.folder(20) / "coupler.ckpt");
+  skipped.clear();
+  EXPECT_EQ(newest_step(sets, skipped), 10);
+  EXPECT_TRUE(mentions(skipped, "coupler.ckpt: missing")) << skipped.front();
+
+  write_set(sets, 20); // the control: a good set 20 is used
+  skipped.clear();
+  EXPECT_EQ(newest_step(sets, skipped), 20);
+  EXPECT_TRUE(skipped.empty());
+}
+
+TEST(CheckpointSet, ASetOfAnotherCaseIsSkipped) {
+  const auto root = fresh_root("other_case");
+  write_set(CheckpointSet(root, "this-case", 3), 10);
+  write_set(CheckpointSet(root, "another-case", 3), 20);
+  std::vector<std::string> skipped;
+  EXPECT_EQ(newest_step(CheckpointSet(root, "this-case", 3), skipped), 10);
+  EXPECT_TRUE(mentions(skipped, "written by another case (fingerprint another-case")) << skipped.front();
+  skipped.clear();
+  EXPECT_EQ(newest_step(CheckpointSet(root, "a-third-case", 3), skipped), -1);
+  EXPECT_EQ(skipped.size(), 2u);
+}

@@ -1,0 +1,225 @@
+#!/usr/bin/python3
+"""Checkpoint and restart of a structure's run of its own (the rag dropped on the pole:
+collisions with a cylinder and a box, self-collision on), with the real fsi-structure and the
+launcher behind ./fsi run. A run stopped at step k and resumed with --restart must equal the
+uninterrupted run bit for bit: every dataset of structure.h5, probes.csv and the XDMF index.
+The negative controls show that the comparison can fail and that damaged checkpoints are
+caught: a checkpoint without X^{n-1} is refused, one rounded to 6 digits resumes but differs,
+a truncated, bit-flipped or other-case newest set is skipped (with a message naming the file)
+and the previous one used.
+
+FSI_BIN_DIR: the executables (set by ctest; default <source>/build/bin)."""
+
+import os
+import random
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
+STRUCTURE = os.path.join(BIN_DIR, "fsi-structure")
+LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
+
+try:
+    import h5py
+    import numpy
+    import state_archive
+except ImportError as missing:  # Debian's python3-h5py, python3-numpy
+    print("skipped: %s" % missing)
+    sys.exit(77)
+
+END_S, CHECKPOINT_S, DT = 0.2, 0.025, 5.0e-5
+EVERY = round(CHECKPOINT_S / DT)
+
+
+def make_case(folder):
+    """sheet-on-pole, 0.2 s, a checkpoint every 0.025 s (500 steps), output every 0.01 s."""
+    case = os.path.join(folder, "case")
+    shutil.copytree(os.path.join(ROOT, "cases", "sheet-on-pole"), case,
+                    ignore=shutil.ignore_patterns("output", "*.png", "*.gif"))
+    path = os.path.join(case, "case.yaml")
+    with open(path) as f:
+        text = f.read()
+    text = re.sub(r"end_time_s: [0-9.e-]+", "end_time_s: %g" % END_S, text, count=1)
+    text = text.replace("output_interval_s: 0.01", "output_interval_s: 0.01\n  checkpoint_interval_s: %g" % CHECKPOINT_S)
+    with open(path, "w") as f:
+        f.write(text)
+    return case
+
+
+def run(case, out, *extra, check=True):
+    made = subprocess.run([STRUCTURE, case, "-o", out] + list(extra), stdin=subprocess.DEVNULL,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if check and made.returncode != 0:
+        raise AssertionError("fsi-structure %s failed (%d):\n%s" % (" ".join(extra), made.returncode, made.stdout[-3000:]))
+    return made
+
+
+def datasets(h5_path):
+    found = {}
+    with h5py.File(h5_path, "r") as f:
+        f.visititems(lambda name, obj: found.__setitem__(name, obj[()]) if isinstance(obj, h5py.Dataset) else None)
+    return found
+
+
+def differences(a_dir, b_dir):
+    """What differs between two results folders, bit for bit (empty: the same)."""
+    a, b = datasets(os.path.join(a_dir, "structure.h5")), datasets(os.path.join(b_dir, "structure.h5"))
+    found = ["datasets %s vs %s" % (sorted(a), sorted(b))] if sorted(a) != sorted(b) else []
+    for name in sorted(set(a) & set(b)):
+        x, y = numpy.asarray(a[name]), numpy.asarray(b[name])
+        if x.shape != y.shape or x.tobytes() != y.tobytes():
+            found.append("%s: shapes %s %s, %s" % (name, x.shape, y.shape,
+                                                   "max |diff| %.3g" % numpy.max(numpy.abs(x - y))
+                                                   if x.shape == y.shape and x.dtype.kind == "f" else "differ"))
+    for name in ("probes.csv", "structure.xdmf"):
+        with open(os.path.join(a_dir, name), "rb") as f, open(os.path.join(b_dir, name), "rb") as g:
+            if f.read() != g.read():
+                found.append(name)
+    return found
+
+
+def newest_set(out):
+    root = os.path.join(out, "checkpoints")
+    return os.path.join(root, sorted(os.listdir(root))[-1])
+
+
+def rewrite_part(set_folder, change):
+    """Applies change(entries) to the set's structure.ckpt and updates the manifest's checksum,
+    so that the set passes its checks and only the change is the fault."""
+    part = os.path.join(set_folder, "structure.ckpt")
+    entries = state_archive.read(part)
+    change(entries)
+    state_archive.write(part, entries)
+    manifest_path = os.path.join(set_folder, "manifest.ckpt")
+    manifest = state_archive.read(manifest_path)
+    with open(part, "rb") as f:
+        manifest["parts/0/checksum"] = "%016x" % int.from_bytes(f.read()[-8:], "little")
+    state_archive.write(manifest_path, manifest)
+
+
+class Fixture(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        if not os.access(STRUCTURE, os.X_OK):
+            raise unittest.SkipTest("%s not built" % STRUCTURE)
+        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_")
+        cls.case = make_case(cls.tmp)
+        cls.full = os.path.join(cls.tmp, "full")
+        started = time.time()
+        run(cls.case, cls.full)
+        cls.full_wall_s = time.time() - started
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def stopped_copy(self, name, stop_s=0.1):
+        """A run stopped at stop_s by a shorter end time (its last checkpoint is there)."""
+        out = os.path.join(self.tmp, name)
+        run(self.case, out, "--end-time", repr(stop_s))
+        return out
+
+
+class StructureAlone(Fixture):
+    def test_a_run_stopped_by_its_end_time_and_restarted_equals_the_uninterrupted_run(self):
+        out = self.stopped_copy("end_time", 0.0875)  # 1750 steps: a checkpoint, not an output step
+        self.assertNotEqual(differences(self.full, out), [])  # the control: short, so not equal yet
+        made = subprocess.run([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, "--restart", self.case],
+                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("resumed from the checkpoint of step 1750", made.stdout)
+        self.assertEqual(differences(self.full, out), [])
+        with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
+            self.assertEqual(f.attrs["status"], "completed")
+
+    def test_a_run_stopped_by_sigterm_resumes_from_the_step_it_stopped_at(self):
+        out = os.path.join(self.tmp, "sigterm")
+        child = subprocess.Popen([STRUCTURE, self.case, "-o", out], stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        time.sleep(0.4 * self.full_wall_s)
+        child.send_signal(signal.SIGTERM)
+        text = child.communicate(timeout=60)[0]
+        self.assertEqual(child.returncode, 130, text[-2000:])
+        stopped = re.search(r"checkpoint of step (\d+) written", text)
+        self.assertTrue(stopped, text[-2000:])
+        made = run(self.case, out, "--restart")
+        self.assertIn("resumed from the checkpoint of step %s " % stopped.group(1), made.stdout)
+        self.assertEqual(differences(self.full, out), [])
+
+    def test_a_run_killed_at_a_seeded_random_moment_resumes_from_its_last_checkpoint(self):
+        draw = random.Random(20261203)
+        for attempt in range(2):
+            out = os.path.join(self.tmp, "kill9-%d" % attempt)
+            child = subprocess.Popen([STRUCTURE, self.case, "-o", out], stdin=subprocess.DEVNULL,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            time.sleep(draw.uniform(0.3, 0.8) * self.full_wall_s)
+            child.kill()
+            child.wait()
+            if not os.path.isdir(os.path.join(out, "checkpoints")):
+                run(self.case, out)  # killed before the first checkpoint: nothing to resume
+                continue
+            made = run(self.case, out, "--restart")
+            self.assertIn("resumed from the checkpoint of step", made.stdout)
+            self.assertEqual(differences(self.full, out), [])
+
+
+class DamagedCheckpoints(Fixture):
+    def test_a_checkpoint_without_the_previous_positions_is_refused(self):
+        out = self.stopped_copy("no_previous")
+        rewrite_part(newest_set(out), lambda e: e.pop("structures/rag/x_previous_m"))
+        made = run(self.case, out, "--restart", check=False)
+        self.assertEqual(made.returncode, 2, made.stdout[-2000:])
+        self.assertIn("has no entry 'structures/rag/x_previous_m'", made.stdout)
+
+    def test_a_checkpoint_rounded_to_six_digits_resumes_but_does_not_equal_the_run(self):
+        out = self.stopped_copy("six_digits")
+
+        def round6(entries):
+            for name in ("structures/rag/x_m", "structures/rag/x_previous_m", "structures/rag/velocity_m_per_s"):
+                entries[name] = numpy.array([float("%.6g" % v) for v in entries[name].ravel()]).reshape(-1, 3)
+        rewrite_part(newest_set(out), round6)
+        run(self.case, out, "--restart")
+        self.assertNotEqual(differences(self.full, out), [])
+
+    def test_a_bad_newest_set_is_skipped_by_name_and_the_previous_one_used(self):
+        for fault in ("truncated", "flipped", "other_case"):
+            out = self.stopped_copy(fault)  # checkpoints of steps 1500 and 2000 (keep 2)
+            newest = newest_set(out)
+            part, manifest = os.path.join(newest, "structure.ckpt"), os.path.join(newest, "manifest.ckpt")
+            if fault == "truncated":
+                os.truncate(part, os.path.getsize(part) - 100)
+            elif fault == "flipped":
+                with open(part, "r+b") as f:
+                    f.seek(os.path.getsize(part) // 2)
+                    byte = f.read(1)
+                    f.seek(-1, 1)
+                    f.write(bytes([byte[0] ^ 0x04]))
+            else:
+                entries = state_archive.read(manifest)
+                entries["fingerprint"] = "0123456789abcdef"
+                state_archive.write(manifest, entries)
+            made = run(self.case, out, "--restart")
+            expected = {"truncated": part + ": truncated", "flipped": part + ": checksum mismatch",
+                        "other_case": "written by another case (fingerprint 0123456789abcdef"}[fault]
+            self.assertIn(expected, made.stdout, fault)
+            self.assertIn("resumed from the checkpoint of step 1500 ", made.stdout, fault)
+            self.assertEqual(differences(self.full, out), [], fault)
+
+    def test_a_restart_without_a_checkpoint_says_so(self):
+        out = os.path.join(self.tmp, "never_run")
+        made = run(self.case, out, "--restart", check=False)
+        self.assertEqual(made.returncode, 2)
+        self.assertIn("no complete checkpoint of this case", made.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
