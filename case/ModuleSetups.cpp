@@ -33,6 +33,8 @@ coupler::CouplingSetup coupling_setup(CaseConfig config) {
   coupler::CouplingSetup setup;
   setup.case_yaml = effective_yaml(config);
   setup.case_fingerprint = config.fingerprint();
+  setup.restart_fingerprint = config.restart_fingerprint();
+  setup.fluid_checkpoints = config.fluid && config.fluid->prescribed;
   setup.run = config.run;
   setup.coupling = std::move(*config.coupling);
   if (config.collisions)

@@ -17,10 +17,10 @@ constexpr char manifest_name[] = "manifest.ckpt";
 CheckpointSet::CheckpointSet(std::filesystem::path root, std::string fingerprint, int keep)
     : root_(std::move(root)), fingerprint_(std::move(fingerprint)), keep_(std::max(1, keep)) {}
 
-std::filesystem::path CheckpointSet::folder(long step) const {
+std::filesystem::path CheckpointSet::folder_of(const std::filesystem::path &root, long step) {
   char name[32];
   std::snprintf(name, sizeof name, "step-%09ld", step);
-  return root_ / name;
+  return root / name;
 }
 
 std::filesystem::path CheckpointSet::begin(long step) const {
@@ -30,7 +30,14 @@ std::filesystem::path CheckpointSet::begin(long step) const {
   return dir;
 }
 
-void CheckpointSet::complete(long step, double time_s, const std::vector<std::string> &parts) const {
+const std::string &CheckpointSet::Found::checksum_of(const std::string &name) const {
+  for (const auto &part : parts)
+    if (part.name == name)
+      return part.checksum;
+  throw CheckpointError((folder / manifest_name).string() + ": lists no part '" + name + "'");
+}
+
+void CheckpointSet::complete(long step, double time_s, const std::vector<CheckpointPart> &parts) const {
   const auto dir = folder(step);
   StateArchive manifest;
   manifest.put_integer("format_version", format_version);
@@ -39,8 +46,8 @@ void CheckpointSet::complete(long step, double time_s, const std::vector<std::st
   manifest.put_double("time_s", time_s);
   manifest.put_integer("n_parts", static_cast<std::int64_t>(parts.size()));
   for (std::size_t i = 0; i < parts.size(); ++i) {
-    manifest.put_text("parts/" + std::to_string(i) + "/name", parts[i]);
-    manifest.put_text("parts/" + std::to_string(i) + "/checksum", archive_checksum(dir / parts[i]));
+    manifest.put_text("parts/" + std::to_string(i) + "/name", parts[i].name);
+    manifest.put_text("parts/" + std::to_string(i) + "/checksum", parts[i].checksum);
   }
   write_archive(dir / manifest_name, manifest);
   const auto steps = steps_newest_first();
@@ -77,6 +84,7 @@ CheckpointSet::Found CheckpointSet::verify(long step) const {
     throw CheckpointError(where + ": says step " + std::to_string(manifest.integer("step")) + " in the folder of step " +
                           std::to_string(step));
   const auto n_parts = manifest.integer("n_parts");
+  Found found{step, manifest.number("time_s"), dir, {}};
   for (std::int64_t i = 0; i < n_parts; ++i) {
     const std::string name = manifest.text("parts/" + std::to_string(i) + "/name");
     const std::string expected = manifest.text("parts/" + std::to_string(i) + "/checksum");
@@ -87,8 +95,9 @@ CheckpointSet::Found CheckpointSet::verify(long step) const {
     if (actual != expected)
       throw CheckpointError(part.string() + ": checksum " + actual + ", the manifest says " + expected +
                             " (a part of another checkpoint)");
+    found.parts.push_back({name, expected});
   }
-  return {step, manifest.number("time_s"), dir};
+  return found;
 }
 
 std::optional<CheckpointSet::Found> CheckpointSet::newest(std::vector<std::string> &skipped) const {

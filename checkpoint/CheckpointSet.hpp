@@ -14,6 +14,11 @@
 
 namespace fsi::checkpoint {
 
+/// One part of a set: its file name in the set's folder and its checksum (16 hex digits).
+struct CheckpointPart {
+  std::string name, checksum;
+};
+
 class CheckpointSet {
 public:
   static constexpr int format_version = 1;
@@ -24,20 +29,25 @@ public:
 
   /// The folder of step n's set, made empty (an incomplete set of the same step is replaced).
   std::filesystem::path begin(long step) const;
-  /// Declares step n's set complete: checks every part (its archive reads back), writes the
-  /// manifest, then removes the sets beyond `keep`. Throws CheckpointError when a part fails.
-  void complete(long step, double time_s, const std::vector<std::string> &parts) const;
+  /// Declares step n's set complete: writes the manifest with the parts (each written by its
+  /// own process, which gave its checksum), then removes the sets beyond `keep`.
+  void complete(long step, double time_s, const std::vector<CheckpointPart> &parts) const;
 
   struct Found {
     long step = 0;
     double time_s = 0.0;
     std::filesystem::path folder;
+    std::vector<CheckpointPart> parts;
+    /// The checksum the manifest gives the part `name`; throws CheckpointError if it has none.
+    const std::string &checksum_of(const std::string &name) const;
   };
   /// The newest complete, verified set of this case, if any; every newer set passed over is
   /// described in `skipped` (the file and why).
   std::optional<Found> newest(std::vector<std::string> &skipped) const;
 
-  std::filesystem::path folder(long step) const;
+  std::filesystem::path folder(long step) const { return folder_of(root_, step); }
+  /// <root>/step-<9 digits>: where every process of a run puts its part of step n's set.
+  static std::filesystem::path folder_of(const std::filesystem::path &root, long step);
   const std::filesystem::path &root() const { return root_; }
 
 private:

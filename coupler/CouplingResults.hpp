@@ -21,12 +21,19 @@ namespace fsi::coupler {
 class CouplingResults {
 public:
   CouplingResults(const std::filesystem::path &h5_path, const std::string &config_yaml, const std::string &version);
+  /// A restart's results: the existing file, its rows of steps up to `last_step` kept, the
+  /// rest dropped, and the run appends from there. Throws std::runtime_error naming the file
+  /// when it cannot be opened or lacks a step up to `last_step`.
+  CouplingResults(const std::filesystem::path &h5_path, long last_step);
   ~CouplingResults();
 
   void write_step(long step, double time_s, const StepTimings &timings, const double total_force_on_fluid_n[3]);
   /// Force (N) and torque (N m) of the fluid on a rigid body at this step, in
   /// /rigid_bodies/<name>/ (created at the first call for that name).
   void write_rigid_body_load(const std::string &name, const double force_n[3], const double torque_n_m[3]);
+  /// Writes what is buffered to the file (at every checkpoint: the file then holds every step
+  /// up to it).
+  void flush();
   /// "running", "completed", "failed: ...", "interrupted".
   void set_status(const std::string &status);
   const std::filesystem::path &path() const { return path_; }
@@ -43,6 +50,7 @@ private:
   hdf5::H5Handle bodies_group_;
   std::map<std::string, BodySeries> bodies_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+  hsize_t kept_rows_ = 0; ///< a restart: rows kept of the run it resumes (rigid-body series opened lazily)
 };
 
 } // namespace fsi::coupler

@@ -1,6 +1,8 @@
 #include "CouplingRun.hpp"
 
 #include "CouplingErrors.hpp"
+#include "checkpoint/ArchiveFile.hpp"
+#include "checkpoint/CheckpointError.hpp"
 #include "common/FormatDuration.hpp"
 #include "common/Logging.hpp"
 #include "motion/MotionFactory.hpp"
@@ -65,9 +67,12 @@ int CouplingRun::run() {
     check_stability();
     start_ = last_progress_ = Clock::now();
     long n_done = n_steps_;
-    for (step = 0; step < n_steps_; ++step) {
+    for (step = first_step_; step < n_steps_; ++step) {
       advance_one_step(step);
       record_step(step + 1);
+      // Every interval, and at the end: a later --restart with a later end time runs further.
+      if (checkpoint_every_ > 0 && ((step + 1) % checkpoint_every_ == 0 || step + 1 == n_steps_))
+        checkpoint(step + 1);
       const bool past = structures_past_stop_plane();
       report_progress(step + 1, step + 1 == n_steps_ || past);
       if (past) {
@@ -134,7 +139,26 @@ void CouplingRun::open() {
                proto::current_protocol_version, config_.case_fingerprint);
   participants_ = std::make_unique<ParticipantTable>(
       *channel_, Liveness{to_ms(c.heartbeat_interval_s), to_ms(c.timeout_s), to_ms(c.step_timeout_s)}, &stop_signal());
-  results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_yaml_, FSI_VERSION);
+  checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_fingerprint,
+                                                             config_.run.checkpoint_keep);
+  checkpoint_every_ = config_.run.checkpoint_every();
+  if (checkpoint_every_ > 0 && !config_.fluid_checkpoints) {
+    spdlog::warn("run.checkpoint_interval_s: the OpenFOAM fluid does not checkpoint yet, so this run writes no "
+                 "checkpoints (docs/restart.md)");
+    checkpoint_every_ = 0;
+  }
+  if (config_.restart) {
+    if (!config_.fluid_checkpoints)
+      throw HandshakeRefused("--restart: the OpenFOAM fluid does not resume from checkpoints yet (docs/restart.md)");
+    find_restart_set();
+    try {
+      results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", first_step_);
+    } catch (const std::runtime_error &e) {
+      throw HandshakeRefused(std::string("--restart: ") + e.what());
+    }
+  } else {
+    results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_yaml_, FSI_VERSION);
+  }
   law_ = c.parameters->build();
   spdlog::info("coupling law: {}", law_->name());
   for (std::size_t i = 0; i < config_.rigid_surfaces.size(); ++i)
@@ -165,8 +189,8 @@ void CouplingRun::handshake() {
       participants_->answer_error(incoming->peer(), "the run has not started: wait for Welcome", 0);
   }
   participants_->close_admission();
-  welcome(structure_id_, false);
-  welcome(fluid_id_, true);
+  welcome(structure_id_, false, "structure.ckpt");
+  welcome(fluid_id_, true, "fluid.ckpt");
   spdlog::info("participants joined: {} and {}", structure_id_, fluid_id_);
 }
 
@@ -220,9 +244,17 @@ void CouplingRun::refuse(const std::string &peer, const std::string &message) {
   throw HandshakeRefused(message);
 }
 
-void CouplingRun::welcome(const std::string &id, bool with_structures) {
+void CouplingRun::welcome(const std::string &id, bool with_structures, const std::string &part) {
   proto::Message envelope(proto::make_envelope(proto::v2::ROLE_COUPLER, 0));
   auto *w = envelope.envelope().mutable_welcome();
+  if (restart_set_) {
+    w->set_first_step(static_cast<std::uint64_t>(first_step_));
+    try {
+      w->set_checkpoint_checksum(restart_set_->checksum_of(part));
+    } catch (const checkpoint::CheckpointError &e) {
+      refuse(id, std::string("--restart: ") + e.what());
+    }
+  }
   w->set_time_step_s(dt_);
   w->set_n_steps(static_cast<std::uint64_t>(n_steps_));
   w->set_heartbeat_interval_s(config_.coupling.heartbeat_interval_s);
@@ -236,9 +268,24 @@ void CouplingRun::welcome(const std::string &id, bool with_structures) {
 void CouplingRun::receive_initial_state() {
   // The structure's first AdvanceReply, right after Welcome: X^0 and V^0. Eq. (4) keeps
   // V^n = (X^n - X^{n-1}) / dt, so X^{-1} = X^0 - V^0 dt is the structure's own X^{n-1}.
-  const proto::Message &message = await(structure_id_, Envelope::kAdvanceReply, 0, "initial state (AdvanceReply)");
+  const proto::Message &message =
+      await(structure_id_, Envelope::kAdvanceReply, first_step_, "initial state (AdvanceReply)");
   const auto &reply = message.envelope().advance_reply();
   const Eigen::Index n = measures_.size();
+  if (restart_set_) {
+    // A restart: X^k and X^{k-1} are the coupler's own, from its checkpoint (X^k - V^k dt would
+    // round differently); the structure's X^k must be the same, bit for bit.
+    const checkpoint::StateArchive own = checkpoint::read_archive(restart_set_->folder / "coupler.ckpt");
+    x_now_ = own.points("x_m", n);
+    x_prev_ = own.points("x_previous_m", n);
+    const PointArray theirs = message.points(reply.position_m(), n, "AdvanceReply.position_m");
+    if (!(theirs.array() == x_now_.array()).all())
+      throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " resumed from positions other than "
+                                             "the coupler's checkpoint of step " + std::to_string(first_step_));
+    spdlog::info("restart: resumed from the checkpoint of step {} (t = {} s) in {}", first_step_,
+                 restart_set_->time_s, restart_set_->folder.string());
+    return;
+  }
   x_now_ = message.points(reply.position_m(), n, "AdvanceReply.position_m");
   const PointArray v0 = message.points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s");
   x_prev_ = x_now_ - dt_ * v0;
@@ -381,6 +428,60 @@ bool CouplingRun::structures_past_stop_plane() const {
   return config_.run.stop_when_past && config_.run.stop_when_past->all_past(x_now_);
 }
 
+void CouplingRun::find_restart_set() {
+  std::vector<std::string> skipped;
+  restart_set_ = checkpoints_->newest(skipped);
+  for (const auto &why : skipped)
+    spdlog::warn("restart: skipped a checkpoint: {}", why);
+  if (!restart_set_)
+    throw HandshakeRefused("--restart: no complete checkpoint of this case in " + checkpoints_->root().string() +
+                           (skipped.empty() ? std::string(" (run.checkpoint_interval_s makes them)")
+                                            : " (" + std::to_string(skipped.size()) + " skipped, above)"));
+  first_step_ = restart_set_->step;
+  if (first_step_ >= n_steps_)
+    throw HandshakeRefused("--restart: the newest checkpoint is of step " + std::to_string(first_step_) +
+                           ", the end of this run (" + std::to_string(n_steps_) +
+                           " steps): give a later --end-time to run further");
+}
+
+void CouplingRun::checkpoint(long n) {
+  const auto folder = checkpoints_->begin(n);
+  for (const std::string *id : {&structure_id_, &fluid_id_}) {
+    proto::Message request(proto::make_envelope(proto::v2::ROLE_COUPLER, static_cast<std::uint64_t>(n)));
+    request.envelope().mutable_checkpoint_request();
+    participants_->send(*id, request, static_cast<std::uint64_t>(n));
+  }
+  // Both answers, in whichever order they come.
+  std::vector<checkpoint::CheckpointPart> parts;
+  std::string structure_part, fluid_part;
+  const auto deadline = Clock::now() + to_ms(config_.coupling.step_timeout_s);
+  while (structure_part.empty() || fluid_part.empty()) {
+    const std::string &waited = structure_part.empty() ? structure_id_ : fluid_id_;
+    auto &incoming = participants_->next(deadline, waited, "CheckpointDone", static_cast<std::uint64_t>(n));
+    const auto &envelope = incoming.envelope();
+    std::string &slot = incoming.peer() == fluid_id_ ? fluid_part : structure_part;
+    if (!envelope.has_checkpoint_done() || envelope.step() != static_cast<std::uint64_t>(n) || !slot.empty() ||
+        envelope.checkpoint_done().part().empty()) {
+      participants_->answer_error(incoming.peer(),
+                                  "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
+                                      std::to_string(envelope.step()) +
+                                      "; the coupler waits for the CheckpointDone of step " + std::to_string(n),
+                                  n);
+      continue;
+    }
+    slot = envelope.checkpoint_done().part();
+    parts.push_back({slot, envelope.checkpoint_done().checksum()});
+  }
+  checkpoint::StateArchive own;
+  own.put_integer("step", n);
+  own.put_points("x_m", x_now_);
+  own.put_points("x_previous_m", x_prev_);
+  parts.push_back({"coupler.ckpt", checkpoint::write_archive(folder / "coupler.ckpt", own)});
+  results_->flush(); // coupling.h5 holds every step up to this one
+  checkpoints_->complete(n, static_cast<double>(n) * dt_, parts);
+  spdlog::debug("checkpoint of step {} in {}", n, folder.string());
+}
+
 void CouplingRun::record_step(long n) {
   double force[3] = {0.0, 0.0, 0.0};
   const Vec3 total = (coupled_.force_density_n_per_measure.array().colwise() * measures_.array()).colwise().sum();
@@ -409,7 +510,7 @@ void CouplingRun::report_progress(long n, bool force) {
     return;
   last_progress_ = now;
   const double wall = std::chrono::duration<double>(now - start_).count();
-  const double eta = wall * static_cast<double>(n_steps_ - n) / static_cast<double>(std::max(1L, n));
+  const double eta = wall * static_cast<double>(n_steps_ - n) / static_cast<double>(std::max(1L, n - first_step_));
   const double per_step_ms = 1e3 / static_cast<double>(std::max(1L, timings_count_));
   const StepTimings &sum = timings_sum_;
   spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step: fluid {:.3g}, structure {:.3g}, "

@@ -9,12 +9,14 @@
 #include "CouplingResults.hpp"
 #include "ParticipantTable.hpp"
 #include "CouplingSetup.hpp"
+#include "checkpoint/CheckpointSet.hpp"
 #include "motion/RigidMotion.hpp"
 
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace fsi::coupler {
 
@@ -44,7 +46,11 @@ private:
   int interrupted(long step);
   bool accept_hello(const proto::Incoming &incoming);
   void refuse(const std::string &peer, const std::string &message);
-  void welcome(const std::string &id, bool with_structures);
+  void welcome(const std::string &id, bool with_structures, const std::string &part);
+  /// A restart: the newest complete checkpoint set; takes the coupler's own part.
+  void find_restart_set();
+  /// Every participant's part, then the coupler's, then the manifest: the set of step n.
+  void checkpoint(long n);
   proto::Message &await(const std::string &peer, proto::v2::Envelope::BodyCase body, long step, const std::string &what);
   void check_stability() const;
   /// run.stop_when_past holds for the structures' latest positions.
@@ -78,6 +84,11 @@ private:
   StepTimings timings_sum_;   ///< since the last progress line
   long timings_count_ = 0;
   std::chrono::steady_clock::time_point start_, last_progress_;
+
+  std::unique_ptr<checkpoint::CheckpointSet> checkpoints_;
+  long checkpoint_every_ = 0;                          ///< steps (0: none)
+  long first_step_ = 0;                                ///< 0, or the restart's step
+  std::optional<checkpoint::CheckpointSet::Found> restart_set_;
 };
 
 } // namespace fsi::coupler

@@ -23,6 +23,11 @@ struct CouplingSetup {
   std::size_t n_structures = 0;
   std::string case_yaml;        ///< the effective configuration of the whole case (YAML)
   std::string case_fingerprint; ///< what every participant's hello must carry
+  std::string restart_fingerprint; ///< what its checkpoints carry (the case without the end time)
+  bool restart = false;            ///< --restart: resume from the newest complete checkpoint
+  /// The fluid can write and resume from checkpoints (the prescribed flow; the OpenFOAM fluid
+  /// not yet): without it run.checkpoint_interval_s is ignored, with a warning.
+  bool fluid_checkpoints = false;
 };
 
 } // namespace fsi::coupler

@@ -73,7 +73,9 @@ int main(int argc, char **argv) {
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    fsi::coupler::CouplingRun run(fsi::case_config::coupling_setup(std::move(config)), out, endpoint);
+    auto setup = fsi::case_config::coupling_setup(std::move(config));
+    setup.restart = options.restart;
+    fsi::coupler::CouplingRun run(std::move(setup), out, endpoint);
     return run.run();
   });
 }

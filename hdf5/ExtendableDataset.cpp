@@ -3,6 +3,7 @@
 #include "hdf5/H5Attributes.hpp"
 #include "hdf5/H5Error.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace fsi::hdf5 {
@@ -43,6 +44,23 @@ ExtendableDataset::ExtendableDataset(hid_t parent_id, const std::string &name,
           create_extendable(parent_id, name, file_type_of(element_type), row_dims, rows_per_chunk)),
       element_type_(element_type), row_dims_(std::move(row_dims)) {
   write_string_attribute(dataset_.get(), "units", units);
+}
+
+ExtendableDataset::ExtendableDataset(hid_t parent_id, const std::string &name, ElementType element_type,
+                                     hsize_t keep_rows)
+    : element_type_(element_type) {
+  const std::string what = "cannot open dataset '" + name + "' in " + hdf5_object_name(parent_id) + " to append";
+  dataset_ = H5Handle::dataset(H5Dopen2(parent_id, name.c_str(), H5P_DEFAULT), what);
+  H5Handle space = H5Handle::dataspace(H5Dget_space(dataset_.get()), what);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 1)
+    throw std::runtime_error(what + ": it is not an array");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  check_hdf5(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), what);
+  row_dims_.assign(dims.begin() + 1, dims.end());
+  n_rows_ = std::min(dims[0], keep_rows);
+  dims[0] = n_rows_;
+  check_hdf5(H5Dset_extent(dataset_.get(), dims.data()), what);
 }
 
 void ExtendableDataset::append_row(const double *values) {

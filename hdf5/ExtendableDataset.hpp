@@ -19,6 +19,11 @@ public:
                     std::vector<hsize_t> row_dims, hsize_t rows_per_chunk,
                     const std::string &units);
 
+  /// Opens the existing dataset `name` under `parent_id` (written by the constructor above) to
+  /// append to it, keeping its first `keep_rows` rows (fewer if it has fewer): a restart's
+  /// results continue after the checkpoint's step.
+  ExtendableDataset(hid_t parent_id, const std::string &name, ElementType element_type, hsize_t keep_rows);
+
   /// Appends one row of doubles (product(row_dims) values, C order).
   void append_row(const double *values);
   /// Appends one row of int64 values.

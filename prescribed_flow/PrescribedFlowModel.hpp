@@ -7,13 +7,15 @@
 #include "FlowField.hpp"
 #include "proto/FluidModel.hpp"
 
+#include <filesystem>
 #include <memory>
 
 namespace fsi::prescribed_flow {
 
 class PrescribedFlowModel final : public proto::FluidModel {
 public:
-  explicit PrescribedFlowModel(std::unique_ptr<FlowField> flow);
+  /// checkpoints: the run's <output>/checkpoints, where its part of each set goes.
+  PrescribedFlowModel(std::unique_ptr<FlowField> flow, std::filesystem::path checkpoints);
 
   std::string describe() const override;
   void start(const proto::v2::Welcome &) override {}
@@ -22,8 +24,13 @@ public:
   /// One-way coupling: the flow is prescribed, so F_fsi (Eq. 8) is not spread.
   void advance(const proto::v2::FluidAdvance &, proto::PointsView, proto::v2::AdvanceReply &) override {}
   void finish(bool) override {}
+  /// The flow is a function of time and place: the part (fluid.ckpt) holds the step and the
+  /// flow's description only, so that a restart checks that the flow is the same one.
+  std::pair<std::string, std::string> write_checkpoint(long n_completed) override;
+  void resume(long step, const std::string &checksum) override;
 
 private:
+  std::filesystem::path checkpoints_;
   std::unique_ptr<FlowField> flow_;
   PointArray positions_, velocities_;
 };

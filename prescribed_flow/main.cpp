@@ -55,7 +55,8 @@ int main(int argc, char **argv) {
     auto settings = fsi::case_config::participant_settings(config, endpoint);
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed));
+    fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed),
+                                                    out / "checkpoints");
     fsi::proto::FluidParticipant participant(model, std::move(settings));
     return participant.run();
   });

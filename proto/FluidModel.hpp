@@ -6,7 +6,9 @@
 #include "PackedPoints.hpp"
 #include "Protocol.hpp"
 
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace fsi::proto {
 
@@ -25,6 +27,19 @@ public:
   /// Spreads F_fsi^n (Eq. 8) at the points of the last interpolate() and advances the flow
   /// from t to t + dt; may fill rigid_body_loads of the reply.
   virtual void advance(const v2::FluidAdvance &request, PointsView force_density_n_per_measure, v2::AdvanceReply &reply) = 0;
+
+  /// A checkpoint after `n_completed` steps (docs/restart.md): writes this model's part of the
+  /// set and returns its file name and checksum. By default a fluid cannot checkpoint.
+  virtual std::pair<std::string, std::string> write_checkpoint(long n_completed) {
+    throw std::runtime_error("this fluid (" + describe() + ") cannot checkpoint (step " + std::to_string(n_completed) +
+                             "): docs/restart.md");
+  }
+  /// A restart from the checkpoint of step `step`: takes this model's part, whose checksum the
+  /// coupler's manifest gives. By default a fluid cannot resume.
+  virtual void resume(long step, const std::string & /*checksum*/) {
+    throw std::runtime_error("this fluid (" + describe() + ") cannot resume from a checkpoint (step " +
+                             std::to_string(step) + "): docs/restart.md");
+  }
 
   /// The run is over (success: completed): write what is worth keeping.
   virtual void finish(bool success) = 0;

@@ -37,6 +37,11 @@ int FluidParticipant::run() {
       n_points_ += static_cast<Eigen::Index>(s.n1()) * s.n2();
     spdlog::info("joined: {} steps of {} s, {} Lagrangian points", welcome.n_steps(), welcome.time_step_s(), n_points_);
     model_.start(welcome);
+    if (welcome.first_step() > 0) {
+      model_.resume(static_cast<long>(welcome.first_step()), welcome.checkpoint_checksum());
+      steps_ = static_cast<long>(welcome.first_step());
+      spdlog::info("restart: resumed from the checkpoint of step {}", steps_);
+    }
     while (true) {
       const Message &message = session_->next_request();
       const Envelope &request = message.envelope();
@@ -49,6 +54,8 @@ int FluidParticipant::run() {
         interpolate(message);
       else if (request.has_fluid_advance())
         advance(message);
+      else if (request.has_checkpoint_request())
+        checkpoint(message);
       else
         throw MalformedMessageError("expected InterpolateRequest or FluidAdvance, got " +
                                     std::string(body_name(request)) + " at step " + std::to_string(request.step()));
@@ -82,6 +89,18 @@ void FluidParticipant::interpolate(const Message &request) {
   reply->set_solve_wall_s(seconds_since(start));
   interpolate_reply_.envelope().set_step(request.envelope().step());
   session_->send(interpolate_reply_);
+}
+
+void FluidParticipant::checkpoint(const Message &request) {
+  const auto step = request.envelope().step();
+  if (step != static_cast<std::uint64_t>(steps_))
+    throw MalformedMessageError("CheckpointRequest for step " + std::to_string(step) + " after " +
+                                std::to_string(steps_) + " steps");
+  const auto [part, checksum] = model_.write_checkpoint(steps_);
+  Message done(make_envelope(v2::ROLE_FLUID, step));
+  done.envelope().mutable_checkpoint_done()->set_part(part);
+  done.envelope().mutable_checkpoint_done()->set_checksum(checksum);
+  session_->send(done);
 }
 
 void FluidParticipant::advance(const Message &request) {

@@ -25,6 +25,7 @@ public:
 private:
   void interpolate(const Message &request);
   void advance(const Message &request);
+  void checkpoint(const Message &request);
 
   FluidModel &model_;
   SessionSettings settings_;

@@ -497,9 +497,8 @@ def main(argv):
         print(plan.output_dir)
         return EXIT_OK
     coupled = "coupler" in plan.names()
-    if args.restart and plan.names() != ["structure"]:
-        raise UserError("--restart: only a structure's run of its own resumes from a checkpoint so far; this case "
-                        "runs %s (docs/restart.md)" % ", ".join(plan.names()))
+    if args.restart and plan.names() == ["fluid"]:
+        raise UserError("--restart: the flow alone does not resume from checkpoints yet (docs/restart.md)")
 
     if args.endpoint and not coupled:
         raise UserError("--endpoint applies only to coupled scenes (this case runs %s alone)"

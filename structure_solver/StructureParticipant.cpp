@@ -3,6 +3,7 @@
 #include "proto/BodyPose.hpp"
 
 #include "common/ConfigError.hpp"
+#include "common/UserError.hpp"
 #include "proto/PackedPoints.hpp"
 #include "proto/TransportError.hpp"
 #include "common/ExitCodes.hpp"
@@ -45,7 +46,7 @@ std::vector<proto::v2::StructureTopology> StructureParticipant::topology() const
 }
 
 int StructureParticipant::run() {
-  run_.start();
+  run_.start(StructureRun::Resume::when_told); // the coupler says where the run starts
   for (const auto &s : run_.scene().structures())
     loads_.push_back(PointArray::Zero(s->n_points(), 3));
   long step = 0;
@@ -60,9 +61,19 @@ int StructureParticipant::run() {
                               std::to_string(run_.n_steps()) + " steps of " +
                               std::to_string(run_.config().run.time_step_s) + " s");
     spdlog::info("joined: {} steps of {} s", welcome.n_steps(), welcome.time_step_s());
-    send_state(0, 0.0, true); // the initial state X^0, V^0
-    for (step = 0; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
-      const proto::Message &message = session_->next_request();
+    step = static_cast<long>(welcome.first_step());
+    if (step > 0)
+      run_.resume_from(step, welcome.checkpoint_checksum());
+    else
+      run_.begin_fresh();
+    send_state(static_cast<std::uint64_t>(step), 0.0, true); // the initial state X^0, V^0 (a restart: X^k, V^k)
+    for (; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
+      const proto::Message *next = &session_->next_request();
+      while (next->envelope().has_checkpoint_request()) { // at the step boundary, before step `step`
+        write_checkpoint(next->envelope(), step);
+        next = &session_->next_request();
+      }
+      const proto::Message &message = *next;
       const proto::Envelope &request = message.envelope();
       if (request.has_shutdown() && request.shutdown().success()) { // run.stop_when_past, seen by the coupler
         run_.finish("completed", step);
@@ -87,7 +98,12 @@ int StructureParticipant::run() {
       }
       send_state(static_cast<std::uint64_t>(step), solve_s, false);
     }
-    const proto::Envelope &last = session_->next_request().envelope();
+    const proto::Message *next = &session_->next_request();
+    while (next->envelope().has_checkpoint_request()) { // the checkpoint at the end of the run
+      write_checkpoint(next->envelope(), step);
+      next = &session_->next_request();
+    }
+    const proto::Envelope &last = next->envelope();
     if (!last.has_shutdown())
       throw ProtocolViolation("expected Shutdown after the last step, got " + std::string(proto::body_name(last)));
     run_.finish("completed", run_.n_steps());
@@ -115,9 +131,27 @@ int StructureParticipant::run() {
   } catch (const proto::TransportError &e) {
     spdlog::error("transport failed at step {}: {}", step, e.what());
     run_.finish(std::string("failed: ") + e.what(), step);
+  } catch (const common::UserError &e) { // a checkpoint the coupler named that cannot be resumed from
+    spdlog::error("{}", e.what());
+    if (session_)
+      session_->report_error("participant structure: " + std::string(e.what()), static_cast<std::uint64_t>(step));
+    return common::exit_code_bad_input;
   }
   spdlog::error("results up to step {} are kept", step);
   return common::exit_code_run_failed;
+}
+
+void StructureParticipant::write_checkpoint(const proto::Envelope &request, long step) {
+  if (request.step() != static_cast<std::uint64_t>(step))
+    throw ProtocolViolation("CheckpointRequest for step " + std::to_string(request.step()) + " after " +
+                            std::to_string(step) + " steps");
+  const auto folder = run_.checkpoints().folder(step);
+  std::filesystem::create_directories(folder);
+  const checkpoint::CheckpointPart part = run_.write_checkpoint_part(folder, step);
+  proto::Message done(proto::make_envelope(proto::v2::ROLE_STRUCTURE, static_cast<std::uint64_t>(step)));
+  done.envelope().mutable_checkpoint_done()->set_part(part.name);
+  done.envelope().mutable_checkpoint_done()->set_checksum(part.checksum);
+  session_->send(done);
 }
 
 void StructureParticipant::take_rigid_poses(const proto::v2::StructureAdvance &advance) {

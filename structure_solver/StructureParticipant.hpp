@@ -25,6 +25,8 @@ private:
   void unpack_loads(const proto::Message &request);
   /// The moving rigid surfaces at the end of the step, from the coupler (section 2.3).
   void take_rigid_poses(const proto::v2::StructureAdvance &advance);
+  /// Our part of the checkpoint set after `step` steps; answers CheckpointDone.
+  void write_checkpoint(const proto::Envelope &request, long step);
 
   StructureRun &run_;
   proto::SessionSettings settings_;

@@ -115,18 +115,23 @@ long StructureRun::output_every() const {
   return std::max(1L, std::lround(config_.run.output_interval_s / config_.run.time_step_s));
 }
 
-std::string StructureRun::write_checkpoint_part(const std::filesystem::path &folder, long n_completed) const {
+checkpoint::CheckpointPart StructureRun::write_checkpoint_part(const std::filesystem::path &folder,
+                                                               long n_completed) const {
   checkpoint::StateArchive archive;
   archive.put_integer("step", n_completed);
   archive.put_double("time_s", scene_->time_s());
   for (const auto &s : scene_->structures())
     s->save_state(archive, "structures/" + s->name() + "/");
-  checkpoint::write_archive(folder / checkpoint_part, archive);
-  return checkpoint_part;
+  return {checkpoint_part, checkpoint::write_archive(folder / checkpoint_part, archive)};
 }
 
-void StructureRun::read_checkpoint_part(const std::filesystem::path &folder, long n_completed) {
+void StructureRun::read_checkpoint_part(const std::filesystem::path &folder, long n_completed,
+                                        const std::string &checksum) {
   const checkpoint::StateArchive archive = checkpoint::read_archive(folder / checkpoint_part);
+  if (!checksum.empty() && checkpoint::archive_checksum(folder / checkpoint_part) != checksum)
+    throw checkpoint::CheckpointError((folder / checkpoint_part).string() + ": checksum " +
+                                      checkpoint::archive_checksum(folder / checkpoint_part) + ", the coupler's "
+                                      "checkpoint says " + checksum + " (a part of another checkpoint)");
   if (archive.integer("step") != n_completed)
     throw checkpoint::CheckpointError((folder / checkpoint_part).string() + ": holds step " +
                                       std::to_string(archive.integer("step")) + ", the set is of step " +
@@ -138,8 +143,7 @@ void StructureRun::read_checkpoint_part(const std::filesystem::path &folder, lon
 /// A run of its own checkpoints itself: its part, then the set is complete.
 void StructureRun::checkpoint_alone(long n_completed) {
   const auto folder = checkpoints_->begin(n_completed);
-  const std::string part = write_checkpoint_part(folder, n_completed);
-  checkpoints_->complete(n_completed, scene_->time_s(), {part});
+  checkpoints_->complete(n_completed, scene_->time_s(), {write_checkpoint_part(folder, n_completed)});
   spdlog::debug("checkpoint of step {} in {}", n_completed, folder.string());
 }
 
@@ -219,7 +223,7 @@ const std::atomic<int> &StructureRun::stop_signal() { return received_stop_signa
 
 long StructureRun::n_steps() const { return config_.run.n_steps(); }
 
-void StructureRun::start() {
+void StructureRun::start(Resume resume) {
   std::filesystem::create_directories(output_dir_);
   common::add_log_file(output_dir_ / "structure.log");
   spdlog::info("case {}: effective configuration\n{}", case_dir_.string(), config_yaml_);
@@ -228,35 +232,46 @@ void StructureRun::start() {
     spdlog::warn("{}", warning);
   checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_fingerprint,
                                                              config_.run.checkpoint_keep);
-  if (config_.restart) {
-    std::vector<std::string> skipped;
-    const auto found = checkpoints_->newest(skipped);
-    for (const auto &why : skipped)
-      spdlog::warn("restart: skipped a checkpoint: {}", why);
-    if (!found)
-      throw common::UserError("--restart: no complete checkpoint of this case in " + checkpoints_->root().string() +
-                              (skipped.empty() ? std::string(" (run.checkpoint_interval_s makes them)")
-                                               : " (" + std::to_string(skipped.size()) + " skipped, above)"));
-    try {
-      read_checkpoint_part(found->folder, found->step);
-    } catch (const checkpoint::CheckpointError &e) {
-      throw common::UserError(std::string("--restart: ") + e.what() +
-                              " (a checkpoint this build cannot resume from exactly; remove its folder to resume from "
-                              "an older one)");
-    }
-    first_step_ = found->step;
-    resume_results(found->step);
-    spdlog::info("restart: resumed from the checkpoint of step {} (t = {} s) in {}", found->step, found->time_s,
-                 found->folder.string());
-  } else {
-    open_results();
-    write_state(0);
-  }
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   start_ = last_progress_ = std::chrono::steady_clock::now();
   last_good_x_.resize(scene_->structures().size());
   last_good_v_.resize(scene_->structures().size());
+  if (resume == Resume::when_told)
+    return;
+  if (!config_.restart) {
+    begin_fresh();
+    return;
+  }
+  std::vector<std::string> skipped;
+  const auto found = checkpoints_->newest(skipped);
+  for (const auto &why : skipped)
+    spdlog::warn("restart: skipped a checkpoint: {}", why);
+  if (!found)
+    throw common::UserError("--restart: no complete checkpoint of this case in " + checkpoints_->root().string() +
+                            (skipped.empty() ? std::string(" (run.checkpoint_interval_s makes them)")
+                                             : " (" + std::to_string(skipped.size()) + " skipped, above)"));
+  resume_from(found->step, found->checksum_of(checkpoint_part));
+}
+
+void StructureRun::begin_fresh() {
+  open_results();
+  write_state(0);
+}
+
+void StructureRun::resume_from(long step, const std::string &checksum) {
+  const auto folder = checkpoints_->folder(step);
+  try {
+    read_checkpoint_part(folder, step, checksum);
+  } catch (const checkpoint::CheckpointError &e) {
+    throw common::UserError(std::string("--restart: ") + e.what() +
+                            " (a checkpoint this build cannot resume from exactly; remove its folder to resume from "
+                            "an older one)");
+  }
+  first_step_ = step;
+  resume_results(step);
+  spdlog::info("restart: resumed from the checkpoint of step {} (t = {} s) in {}", step, scene_->time_s(),
+               folder.string());
 }
 
 StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *load_densities) {
@@ -290,6 +305,8 @@ StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *lo
 }
 
 void StructureRun::finish(const std::string &status, long n_completed) {
+  if (!results_) // a coupled run that ended before its results were opened (a refused handshake)
+    return;
   if (last_written_step_ != n_completed)
     write_state(n_completed);
   results_->set_status(status);

@@ -43,16 +43,27 @@ public:
   int run();
 
   // The pieces of run(), for drivers that take the loads from elsewhere (a coupled run):
+  /// Where a restart's checkpoint comes from: the newest complete set of the results folder (a
+  /// run of its own), or the one the coupler names in its Welcome (a coupled run).
+  enum class Resume { newest_set, when_told };
   /// Builds the scene, opens the results, writes step 0, installs the stop-signal handler. On a
-  /// restart: takes the state of the newest complete checkpoint, keeps the results up to it.
-  void start();
+  /// restart of a run of its own: takes the state of the newest complete checkpoint, keeps the
+  /// results up to it. With Resume::when_told the results wait for resume_from() or begin().
+  void start(Resume resume = Resume::newest_set);
+  /// A coupled run that starts from step 0 (after start(Resume::when_told)): the results from X^0.
+  void begin_fresh();
   /// The first step to advance: 0, or the checkpoint's step on a restart.
   long first_step() const { return first_step_; }
   /// This process's part of a checkpoint set (structure.ckpt in `folder`): every structure's
-  /// state after `n_completed` steps. Returns the part's file name.
-  std::string write_checkpoint_part(const std::filesystem::path &folder, long n_completed) const;
-  /// Takes the state of a checkpoint set's part (after start()'s scene is built).
-  void read_checkpoint_part(const std::filesystem::path &folder, long n_completed);
+  /// state after `n_completed` steps. Returns the part's file name and checksum.
+  checkpoint::CheckpointPart write_checkpoint_part(const std::filesystem::path &folder, long n_completed) const;
+  /// Takes the state of a checkpoint set's part (after start()'s scene is built), which must
+  /// have `checksum` (empty: not checked).
+  void read_checkpoint_part(const std::filesystem::path &folder, long n_completed, const std::string &checksum);
+  /// A coupled restart, after start(Resume::when_told): the coupler has chosen the set of step
+  /// `step`; takes its part (with the checksum the coupler's manifest gives) and keeps the
+  /// results up to it.
+  void resume_from(long step, const std::string &checksum);
   /// The run's checkpoint sets (<output>/checkpoints).
   const checkpoint::CheckpointSet &checkpoints() const { return *checkpoints_; }
   /// Advances step n, from t^n to t^{n+1} (0-based, as Envelope.step of the protocol), under

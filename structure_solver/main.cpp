@@ -102,11 +102,6 @@ int main(int argc, char **argv) {
       return fsi::common::exit_code_bad_input;
     }
     auto settings = fsi::case_config::participant_settings(config, endpoint);
-    if (options.restart) {
-      spdlog::error("--restart of a coupled run is not there yet: only a structure's run of its own resumes "
-                    "(docs/restart.md)");
-      return fsi::common::exit_code_bad_input;
-    }
     auto setup = fsi::case_config::structure_setup(std::move(config));
     setup.rigid_motions_from_coupler = true; // the coupler evaluates the prescribed motions
     fsi::structure::StructureRun run(std::move(setup), case_dir, out);

@@ -27,10 +27,10 @@ void write_set(const CheckpointSet &sets, long step, bool complete = true) {
   const fs::path folder = sets.begin(step);
   StateArchive part;
   part.put_integer("step", step);
-  fsi::checkpoint::write_archive(folder / "structure.ckpt", part);
-  fsi::checkpoint::write_archive(folder / "coupler.ckpt", part);
+  const std::string a = fsi::checkpoint::write_archive(folder / "structure.ckpt", part);
+  const std::string b = fsi::checkpoint::write_archive(folder / "coupler.ckpt", part);
   if (complete)
-    sets.complete(step, 1e-3 * static_cast<double>(step), {"structure.ckpt", "coupler.ckpt"});
+    sets.complete(step, 1e-3 * static_cast<double>(step), {{"structure.ckpt", a}, {"coupler.ckpt", b}});
 }
 
 long newest_step(const CheckpointSet &sets, std::vector<std::string> &skipped) {
@@ -58,6 +58,8 @@ TEST(CheckpointSet, OnlyTheKeptCompleteSetsStayAndTheNewestIsFound) {
   ASSERT_TRUE(found);
   EXPECT_EQ(found->step, 30);
   EXPECT_DOUBLE_EQ(found->time_s, 0.03);
+  EXPECT_EQ(found->checksum_of("coupler.ckpt"), fsi::checkpoint::archive_checksum(sets.folder(30) / "coupler.ckpt"));
+  EXPECT_THROW(found->checksum_of("fluid.ckpt"), fsi::checkpoint::CheckpointError);
   EXPECT_TRUE(skipped.empty());
 }
 

@@ -65,6 +65,8 @@ Envelope welcome() {
   fill_topology(body->add_structures(), "flag");
   body->set_heartbeat_interval_s(0.25);
   body->set_timeout_s(30.0);
+  body->set_first_step(1250);
+  body->set_checkpoint_checksum("fedcba9876543210");
   return e;
 }
 
@@ -139,6 +141,20 @@ Envelope shutdown() {
   return e;
 }
 
+Envelope checkpoint_request() {
+  Envelope e = make_envelope(v2::ROLE_COUPLER, 500);
+  e.mutable_checkpoint_request();
+  return e;
+}
+
+Envelope checkpoint_done() {
+  Envelope e = make_envelope(v2::ROLE_STRUCTURE, 500);
+  auto *body = e.mutable_checkpoint_done();
+  body->set_part("structure.ckpt");
+  body->set_checksum("0123456789abcdef");
+  return e;
+}
+
 } // namespace
 
 std::vector<Message> sample_messages() {
@@ -153,6 +169,8 @@ std::vector<Message> sample_messages() {
   messages.emplace_back(heartbeat());
   messages.emplace_back(error_report());
   messages.emplace_back(shutdown());
+  messages.emplace_back(checkpoint_request());
+  messages.emplace_back(checkpoint_done());
   return messages;
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Checkpoint and restart of a structure's run of its own (the rag dropped on the pole:
-collisions with a cylinder and a box, self-collision on), with the real fsi-structure and the
-launcher behind ./fsi run. A run stopped at step k and resumed with --restart must equal the
+"""Checkpoint and restart, with the real executables and the launcher behind ./fsi run: a
+structure's run of its own (the rag dropped on the pole: collisions with a cylinder and a box,
+self-collision on) and a coupled run (coupler, structure, prescribed flow: the rag in the
+swirling flow) over ZeroMQ. A run stopped at step k and resumed with --restart must equal the
 uninterrupted run bit for bit: every dataset of structure.h5, probes.csv and the XDMF index.
 The negative controls show that the comparison can fail and that damaged checkpoints are
 caught: a checkpoint without X^{n-1} is refused, one rounded to 6 digits resumes but differs,
@@ -26,6 +27,7 @@ ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
 STRUCTURE = os.path.join(BIN_DIR, "fsi-structure")
+COUPLER = os.path.join(BIN_DIR, "fsi-coupler")
 LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
 
 try:
@@ -64,23 +66,28 @@ def run(case, out, *extra, check=True):
 
 
 def datasets(h5_path):
+    """Every dataset but the wall-clock timings (coupling.h5's /timings: measurements, not results)."""
     found = {}
     with h5py.File(h5_path, "r") as f:
-        f.visititems(lambda name, obj: found.__setitem__(name, obj[()]) if isinstance(obj, h5py.Dataset) else None)
+        f.visititems(lambda name, obj: found.__setitem__(name, obj[()])
+                     if isinstance(obj, h5py.Dataset) and not name.startswith("timings/") else None)
     return found
 
 
-def differences(a_dir, b_dir):
+def differences(a_dir, b_dir, files=("structure.h5", "probes.csv", "structure.xdmf")):
     """What differs between two results folders, bit for bit (empty: the same)."""
-    a, b = datasets(os.path.join(a_dir, "structure.h5")), datasets(os.path.join(b_dir, "structure.h5"))
-    found = ["datasets %s vs %s" % (sorted(a), sorted(b))] if sorted(a) != sorted(b) else []
-    for name in sorted(set(a) & set(b)):
-        x, y = numpy.asarray(a[name]), numpy.asarray(b[name])
-        if x.shape != y.shape or x.tobytes() != y.tobytes():
-            found.append("%s: shapes %s %s, %s" % (name, x.shape, y.shape,
-                                                   "max |diff| %.3g" % numpy.max(numpy.abs(x - y))
-                                                   if x.shape == y.shape and x.dtype.kind == "f" else "differ"))
-    for name in ("probes.csv", "structure.xdmf"):
+    found = []
+    for h5 in (f for f in files if f.endswith(".h5")):
+        a, b = datasets(os.path.join(a_dir, h5)), datasets(os.path.join(b_dir, h5))
+        if sorted(a) != sorted(b):
+            found.append("%s: datasets %s vs %s" % (h5, sorted(a), sorted(b)))
+        for name in sorted(set(a) & set(b)):
+            x, y = numpy.asarray(a[name]), numpy.asarray(b[name])
+            if x.shape != y.shape or x.tobytes() != y.tobytes():
+                found.append("%s %s: shapes %s %s, %s" % (h5, name, x.shape, y.shape,
+                                                          "max |diff| %.3g" % numpy.max(numpy.abs(x - y))
+                                                          if x.shape == y.shape and x.dtype.kind == "f" else "differ"))
+    for name in (f for f in files if not f.endswith(".h5")):
         with open(os.path.join(a_dir, name), "rb") as f, open(os.path.join(b_dir, name), "rb") as g:
             if f.read() != g.read():
                 found.append(name)
@@ -157,6 +164,7 @@ class StructureAlone(Fixture):
 
     def test_a_run_killed_at_a_seeded_random_moment_resumes_from_its_last_checkpoint(self):
         draw = random.Random(20261203)
+        resumed = 0
         for attempt in range(2):
             out = os.path.join(self.tmp, "kill9-%d" % attempt)
             child = subprocess.Popen([STRUCTURE, self.case, "-o", out], stdin=subprocess.DEVNULL,
@@ -170,6 +178,8 @@ class StructureAlone(Fixture):
             made = run(self.case, out, "--restart")
             self.assertIn("resumed from the checkpoint of step", made.stdout)
             self.assertEqual(differences(self.full, out), [])
+            resumed += 1
+        self.assertGreaterEqual(resumed, 1, "the kills fell before the first checkpoint: the test did not test")
 
 
 class DamagedCheckpoints(Fixture):
@@ -219,6 +229,92 @@ class DamagedCheckpoints(Fixture):
         made = run(self.case, out, "--restart", check=False)
         self.assertEqual(made.returncode, 2)
         self.assertIn("no complete checkpoint of this case", made.stdout)
+
+
+COUPLED_FILES = ("structure.h5", "coupling.h5", "structure.xdmf")
+
+
+def launch(case, out, *extra):
+    return subprocess.run([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out] + list(extra) + [case],
+                          stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+
+
+def make_coupled_case(folder):
+    """rag-in-prescribed-flow (coupler, structure, prescribed flow), 0.2 s (5000 steps of 4e-5 s),
+    a checkpoint every 0.05 s (1250 steps)."""
+    case = os.path.join(folder, "coupled_case")
+    shutil.copytree(os.path.join(ROOT, "cases", "rag-in-prescribed-flow"), case,
+                    ignore=shutil.ignore_patterns("output", "*.png", "*.gif"))
+    path = os.path.join(case, "case.yaml")
+    with open(path) as f:
+        text = f.read()
+    text = re.sub(r"end_time_s: [0-9.e-]+", "end_time_s: 0.2", text, count=1)
+    text = text.replace("output_interval_s: 0.01", "output_interval_s: 0.01\n  checkpoint_interval_s: 0.05")
+    with open(path, "w") as f:
+        f.write(text)
+    return case
+
+
+class CoupledPrescribedFlow(unittest.TestCase):
+    """The coupler asks every participant for its part at the step boundary, adds its own
+    (X^n, X^{n-1}) and the manifest; a restart resumes all three from the same set."""
+
+    @classmethod
+    def setUpClass(cls):
+        if not (os.access(STRUCTURE, os.X_OK) and os.access(COUPLER, os.X_OK)):
+            raise unittest.SkipTest("executables not built in %s" % BIN_DIR)
+        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_coupled_")
+        cls.case = make_coupled_case(cls.tmp)
+        cls.full = os.path.join(cls.tmp, "full")
+        started = time.time()
+        made = launch(cls.case, cls.full)
+        cls.full_wall_s = time.time() - started
+        if made.returncode != 0:
+            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_a_coupled_run_stopped_by_its_end_time_and_restarted_equals_the_uninterrupted_run(self):
+        out = os.path.join(self.tmp, "end_time")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.07").returncode, 0)
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "checkpoints", "step-000001750"))),
+                         ["coupler.ckpt", "fluid.ckpt", "manifest.ckpt", "structure.ckpt"])
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step 1750", made.stdout)
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+
+    def test_a_coupled_run_with_one_process_killed_resumes_from_its_last_complete_checkpoint(self):
+        """kill -9 of the coupler, the structure, the fluid, each at a seeded random moment: the
+        others stop (the heartbeat), the newest complete set is used, the results equal."""
+        draw = random.Random(1203)
+        resumed = 0
+        for victim in ("fsi-coupler", "fsi-structure", "fsi-prescribed-flow"):
+            out = os.path.join(self.tmp, "kill-" + victim)
+            child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
+                                     stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            time.sleep(draw.uniform(0.4, 0.8) * self.full_wall_s)
+            subprocess.run(["pkill", "-9", "-f", "%s .*-o %s" % (victim, out)])
+            code = child.wait(timeout=60)
+            if not os.path.isdir(os.path.join(out, "checkpoints")):
+                continue  # killed before the first checkpoint (or after the end): nothing to resume
+            self.assertNotEqual(code, 0, victim)
+            made = launch(self.case, out, "--restart")
+            self.assertEqual(made.returncode, 0, victim + ":\n" + made.stdout[-3000:])
+            self.assertIn("restart: resumed from the checkpoint of step", made.stdout, victim)
+            self.assertEqual(differences(self.full, out, COUPLED_FILES), [], victim)
+            resumed += 1
+        self.assertGreaterEqual(resumed, 2, "the kills fell outside the run: the test did not test")
+
+    def test_the_openfoam_fluid_refuses_a_restart_by_name(self):
+        made = subprocess.run([COUPLER, os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), "-o",
+                               os.path.join(self.tmp, "openfoam"), "--restart"],
+                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              timeout=60)
+        self.assertEqual(made.returncode, 2, made.stdout[-2000:])
+        self.assertIn("the OpenFOAM fluid does not resume from checkpoints yet", made.stdout)
 
 
 if __name__ == "__main__":
