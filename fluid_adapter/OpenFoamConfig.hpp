@@ -56,8 +56,10 @@ struct OpenFoamConfig {
            "A warm start: an OpenFOAM case folder (e.g. an earlier run's <output>/openfoam, of this case at another "
            "resolution), relative to the case folder or absolute, whose latest fields are mapped onto this mesh "
            "(OpenFOAM's mapFields -consistent: the same patches) as the initial fields. The run still starts at t = "
-           "0, so a rotating body should be where it was: end the source run after whole revolutions. Empty: the "
-           "case's own 0/ fields.");
+           "0, so a rotating body should be where it was: end the source run after whole revolutions. With "
+           "precursor_time_s the mapped fields start the precursor (a finer mesh spins up from a coarser run's "
+           "developed flow, e.g. <output>/precursor/openfoam, instead of from rest), and a change of the source's "
+           "fields makes the precursor run again. Empty: the case's own 0/ fields.");
     v.choice("interface_flux", interface_flux,
              {{"interpolated", InterfaceFlux::interpolated}, {"body_normal", InterfaceFlux::body_normal}},
              "Rigid bodies: the flux through the faces between penalized and free cells. interpolated (the "

@@ -72,6 +72,30 @@ std::string Precursor::compute_fingerprint(const PrecursorInputs &inputs, const 
   }
   for (const auto &file : inputs.surface_stl_files)
     hash.add_file(file);
+  // A warm start (fluid.openfoam.initial_fields_from): the source's latest fields, so that a rerun
+  // of the source run makes this precursor run again.
+  if (!inputs.openfoam->initial_fields_from.empty()) {
+    fs::path source = inputs.openfoam->initial_fields_from;
+    if (source.is_relative())
+      source = case_dir / source;
+    std::error_code error;
+    if (fs::is_directory(source, error)) {
+      try {
+        const fs::path latest = latest_time_directory(source);
+        hash.add(latest.filename().string());
+        std::vector<fs::path> fields;
+        for (const auto &entry : fs::directory_iterator(latest))
+          if (entry.is_regular_file())
+            fields.push_back(entry.path());
+        std::sort(fields.begin(), fields.end());
+        for (const auto &field : fields) {
+          hash.add(field.filename().string());
+          hash.add_file(field);
+        }
+      } catch (const std::runtime_error &) { // no fields there: the warm start says so when it maps them
+      }
+    }
+  }
   return hash.hex();
 }
 
@@ -107,11 +131,13 @@ void Precursor::mark_complete() const { std::ofstream(stamp_file()) << fingerpri
 void Precursor::invalidate() const {
   // Every earlier file goes, unlinked rather than overwritten: a precursor folder seeded with
   // hard links (./fsi rag-ensemble's members, a copy made with cp -al) then never writes into
-  // the files it shares with another run's precursor.
+  // the files it shares with another run's precursor. The launcher's console files stay: it has
+  // just made them anew (scripts/fsi_launch.py) and writes the solver's residuals into them.
   std::error_code error;
   if (fs::is_directory(folder_))
     for (const auto &entry : fs::directory_iterator(folder_))
-      fs::remove_all(entry.path(), error);
+      if (entry.path().extension() != ".console")
+        fs::remove_all(entry.path(), error);
 }
 
 fs::path Precursor::latest_time_directory(const fs::path &folder) {

@@ -66,7 +66,11 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
                       const fs::path &base, const Precursor &precursor) {
   const auto &foam = *config.fluid->openfoam;
   const fs::path foam_case = fsi::fluid::prepare_openfoam_case(case_dir, foam.case_directory, base);
-  if (!foam.initial_fields_from.empty() && process.role != Role::precursor) {
+  // A warm start: the fields of another run mapped onto this mesh. With a precursor they start the
+  // precursor (a finer mesh then spins up from a coarser run's developed flow, not from rest),
+  // whose last fields start the coupled run.
+  const bool precursor_first = process.role != Role::alone && precursor.wanted();
+  if (!foam.initial_fields_from.empty() && (process.role == Role::precursor || !precursor_first)) {
     fs::path source = foam.initial_fields_from;
     if (source.is_relative())
       source = fs::path(case_dir) / source;

@@ -314,6 +314,11 @@ class Precursor(PenalizationTest):
         self.assertNotIn("is up to date", third)
         changed = [name for name, data in before.items() if open(os.path.join(shared, name), "rb").read() != data]
         self.assertEqual(changed, [], "the rerun wrote into files it shares with another precursor")
+        # ... and the rerun's solver residuals are in its console file (the launcher makes it; the
+        # precursor's clean-up before a rerun must leave it: it once unlinked it, and a diverged
+        # precursor left no residuals to look at).
+        with open(os.path.join(pre, "fluid.console"), errors="replace") as f:
+            self.assertIn("Solving for p", f.read())
         last = latest_time_dir(os.path.join(pre, "openfoam"))
         self.assertAlmostEqual(float(os.path.basename(last)), 0.5 * self.PRE_END, places=9)
         print("precursor: %d steps, then %d coupled steps; first coupled drag %.5g N against the precursor's last "
