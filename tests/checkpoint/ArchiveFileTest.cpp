@@ -18,12 +18,16 @@ using fsi::checkpoint::StateArchive;
 
 namespace {
 
-fs::path fresh_folder(const std::string &name) {
-  const fs::path dir = fs::temp_directory_path() / ("fsi_checkpoint_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+/// A folder of its own for one test, removed with it.
+struct TempFolder {
+  explicit TempFolder(const std::string &name)
+      : path(fs::temp_directory_path() / ("fsi_checkpoint_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempFolder() { fs::remove_all(path); }
+  fs::path path;
+};
 
 std::string bytes_of(const fs::path &file) {
   std::ifstream in(file, std::ios::binary);
@@ -51,7 +55,8 @@ StateArchive sample() {
 } // namespace
 
 TEST(ArchiveFile, WhatIsWrittenIsReadBackBitForBit) {
-  const fs::path file = fresh_folder("roundtrip") / "a.ckpt";
+  const TempFolder dir("roundtrip");
+  const fs::path file = dir.path / "a.ckpt";
   const StateArchive in = sample();
   fsi::checkpoint::write_archive(file, in);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp")); // renamed into place
@@ -66,7 +71,8 @@ TEST(ArchiveFile, WhatIsWrittenIsReadBackBitForBit) {
 }
 
 TEST(ArchiveFile, AMissingEntryOrAnotherSizeIsNamed) {
-  const fs::path file = fresh_folder("entries") / "a.ckpt";
+  const TempFolder dir("entries");
+  const fs::path file = dir.path / "a.ckpt";
   fsi::checkpoint::write_archive(file, sample());
   const StateArchive out = fsi::checkpoint::read_archive(file);
   try {
@@ -81,7 +87,8 @@ TEST(ArchiveFile, AMissingEntryOrAnotherSizeIsNamed) {
 }
 
 TEST(ArchiveFile, ATruncatedLongerOrFlippedFileIsRefused) {
-  const fs::path dir = fresh_folder("faults"), file = dir / "a.ckpt";
+  const TempFolder dir("faults");
+  const fs::path file = dir.path / "a.ckpt";
   fsi::checkpoint::write_archive(file, sample());
   const std::string good = bytes_of(file);
   const auto refused_with = [&](const std::string &bytes, const std::string &expected) {

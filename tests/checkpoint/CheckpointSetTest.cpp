@@ -17,11 +17,16 @@ using fsi::checkpoint::StateArchive;
 
 namespace {
 
-fs::path fresh_root(const std::string &name) {
-  const fs::path dir = fs::temp_directory_path() / ("fsi_checkpoint_set_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir / "checkpoints";
-}
+/// <a folder of its own>/checkpoints, the folder removed with the test.
+struct TempRoot {
+  explicit TempRoot(const std::string &name)
+      : folder(fs::temp_directory_path() / ("fsi_checkpoint_set_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(folder);
+  }
+  ~TempRoot() { fs::remove_all(folder); }
+  fs::path checkpoints() const { return folder / "checkpoints"; }
+  fs::path folder;
+};
 
 void write_set(const CheckpointSet &sets, long step, bool complete = true) {
   const fs::path folder = sets.begin(step);
@@ -48,7 +53,8 @@ bool mentions(const std::vector<std::string> &messages, const std::string &text)
 } // namespace
 
 TEST(CheckpointSet, OnlyTheKeptCompleteSetsStayAndTheNewestIsFound) {
-  const CheckpointSet sets(fresh_root("keep"), "fp", 2);
+  const TempRoot tmp("keep");
+  const CheckpointSet sets(tmp.checkpoints(), "fp", 2);
   for (long step : {10, 20, 30})
     write_set(sets, step);
   EXPECT_FALSE(fs::exists(sets.folder(10)));
@@ -64,7 +70,8 @@ TEST(CheckpointSet, OnlyTheKeptCompleteSetsStayAndTheNewestIsFound) {
 }
 
 TEST(CheckpointSet, ASetWithoutItsManifestDoesNotCount) {
-  const CheckpointSet sets(fresh_root("incomplete"), "fp", 3);
+  const TempRoot tmp("incomplete");
+  const CheckpointSet sets(tmp.checkpoints(), "fp", 3);
   write_set(sets, 10);
   write_set(sets, 20, false); // a process died before the set was complete
   std::vector<std::string> skipped;
@@ -72,7 +79,8 @@ TEST(CheckpointSet, ASetWithoutItsManifestDoesNotCount) {
 }
 
 TEST(CheckpointSet, ABadNewestSetIsSkippedWithItsReasonAndThePreviousUsed) {
-  const auto root = fresh_root("bad");
+  const TempRoot tmp("bad");
+  const auto root = tmp.checkpoints();
   const CheckpointSet sets(root, "fp", 3);
   write_set(sets, 10);
   write_set(sets, 20);
@@ -104,7 +112,8 @@ TEST(CheckpointSet, ABadNewestSetIsSkippedWithItsReasonAndThePreviousUsed) {
 }
 
 TEST(CheckpointSet, ASetOfAnotherCaseIsSkipped) {
-  const auto root = fresh_root("other_case");
+  const TempRoot tmp("other_case");
+  const auto root = tmp.checkpoints();
   write_set(CheckpointSet(root, "this-case", 3), 10);
   write_set(CheckpointSet(root, "another-case", 3), 20);
   std::vector<std::string> skipped;
