@@ -32,6 +32,7 @@ CouplingResults::CouplingResults(const std::filesystem::path &h5_path, const std
   for (const auto name : StepTimings::names)
     timings_.emplace_back(timings_group_.get(), std::string(name), ExtendableDataset::ElementType::float64,
                           std::vector<hsize_t>{}, chunk, "s");
+  flush();
 }
 
 CouplingResults::CouplingResults(const std::filesystem::path &h5_path, long last_step) : path_(h5_path) {
@@ -69,6 +70,9 @@ CouplingResults::~CouplingResults() = default;
 
 void CouplingResults::flush() {
   last_flush_ = std::chrono::steady_clock::now();
+  hdf5::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
+  // The marker after the rows are flushed: a reader trusts only the rows it counts.
+  hdf5::write_int64_attribute(file_.get(), "complete_steps", static_cast<std::int64_t>(step_->n_rows()));
   hdf5::check_hdf5(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "cannot flush " + path_.string());
 }
 

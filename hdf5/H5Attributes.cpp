@@ -88,6 +88,31 @@ void write_int64_array_attribute(hid_t object_id, const std::string &name,
   check_hdf5(H5Awrite(attribute.get(), H5T_NATIVE_INT64, values.data()), what);
 }
 
+void write_int64_attribute(hid_t object_id, const std::string &name, std::int64_t value) {
+  const std::string what = "cannot write " + describe(object_id, name);
+  const htri_t exists = H5Aexists(object_id, name.c_str());
+  check_hdf5(static_cast<herr_t>(exists < 0 ? -1 : 0), what);
+  H5Handle attribute;
+  if (exists > 0) {
+    attribute = H5Handle::attribute(H5Aopen(object_id, name.c_str(), H5P_DEFAULT), what);
+  } else {
+    H5Handle space = H5Handle::dataspace(H5Screate(H5S_SCALAR), what);
+    attribute = H5Handle::attribute(
+        H5Acreate2(object_id, name.c_str(), H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), what);
+  }
+  check_hdf5(H5Awrite(attribute.get(), H5T_NATIVE_INT64, &value), what);
+}
+
+std::int64_t read_int64_attribute(hid_t object_id, const std::string &name, std::int64_t fallback) {
+  if (H5Aexists(object_id, name.c_str()) <= 0)
+    return fallback;
+  const std::string what = "cannot read " + describe(object_id, name);
+  H5Handle attribute = H5Handle::attribute(H5Aopen(object_id, name.c_str(), H5P_DEFAULT), what);
+  std::int64_t value = fallback;
+  check_hdf5(H5Aread(attribute.get(), H5T_NATIVE_INT64, &value), what);
+  return value;
+}
+
 std::vector<std::int64_t> read_int64_array_attribute(hid_t object_id, const std::string &name) {
   const std::string what = "cannot read " + describe(object_id, name);
   H5Handle attribute = H5Handle::attribute(H5Aopen(object_id, name.c_str(), H5P_DEFAULT), what);

@@ -21,6 +21,13 @@ std::string read_string_attribute(hid_t object_id, const std::string &name);
 void write_int64_array_attribute(hid_t object_id, const std::string &name,
                                  const std::vector<std::int64_t> &values);
 
+/// Creates a scalar int64 attribute, or overwrites it when it exists (a counter such as
+/// `complete_steps`, rewritten after every flush).
+void write_int64_attribute(hid_t object_id, const std::string &name, std::int64_t value);
+
+/// Reads a scalar integer attribute; `fallback` when there is none.
+std::int64_t read_int64_attribute(hid_t object_id, const std::string &name, std::int64_t fallback);
+
 /// Reads a 1-D integer attribute, converted to int64.
 std::vector<std::int64_t> read_int64_array_attribute(hid_t object_id, const std::string &name);
 

@@ -17,6 +17,8 @@ import h5py
 import numpy as np
 import yaml
 
+from results_file import complete_rows
+
 AXES = ("x", "y", "z")
 VELOCITY_AXES = ("u", "v", "w")
 
@@ -39,7 +41,7 @@ def read_probes(h5_path):
     with h5py.File(h5_path, "r") as f:
         if "probes" not in f:
             return []
-        time_s = f["time_s"][:]
+        time_s = f["time_s"][:complete_rows(f)]
         probes = []
         for name in probe_order(f):
             g = f["probes"][name]
@@ -59,7 +61,8 @@ def read_forces(h5_path):
         bodies = {}
         for name, g in (f["rigid_bodies"].items() if "rigid_bodies" in f else []):
             bodies[name] = (g["force_n"][:], g["torque_n_m"][:])
-        time_s, total = f["time_s"][:], f["total_force_on_fluid_n"][:]
+        rows = complete_rows(f)
+        time_s, total = f["time_s"][:rows], f["total_force_on_fluid_n"][:rows]
     n = min([len(time_s), len(total)] + [min(len(a), len(b)) for a, b in bodies.values()])
     return time_s[:n], total[:n], {k: (a[:n], b[:n]) for k, (a, b) in bodies.items()}
 

@@ -10,6 +10,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from results_file import complete_rows  # noqa: E402
 import numpy as np  # noqa: E402
 
 
@@ -29,7 +31,7 @@ def draw_structure(ax, positions, grid_shape, color, label):
 
 def main(h5_path, png_path):
     with h5py.File(h5_path, "r") as f:
-        time_s = f["time_s"][:]
+        time_s = f["time_s"][:complete_rows(f)]
         status = f.attrs["status"]
         names = list(f["structures"].keys())
         fig = plt.figure(figsize=(12, 5.5))

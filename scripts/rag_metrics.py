@@ -34,6 +34,8 @@ import types
 
 import numpy as np
 
+from results_file import complete_rows
+
 try:
     from scipy.spatial import cKDTree
 except ImportError as error:  # pragma: no cover - the Debian python3-scipy package
@@ -788,8 +790,9 @@ def read_structure(run_dir, structure=None):
         g = f["structures"][structure]
         if "position_m" not in g:
             raise MetricsError("%s: /structures/%s/position_m missing" % (path, structure))
-        t = f["time_s"][:]
-        x = g["position_m"][:]
+        rows = complete_rows(f)
+        t = f["time_s"][:rows]
+        x = g["position_m"][:rows]
         n = min(len(t), len(x))
         grid = [int(v) for v in g.attrs.get("grid_shape", [x.shape[1], 1])]
         stretch = g["max_stretch_ratio"][:n] if "max_stretch_ratio" in g else None
@@ -915,8 +918,9 @@ def read_loads(run_dir, geometry, config, impeller_index=None):
                 bodies = {b: None for b in f["rigid_bodies"]}
                 chosen = _choose_body(bodies, impeller_index)
                 if chosen:
-                    tq = f["rigid_bodies"][chosen]["torque_n_m"][:]
-                    tt = f["time_s"][:]
+                    rows = complete_rows(f)
+                    tq = f["rigid_bodies"][chosen]["torque_n_m"][:rows]
+                    tt = f["time_s"][:rows]
                     n = min(len(tt), len(tq))
                     torque = (tt[:n], tq[:n])
                     notes.append("torque: coupling.h5, body %s" % chosen)

@@ -45,7 +45,9 @@ ResultsReader::ResultsReader(const std::filesystem::path &h5_path)
     : h5_path_(h5_path), file_(open_file(h5_path_)) {}
 
 long ResultsReader::n_saved() const {
-  return static_cast<long>(dataset_shape(std::string("/") + paths::time_s).at(0));
+  // The rows the writer has marked complete (files without the marker: all of /time_s).
+  const auto rows = static_cast<std::int64_t>(dataset_shape(std::string("/") + paths::time_s).at(0));
+  return static_cast<long>(std::min(rows, hdf5::read_int64_attribute(file_.get(), "complete_steps", rows)));
 }
 
 std::vector<double> ResultsReader::time_s() const {

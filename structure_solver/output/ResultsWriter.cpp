@@ -103,6 +103,10 @@ void ResultsWriter::write_step(const StepRecord &record) {
     append_rows(record);
     flush();
     ++n_saved_;
+    // The marker after the rows are flushed: a reader trusts only the rows it counts (HDF5 does
+    // not sync, and a process killed during a flush has left an extended but unwritten row).
+    hdf5::write_int64_attribute(file_.get(), "complete_steps", n_saved_);
+    flush();
     xdmf_->append_step(record.time_s);
   } catch (const std::runtime_error &error) {
     fail(error);
@@ -124,6 +128,7 @@ void ResultsWriter::write_root_attributes(const RunMetadata &meta) {
   hdf5::write_string_attribute(file_.get(), "code_version", meta.code_version);
   hdf5::write_string_attribute(file_.get(), "status", "running");
   hdf5::write_string_attribute(file_.get(), "created_utc", utc_now_iso8601());
+  hdf5::write_int64_attribute(file_.get(), "complete_steps", 0);
 }
 
 void ResultsWriter::check_before_first_step(const std::string &what) const {

@@ -14,7 +14,9 @@
 //       position_m, velocity_m_per_s            [n_saved, 3] float64
 //
 // The file is flushed after every step and status change, so it stays readable when the
-// process dies; the length of /time_s is the number of complete steps.
+// process dies. The root attribute `complete_steps`, rewritten after each step's rows are
+// flushed, is the number of rows a reader may trust (ResultsReader, scripts/results_file.py):
+// a process killed during a flush may leave a row extended but not written.
 
 #include "hdf5/H5Handle.hpp"
 #include "structure_solver/output/ProbeSeries.hpp"

@@ -231,6 +231,51 @@ class DamagedCheckpoints(Fixture):
         self.assertIn("no complete checkpoint of this case", made.stdout)
 
 
+class KilledWriter(unittest.TestCase):
+    """A run killed (kill -9) while it writes structure.h5 every step, 20 times at seeded random
+    moments: the file opens, and the rows its `complete_steps` marker counts
+    (scripts/results_file.py) equal the uninterrupted run's, bit for bit."""
+
+    def test_the_marked_rows_of_a_killed_writer_are_complete(self):
+        from results_file import complete_rows
+        tmp = tempfile.mkdtemp(prefix="fsi_killed_writer_")
+        self.addCleanup(shutil.rmtree, tmp, True)
+        case = make_case(tmp)
+        path = os.path.join(case, "case.yaml")
+        with open(path) as f:
+            text = f.read()
+        text = re.sub(r"end_time_s: [0-9.e-]+", "end_time_s: 0.05", text, count=1)
+        text = text.replace("output_interval_s: 0.01", "output_interval_s: 5.0e-5")  # a row every step
+        with open(path, "w") as f:
+            f.write(text)
+        full = os.path.join(tmp, "full")
+        started = time.time()
+        run(case, full)
+        wall = time.time() - started
+        with h5py.File(os.path.join(full, "structure.h5"), "r") as f:
+            reference = f["structures/rag/position_m"][()]
+        draw = random.Random(6)
+        marked = []
+        for attempt in range(20):
+            out = os.path.join(tmp, "killed")
+            shutil.rmtree(out, ignore_errors=True)
+            child = subprocess.Popen([STRUCTURE, case, "-o", out], stdin=subprocess.DEVNULL,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            time.sleep(draw.uniform(0.2, 0.9) * wall)
+            child.kill()
+            child.wait()
+            h5 = os.path.join(out, "structure.h5")
+            if not os.path.exists(h5):
+                continue
+            with h5py.File(h5, "r") as f:
+                rows = complete_rows(f)
+                self.assertLessEqual(rows, len(f["time_s"]))
+                x = f["structures/rag/position_m"][:rows]
+            self.assertEqual(x.tobytes(), reference[:rows].tobytes(), "attempt %d, %d rows" % (attempt, rows))
+            marked.append(rows)
+        self.assertGreaterEqual(len([m for m in marked if m > 1]), 10, marked)
+
+
 COUPLED_FILES = ("structure.h5", "coupling.h5", "structure.xdmf")
 
 
