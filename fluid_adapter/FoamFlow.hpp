@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace fsi::fluid {
@@ -64,8 +65,12 @@ public:
   /// One PIMPLE time step of dt; writes fields at the case's write interval.
   virtual void advance(double dt_s) = 0;
   virtual double time_s() const = 0;
-  /// Writes the current fields now (end of run, or last good state).
+  /// Writes the current fields now (end of run, last good state, a checkpoint).
   virtual void write_now() = 0;
+  /// The name of the current time's folder ("0.07").
+  virtual std::string time_name() const = 0;
+  /// The OpenFOAM case folder it runs in.
+  virtual std::filesystem::path case_directory() const = 0;
 
   // MPI (OpenFOAM's Pstream): this rank, the number of ranks, and the collective operations
   // the immersed boundary needs. Serial runs: rank 0 of 1, and the operations do nothing.

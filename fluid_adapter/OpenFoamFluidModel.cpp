@@ -1,5 +1,8 @@
 #include "OpenFoamFluidModel.hpp"
 
+#include "FoamCheckpoint.hpp"
+#include "checkpoint/ArchiveFile.hpp"
+
 #include "fluid_adapter/ibm/ClosestCellLinear.hpp"
 #include "fluid_adapter/ibm/PeskinKernel.hpp"
 #include "proto/BodyPose.hpp"
@@ -59,6 +62,35 @@ std::string OpenFoamFluidModel::describe() const {
 }
 
 // ---- the master: requests of the coupler, broadcast to the other ranks ----------------------
+
+void OpenFoamFluidModel::set_checkpoints(std::filesystem::path root, long restart_step) {
+  checkpoints_root_ = std::move(root);
+  restart_step_ = restart_step;
+}
+
+std::pair<std::string, std::string> OpenFoamFluidModel::write_checkpoint(long n_completed) {
+  if (checkpoints_root_.empty() || flow_.n_ranks() > 1)
+    throw std::runtime_error("the OpenFOAM fluid checkpoints only serial runs (fluid.openfoam.mpi_ranks: 1) so far "
+                             "(docs/restart.md)");
+  flow_.write_now();
+  const auto folder = checkpoint::CheckpointSet::folder_of(checkpoints_root_, n_completed);
+  std::filesystem::create_directories(folder);
+  const auto part = FoamCheckpoint::write(flow_.case_directory(), flow_.time_name(), folder, n_completed);
+  return {part.name, part.checksum};
+}
+
+void OpenFoamFluidModel::resume(long step, const std::string &checksum) {
+  const auto part = checkpoint::CheckpointSet::folder_of(checkpoints_root_, step) / FoamCheckpoint::part_name;
+  if (step != restart_step_)
+    throw std::runtime_error("the coupler resumes from the checkpoint of step " + std::to_string(step) +
+                             ", this fluid started from " +
+                             (restart_step_ > 0 ? "that of step " + std::to_string(restart_step_)
+                                                : std::string("t = 0 (give it --restart)")) +
+                             ": every process of a restart must find the same newest checkpoint");
+  if (checkpoint::archive_checksum(part) != checksum)
+    throw std::runtime_error(part.string() + ": checksum " + checkpoint::archive_checksum(part) +
+                             ", the coupler's checkpoint says " + checksum);
+}
 
 void OpenFoamFluidModel::start(const proto::v2::Welcome &welcome) {
   message_.clear();

@@ -24,6 +24,7 @@
 #include "fluid_adapter/rigid/RigidBody.hpp"
 #include "proto/FluidModel.hpp"
 
+#include <filesystem>
 #include <memory>
 
 namespace fsi::fluid {
@@ -62,6 +63,15 @@ public:
   void advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
                proto::v2::AdvanceReply &reply) override;
   void finish(bool success) override;
+  /// Checkpoints (serial runs): the fields of the current time, written and copied into the set
+  /// of step n in `checkpoints_root_` (FoamCheckpoint).
+  std::pair<std::string, std::string> write_checkpoint(long n_completed) override;
+  /// The restart was prepared before OpenFOAM started (the case starts from the checkpoint's
+  /// time folder): the coupler's step and checksum must be that checkpoint's.
+  void resume(long step, const std::string &checksum) override;
+  /// Where checkpoints go (<output>/checkpoints), and the step whose fields this run started
+  /// from (0: not a restart). Without it the model does not checkpoint.
+  void set_checkpoints(std::filesystem::path root, long restart_step);
 
   /// Ranks other than the master: serve the master's broadcasts until it finishes.
   void follow();
@@ -99,6 +109,8 @@ private:
 
   OpenFoamConfig config_;
   FoamFlow &flow_;
+  std::filesystem::path checkpoints_root_;
+  long restart_step_ = 0;
   ibm::EulerianCells cells_;
   ibm::CellIndex index_;
   Eigen::VectorXd point_measures_;

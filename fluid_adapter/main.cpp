@@ -14,6 +14,7 @@
 // Exit codes: 0 success, 1 the run stopped (coupler lost, another participant failed, OpenFOAM
 // failed), 2 bad input, 130 interrupted.
 
+#include "FoamCheckpoint.hpp"
 #include "FlowAloneRun.hpp"
 #include "FoamFlow.hpp"
 #include "OpenFoamCase.hpp"
@@ -24,10 +25,12 @@
 #include "case/CaseOptions.hpp"
 #include "case/ModuleSetups.hpp"
 #include "case/ParticipantSettings.hpp"
+#include "checkpoint/CheckpointError.hpp"
 #include "common/Allocator.hpp"
 #include "common/ExitCodes.hpp"
 #include "common/GuardedMain.hpp"
 #include "common/Logging.hpp"
+#include "common/UserError.hpp"
 #include "proto/FluidParticipant.hpp"
 #include "proto/ZmqContext.hpp"
 
@@ -55,6 +58,7 @@ enum class Role { coupled, precursor, alone };
 struct Process {
   Role role = Role::coupled;
   bool under_mpirun = false;
+  bool restart = false; ///< --restart (a coupled run): start from the newest complete checkpoint
   int argc = 0;
   char **argv = nullptr;
 };
@@ -63,8 +67,35 @@ struct Process {
 /// coupled run needs one and it is not up to date, installs its fields, decomposes for MPI and
 /// then replaces itself by mpirun (n ranks > 1). Returns the OpenFOAM case folder.
 fs::path prepare_case(const Process &process, const CaseConfig &config, const std::string &case_dir,
-                      const fs::path &base, const Precursor &precursor) {
+                      const fs::path &base, const Precursor &precursor, long &restart_step) {
   const auto &foam = *config.fluid->openfoam;
+  if (process.restart && process.role == Role::coupled) {
+    // The case of the run it resumes, as it is (its mesh, the fields it wrote), started from the
+    // newest complete checkpoint's fields; the coupler must name the same checkpoint.
+    if (foam.mpi_ranks > 1)
+      throw fsi::common::UserError("--restart: the OpenFOAM fluid resumes only serial runs (fluid.openfoam.mpi_ranks: "
+                                   "1) so far (docs/restart.md)");
+    const fs::path foam_case = base / "openfoam";
+    if (!fs::exists(foam_case / "constant" / "polyMesh" / "owner"))
+      throw fsi::common::UserError("--restart: " + foam_case.string() + " has no mesh: there is no run to resume");
+    const fsi::checkpoint::CheckpointSet sets(base / "checkpoints", config.restart_fingerprint(),
+                                              config.run.checkpoint_keep);
+    std::vector<std::string> skipped;
+    const auto found = sets.newest(skipped);
+    for (const auto &why : skipped)
+      spdlog::warn("restart: skipped a checkpoint: {}", why);
+    if (!found)
+      throw fsi::common::UserError("--restart: no complete checkpoint of this case in " + sets.root().string());
+    try {
+      const std::string time = fsi::fluid::FoamCheckpoint::install(
+          found->folder, foam_case, found->step, found->checksum_of(fsi::fluid::FoamCheckpoint::part_name));
+      spdlog::info("restart: the fields of t = {} s (step {}) from {}", time, found->step, found->folder.string());
+    } catch (const fsi::checkpoint::CheckpointError &e) {
+      throw fsi::common::UserError(std::string("--restart: ") + e.what());
+    }
+    restart_step = found->step;
+    return foam_case;
+  }
   const fs::path foam_case = fsi::fluid::prepare_openfoam_case(case_dir, foam.case_directory, base);
   // A warm start: the fields of another run mapped onto this mesh. With a precursor they start the
   // precursor (a finer mesh then spins up from a coarser run's developed flow, not from rest),
@@ -185,7 +216,7 @@ int main(int argc, char **argv) {
     const Process process{precursor_only           ? Role::precursor
                           : config.is_flow_alone() ? Role::alone
                                                    : Role::coupled,
-                          mpi_rank, argc, argv};
+                          mpi_rank, options.restart, argc, argv};
     const std::string &case_dir = options.case_dir;
     if (!config.fluid || !config.fluid->openfoam) {
       spdlog::error("case {} has no `fluid.openfoam` section: there is no OpenFOAM fluid to run", case_dir);
@@ -213,13 +244,17 @@ int main(int argc, char **argv) {
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
-    const fs::path foam_case =
-        process.under_mpirun ? base / "openfoam" : prepare_case(process, config, case_dir, base, precursor);
+    long restart_step = 0;
+    const fs::path foam_case = process.under_mpirun
+                                   ? base / "openfoam"
+                                   : prepare_case(process, config, case_dir, base, precursor, restart_step);
     const bool precursor_run = process.role == Role::precursor;
     const double dt = precursor_run ? precursor.time_step_s() : config.run.time_step_s;
     const double end_time = precursor_run ? precursor.end_time_s() : config.run.end_time_s;
     auto flow = fsi::fluid::FoamFlow::create({fs::absolute(foam_case), dt, end_time, process.under_mpirun});
     fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, bodies_for(process.role, config));
+    if (process.role == Role::coupled)
+      model.set_checkpoints(out / "checkpoints", restart_step);
     if (process.role == Role::alone)
       return run_alone(process, model, *flow, config, out);
     return precursor_run ? run_precursor(process, model, *flow, precursor, config.run.time_step_s)

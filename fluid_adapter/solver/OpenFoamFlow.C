@@ -101,6 +101,8 @@ public:
   void advance(double dt_s) override;
   double time_s() const override { return runTime_->value(); }
   void write_now() override { runTime_->writeNow(); }
+  std::string time_name() const override { return runTime_->timeName(); }
+  std::filesystem::path case_directory() const override { return case_directory_; }
   int rank() const override { return Foam::Pstream::myProcNo(); }
   int n_ranks() const override { return Foam::Pstream::nProcs(); }
   void broadcast_from_master(std::vector<double> &data) const override;
@@ -123,6 +125,7 @@ private:
   // returns, it would exit with status 0 before the error is logged or the exit code returned.
   // So it is never destroyed (a raw pointer, deliberately leaked); FoamFlow::end_process ends MPI.
   Foam::argList *args_ = nullptr;
+  std::filesystem::path case_directory_;
   std::unique_ptr<Foam::Time> runTime_;
   std::unique_ptr<Foam::fvMesh> mesh_;
   std::unique_ptr<Foam::pimpleControl> pimple_;
@@ -158,6 +161,7 @@ private:
 
 OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   using namespace Foam;
+  case_directory_ = settings.case_directory;
   argument_storage_ = {"fsi-openfoam-fluid", "-case", settings.case_directory.string()};
   if (settings.parallel)
     argument_storage_.push_back("-parallel");

@@ -353,13 +353,134 @@ class CoupledPrescribedFlow(unittest.TestCase):
             resumed += 1
         self.assertGreaterEqual(resumed, 2, "the kills fell outside the run: the test did not test")
 
-    def test_the_openfoam_fluid_refuses_a_restart_by_name(self):
-        made = subprocess.run([COUPLER, os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), "-o",
-                               os.path.join(self.tmp, "openfoam"), "--restart"],
+    def test_a_restart_of_an_openfoam_fluid_on_several_ranks_is_refused_by_name(self):
+        case = os.path.join(self.tmp, "openfoam_ranks")
+        shutil.copytree(os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), case,
+                        ignore=shutil.ignore_patterns("output"))
+        path = os.path.join(case, "case.yaml")
+        with open(path) as f:
+            text = f.read()
+        with open(path, "w") as f:
+            f.write(re.sub(r"(\n  openfoam:\n)", r"\1    mpi_ranks: 2\n", text, count=1))
+        made = subprocess.run([COUPLER, case, "-o", os.path.join(self.tmp, "openfoam"), "--restart"],
                               stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                               timeout=60)
         self.assertEqual(made.returncode, 2, made.stdout[-2000:])
-        self.assertIn("the OpenFOAM fluid does not resume from checkpoints yet", made.stdout)
+        self.assertIn("the OpenFOAM fluid resumes only serial runs", made.stdout)
+
+
+def make_openfoam_case(folder):
+    """sheet-in-openfoam-channel (coupler, structure, OpenFOAM fluid), 0.02 s (400 steps of
+    5e-5 s), the backward time scheme (its restart needs U_0 and phi_0), a checkpoint every
+    0.005 s (100 steps)."""
+    case = os.path.join(folder, "openfoam_case")
+    shutil.copytree(os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), case,
+                    ignore=shutil.ignore_patterns("output", "*.png", "*.gif"))
+    path = os.path.join(case, "case.yaml")
+    with open(path) as f:
+        text = f.read()
+    with open(path, "w") as f:
+        f.write(text.replace("output_interval_s: 0.005", "output_interval_s: 0.005\n  checkpoint_interval_s: 0.005"))
+    schemes = os.path.join(case, "openfoam", "system", "fvSchemes")
+    with open(schemes) as f:
+        text = f.read()
+    assert "default Euler;" in text
+    with open(schemes, "w") as f:
+        f.write(text.replace("default Euler;", "default backward;", 1))
+    return case
+
+
+def drop_old_time_fields(set_folder):
+    """The negative control of fact 1 (../shared/docs/reliability-tests.md): the fluid's part
+    without U_0 and phi_0, its file list and the manifest's checksum made to match."""
+    part = os.path.join(set_folder, "fluid.ckpt")
+    entries = state_archive.read(part)
+    kept = []
+    for i in range(entries["n_files"]):
+        name, digest = entries.pop("files/%d/name" % i), entries.pop("files/%d/hash" % i)
+        if os.path.basename(name) in ("U_0", "phi_0"):
+            os.remove(os.path.join(set_folder, "fluid", entries["time_name"], name))
+        else:
+            kept.append((name, digest))
+    for i, (name, digest) in enumerate(kept):
+        entries["files/%d/name" % i], entries["files/%d/hash" % i] = name, digest
+    entries["n_files"] = len(kept)
+    state_archive.write(part, entries)
+    manifest_path = os.path.join(set_folder, "manifest.ckpt")
+    manifest = state_archive.read(manifest_path)
+    with open(part, "rb") as f:
+        checksum = "%016x" % int.from_bytes(f.read()[-8:], "little")
+    for i in range(manifest["n_parts"]):
+        if manifest["parts/%d/name" % i] == "fluid.ckpt":
+            manifest["parts/%d/checksum" % i] = checksum
+    state_archive.write(manifest_path, manifest)
+    return len(kept)
+
+
+class CoupledOpenFoam(unittest.TestCase):
+    """The OpenFOAM fluid's part: its binary fields of the checkpoint's time with the old-time
+    fields and uniform/time; a restart starts OpenFOAM from them. Bitwise, as a static mesh
+    with binary fields allows (fact 1 of ../shared/docs/reliability-tests.md)."""
+
+    @classmethod
+    def setUpClass(cls):
+        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
+            raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
+        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_openfoam_")
+        cls.case = make_openfoam_case(cls.tmp)
+        cls.full = os.path.join(cls.tmp, "full")
+        started = time.time()
+        made = launch(cls.case, cls.full)
+        cls.full_wall_s = time.time() - started
+        if made.returncode != 0:
+            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def fields_equal(self, out):
+        for field in ("U", "p", "phi"):
+            with open(os.path.join(self.full, "openfoam", "0.02", field), "rb") as a, \
+                    open(os.path.join(out, "openfoam", "0.02", field), "rb") as b:
+                if a.read() != b.read():
+                    return False
+        return True
+
+    def test_an_openfoam_run_stopped_and_restarted_equals_the_uninterrupted_run(self):
+        out = os.path.join(self.tmp, "end_time")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.0075").returncode, 0)
+        fields = os.listdir(os.path.join(out, "checkpoints", "step-000000150", "fluid", "0.0075"))
+        self.assertTrue({"U", "U_0", "p", "phi", "phi_0", "uniform"} <= set(fields), fields)
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        with open(os.path.join(out, "fluid.log")) as f:
+            self.assertIn("restart: the fields of t = 0.0075 s (step 150)", f.read())
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+        self.assertTrue(self.fields_equal(out))
+
+    def test_a_checkpoint_without_the_old_time_fields_resumes_but_does_not_equal_the_run(self):
+        out = os.path.join(self.tmp, "no_old_time")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.0075").returncode, 0)
+        drop_old_time_fields(os.path.join(out, "checkpoints", "step-000000150"))
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertNotEqual(differences(self.full, out, COUPLED_FILES), [])
+        self.assertFalse(self.fields_equal(out))
+
+    def test_an_openfoam_run_with_the_fluid_killed_resumes_from_its_last_complete_checkpoint(self):
+        draw = random.Random(77)
+        out = os.path.join(self.tmp, "kill-fluid")
+        child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
+                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        time.sleep(draw.uniform(0.55, 0.8) * self.full_wall_s)
+        subprocess.run(["pkill", "-9", "-f", "fsi-openfoam-fluid .*-o %s" % out])
+        self.assertNotEqual(child.wait(timeout=60), 0)
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step", made.stdout)
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+        self.assertTrue(self.fields_equal(out))
 
 
 if __name__ == "__main__":
