@@ -9,6 +9,8 @@
 #   ./fsi run --participant coupler|structure|fluid CASE_DIR
 #                             start only that process (several machines; see docs/cluster.md)
 #   ./fsi check CASE_DIR      validate a case without running it
+#   ./fsi keys [--force] CASE_DIR  make the CURVE keys of a case with coupling.security: curve
+#                             (coupling.keys_dir; kept when present; docs/security.md)
 #   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
 #   ./fsi bench [structure|transport|coupling|fluid|pump|pump_rag|mpi_coupling]  run a benchmark (fluid, pump: vs stock pimpleFoam;
@@ -222,6 +224,9 @@ case "${1:-help}" in
   rag-ensemble)
     shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/rag_ensemble.py" --bin-dir "$BUILD/bin" "$@" ;;
-  help|-h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, check, test, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
+  keys)
+    shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
+    prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
+  help|-h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, check, keys, test, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
 esac

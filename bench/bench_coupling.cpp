@@ -259,7 +259,7 @@ CoupledResult run_coupled(const fs::path &dir, const Size &size) {
   int exit_code = -1;
   std::thread coupler([&] {
     try {
-      coupler::CouplingRun run(case_config::coupling_setup(case_config::CaseConfig::load(dir)), output, "tcp://127.0.0.1:0");
+      coupler::CouplingRun run(case_config::coupling_setup(case_config::CaseConfig::load(dir), dir), output, "tcp://127.0.0.1:0");
       exit_code = run.run();
     } catch (const std::exception &e) {
       std::cerr << "bench coupler: " << e.what() << "\n";

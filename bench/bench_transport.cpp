@@ -11,8 +11,12 @@
 // shared by both ends: a little pessimistic next to separate processes).
 // Time column: the Envelope round trip. Counters: envelope_us, raw_us, ratio (target: <= 3),
 // MB_per_trip (both directions).
+// BM_CurveCost: the same Envelope round trip over a plaintext pair of channels and over a pair
+// with CURVE (encrypted and authenticated, as coupling.security: curve), alternating within
+// each iteration. Counters: plain_us, curve_us, curve_ratio.
 
 #include "proto/CouplerChannel.hpp"
+#include "proto/CurveKeyFolder.hpp"
 #include "proto/Message.hpp"
 #include "proto/ParticipantChannel.hpp"
 #include "proto/ZmqContext.hpp"
@@ -44,8 +48,8 @@ struct StepArrays {
 /// Participant: answers every FluidAdvance with an AdvanceReply of the arrays, until Shutdown.
 class EnvelopeEcho {
 public:
-  EnvelopeEcho(const Endpoint &coupler, Eigen::Index n_points, bool reuse)
-      : channel_(coupler, v2::ROLE_FLUID, "bench"), arrays_(n_points), n_points_(n_points),
+  EnvelopeEcho(const Endpoint &coupler, Eigen::Index n_points, bool reuse, const ChannelOptions &options)
+      : channel_(coupler, v2::ROLE_FLUID, "bench", options), arrays_(n_points), n_points_(n_points),
         reuse_(reuse) {}
 
   void run() {
@@ -132,11 +136,12 @@ void run_raw_echo(const std::string &endpoint, Eigen::Index n_points) {
 /// Coupler side of both round trips, with the participants in their threads.
 class RoundTrips {
 public:
-  RoundTrips(Eigen::Index n_points, bool reuse)
+  RoundTrips(Eigen::Index n_points, bool reuse, const ChannelOptions &coupler_options = {},
+             const ChannelOptions &participant_options = {})
       : n_points_(n_points), reuse_(reuse), out_(n_points), in_(n_points),
-        coupler_(Endpoint::parse("tcp://127.0.0.1:0")),
+        coupler_(Endpoint::parse("tcp://127.0.0.1:0"), coupler_options),
         router_(raw_socket(zmq::socket_type::router)),
-        echo_(std::make_unique<EnvelopeEcho>(coupler_.endpoint(), n_points, reuse)) {
+        echo_(std::make_unique<EnvelopeEcho>(coupler_.endpoint(), n_points, reuse, participant_options)) {
     router_.bind("tcp://127.0.0.1:0");
     envelope_echo_ = std::thread([this] { echo_->run(); });
     raw_echo_ = std::thread(run_raw_echo, router_.get(zmq::sockopt::last_endpoint), n_points);
@@ -252,6 +257,33 @@ void BM_RoundTrip(benchmark::State &state) {
   state.counters["ratio"] = envelope_s / raw_s;
   state.counters["MB_per_trip"] = 2e-6 * static_cast<double>(trips.bytes_per_message());
 }
+
+void BM_CurveCost(benchmark::State &state) {
+  const CurveKeyPair server = CurveKeyPair::generate(), client = CurveKeyPair::generate();
+  ChannelOptions coupler_options, participant_options;
+  coupler_options.curve = CurveSettings{server.public_key, server.secret_key, "", {{"fluid", client.public_key}}};
+  participant_options.curve = CurveSettings{client.public_key, client.secret_key, server.public_key, {}};
+  RoundTrips plain(state.range(0), true);
+  RoundTrips curve(state.range(0), true, coupler_options, participant_options);
+  double plain_s = 0.0, curve_s = 0.0;
+  std::uint64_t step = 0;
+  for (auto _ : state) {
+    ++step;
+    const double curve_trip_s = seconds_of([&] { curve.envelope_round_trip(step); });
+    plain_s += seconds_of([&] { plain.envelope_round_trip(step); });
+    curve_s += curve_trip_s;
+    state.SetIterationTime(curve_trip_s);
+  }
+  if (!plain.arrays_came_back() || !curve.arrays_came_back())
+    state.SkipWithError("the arrays did not come back intact");
+  const double n = static_cast<double>(state.iterations());
+  state.counters["plain_us"] = 1e6 * plain_s / n;
+  state.counters["curve_us"] = 1e6 * curve_s / n;
+  state.counters["curve_ratio"] = curve_s / plain_s;
+  state.counters["MB_per_trip"] = 2e-6 * static_cast<double>(curve.bytes_per_message());
+}
+
+BENCHMARK(BM_CurveCost)->ArgName("points")->Arg(100)->Arg(10000)->Arg(100000)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_RoundTrip)
     ->ArgNames({"points", "reuse"})

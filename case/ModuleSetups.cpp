@@ -1,5 +1,6 @@
 #include "ModuleSetups.hpp"
 
+#include "ChannelSettings.hpp"
 #include "common/ConfigEmitter.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -27,10 +28,11 @@ structure::StructureSetup structure_setup(CaseConfig config) {
   return setup;
 }
 
-coupler::CouplingSetup coupling_setup(CaseConfig config) {
+coupler::CouplingSetup coupling_setup(CaseConfig config, const std::filesystem::path &case_dir) {
   if (!config.coupling)
     throw std::logic_error("coupling_setup needs a case with a coupling section");
   coupler::CouplingSetup setup;
+  setup.channel = channel_options(config, case_dir, "coupler");
   setup.case_yaml = effective_yaml(config);
   setup.case_fingerprint = config.fingerprint();
   setup.restart_fingerprint = config.restart_fingerprint();

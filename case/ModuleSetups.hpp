@@ -17,7 +17,7 @@ std::string effective_yaml(const CaseConfig &config);
 structure::StructureSetup structure_setup(CaseConfig config);
 
 /// The coupler's sections; the case must have a `coupling` section.
-coupler::CouplingSetup coupling_setup(CaseConfig config);
+coupler::CouplingSetup coupling_setup(CaseConfig config, const std::filesystem::path &case_dir);
 
 /// The precursor's inputs (no openfoam section: none wanted).
 fluid::PrecursorInputs precursor_inputs(const CaseConfig &config);

@@ -1,13 +1,18 @@
 #include "ParticipantSettings.hpp"
 
+#include "ChannelSettings.hpp"
+
 #include "proto/TransportError.hpp"
 
 #include <chrono>
 
 namespace fsi::case_config {
 
-proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override) {
+proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override,
+                                            const std::filesystem::path &case_dir, proto::Role role) {
   proto::SessionSettings settings;
+  settings.role = role;
+  settings.options = channel_options(config, case_dir, role == proto::v2::ROLE_FLUID ? "fluid" : "structure");
   settings.coupler = proto::Endpoint::parse(endpoint_override.empty() ? config.coupling->endpoint : endpoint_override);
   try {
     settings.coupler.check_connectable();

@@ -4,13 +4,16 @@
 #include "CaseConfig.hpp"
 #include "proto/ParticipantSession.hpp"
 
+#include <filesystem>
 #include <string>
 
 namespace fsi::case_config {
 
-/// The coupler endpoint (endpoint_override, else coupling.endpoint), the case fingerprint and
-/// the handshake timeout of a coupled case. Throws proto::TransportError for an endpoint that
-/// cannot be connected to; for one from the case file the message says what to do about port 0.
-proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override);
+/// The coupler endpoint (endpoint_override, else coupling.endpoint), the case fingerprint, the
+/// handshake timeout and the channel options (ChannelSettings.hpp) of participant `role` of a
+/// coupled case. Throws proto::TransportError for an endpoint that cannot be connected to (for
+/// one from the case file the message says what to do about port 0), or a missing key.
+proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override,
+                                            const std::filesystem::path &case_dir, proto::Role role);
 
 } // namespace fsi::case_config

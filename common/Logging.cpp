@@ -17,6 +17,9 @@ void add_log_file(const std::filesystem::path &file) {
   auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string(), true);
   sink->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%n] [%l] %v");
   spdlog::default_logger()->sinks().push_back(sink);
+  // A log file is for following a run as it goes (tail -f) and for reading after a kill:
+  // each line of level info and above is written out at once (debug lines are buffered).
+  spdlog::default_logger()->flush_on(spdlog::level::info);
 }
 
 } // namespace fsi::common

@@ -127,16 +127,17 @@ void CouplingRun::open() {
   common::add_log_file(output_dir_ / "coupler.log");
   const auto &c = config_.coupling;
   const auto endpoint = proto::Endpoint::parse(endpoint_override_.empty() ? c.endpoint : endpoint_override_);
-  proto::ChannelOptions options;
-  options.allow_remote = c.allow_remote;
   try {
-    channel_ = std::make_unique<proto::CouplerChannel>(endpoint, options);
+    channel_ = std::make_unique<proto::CouplerChannel>(endpoint, config_.channel);
   } catch (const proto::TransportError &e) {
     throw HandshakeRefused(std::string("cannot listen: ") + e.what());
   }
   write_endpoint_file(channel_->endpoint().str());
-  spdlog::info("coupler listening on {} (protocol version {}, case fingerprint {})", channel_->endpoint().str(),
-               proto::current_protocol_version, config_.case_fingerprint);
+  spdlog::info("coupler listening on {} (protocol version {}, case fingerprint {}, {})", channel_->endpoint().str(),
+               proto::current_protocol_version, config_.case_fingerprint,
+               config_.channel.curve ? "CURVE: encrypted, admitting " + std::to_string(config_.channel.curve->admitted.size()) +
+                                           " participant keys"
+                                     : std::string("plaintext"));
   participants_ = std::make_unique<ParticipantTable>(
       *channel_, Liveness{to_ms(c.heartbeat_interval_s), to_ms(c.timeout_s), to_ms(c.step_timeout_s)}, &stop_signal());
   checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_fingerprint,
@@ -182,7 +183,12 @@ void CouplingRun::handshake() {
       throw ParticipantFailed(missing, "no " + missing + " participant joined within coupling.handshake_timeout_s = " +
                                            std::to_string(config_.coupling.handshake_timeout_s) + " s at " +
                                            channel_->endpoint().str() + "; start it with ./fsi run --participant " +
-                                           (structure_id_.empty() ? "structure" : "fluid") + " CASE_DIR");
+                                           (structure_id_.empty() ? "structure" : "fluid") + " CASE_DIR" +
+                                           (channel_->dropped_unauthenticated() > 0
+                                                ? " (" + std::to_string(channel_->dropped_unauthenticated()) +
+                                                      " messages were dropped as not authenticated: check that "
+                                                      "each host has the keys of this case, docs/security.md)"
+                                                : std::string()));
     }
     if (incoming->envelope().has_hello())
       accept_hello(*incoming);

@@ -9,6 +9,7 @@
 #include "common/RunConfig.hpp"
 #include "common/Types.hpp"
 #include "geometry/SurfaceConfig.hpp"
+#include "proto/ChannelOptions.hpp"
 
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@ namespace fsi::coupler {
 struct CouplingSetup {
   common::RunConfig run;
   CouplingConfig coupling;
+  proto::ChannelOptions channel; ///< the message size limit and CURVE keys (case/ChannelSettings.hpp)
   std::vector<geometry::SurfaceConfig> rigid_surfaces; ///< collisions.surfaces, in case order
   Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
   std::size_t n_structures = 0;

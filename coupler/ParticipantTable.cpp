@@ -14,6 +14,12 @@ using std::chrono::milliseconds;
 
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
+bool is_power_of_ten(long n) {
+  while (n >= 10 && n % 10 == 0)
+    n /= 10;
+  return n == 1;
+}
+
 bool looks_like_participant(const std::string &peer) {
   return peer.rfind("fluid:", 0) == 0 || peer.rfind("structure:", 0) == 0;
 }
@@ -78,7 +84,8 @@ bool ParticipantTable::absorb(const proto::Incoming &incoming, std::uint64_t ste
       answer_error(peer, message, step);
       throw HandshakeRefused(message);
     }
-    spdlog::warn("ignored a malformed message from {}: {}", proto::printable(peer), bad.reason);
+    if (++ignored_ <= ignored_logged_in_full)
+      spdlog::warn("ignored a malformed message from {}: {}", proto::printable(peer), bad.reason);
     answer_error(peer, "the coupler could not read your message (" + bad.reason + ")", step);
     return true;
   }
@@ -92,10 +99,15 @@ bool ParticipantTable::absorb(const proto::Incoming &incoming, std::uint64_t ste
   if (known && envelope.has_error())
     throw ParticipantFailed(owner, "participant " + owner + " reported an error at step " +
                                        std::to_string(envelope.step()) + ": " + envelope.error().message());
-  if (known || envelope.has_hello())
+  if (known || (envelope.has_hello() && admission_open_))
     return false;
-  spdlog::warn("ignored {} from {}, which has not joined the run", proto::body_name(envelope), proto::printable(peer));
-  answer_error(peer, "you have not joined this run: send Hello first", step);
+  const bool late = envelope.has_hello();
+  if (++ignored_ <= ignored_logged_in_full)
+    spdlog::warn("ignored {} from {}, which {}", proto::body_name(envelope), proto::printable(peer),
+                 late ? "came after the run started (participants join only at the start)" : "has not joined the run");
+  else if (is_power_of_ten(ignored_))
+    spdlog::warn("ignored {} messages from processes outside the run so far", ignored_);
+  answer_error(peer, late ? "the run has started: participants join only at the start" : "you have not joined this run: send Hello first", step);
   return true;
 }
 
@@ -130,7 +142,7 @@ void ParticipantTable::answer_error(const std::string &peer, const std::string &
     proto::Envelope error = proto::make_envelope(proto::v2::ROLE_COUPLER, step);
     error.mutable_error()->set_message(message);
     error.mutable_error()->set_fatal(false);
-    channel_.send(peer, error);
+    channel_.try_send(peer, error); // never waits: a peer that does not read gets nothing
   } catch (...) {
     // The peer is gone; nothing to answer.
   }

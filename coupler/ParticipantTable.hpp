@@ -71,6 +71,10 @@ private:
   proto::Incoming incoming_;
   double wait_s_ = 0.0;
   bool admission_open_ = true;
+  /// Messages ignored (malformed, or from processes outside the run): logged in full up to
+  /// ignored_logged_in_full, then counted, so that a flood cannot flood the log too.
+  long ignored_ = 0;
+  static constexpr long ignored_logged_in_full = 10;
 };
 
 } // namespace fsi::coupler

@@ -159,7 +159,8 @@ int run_alone(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi
 
 /// The coupled participant: rank 0 talks to the coupler, the other ranks follow it.
 int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamFlow &flow,
-                const CaseConfig &config, const fs::path &out, const std::string &endpoint) {
+                const CaseConfig &config, const std::string &case_dir, const fs::path &out,
+                const std::string &endpoint) {
   if (flow.rank() != 0) {
     spdlog::set_level(spdlog::level::warn);
     model.follow();
@@ -167,7 +168,7 @@ int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, f
   }
   if (process.under_mpirun)
     fsi::common::add_log_file(out / "fluid.log");
-  fsi::proto::FluidParticipant participant(model, fsi::case_config::participant_settings(config, endpoint));
+  fsi::proto::FluidParticipant participant(model, fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_FLUID));
   return participant.run();
 }
 
@@ -258,6 +259,6 @@ int main(int argc, char **argv) {
     if (process.role == Role::alone)
       return run_alone(process, model, *flow, config, out);
     return precursor_run ? run_precursor(process, model, *flow, precursor, config.run.time_step_s)
-                         : run_coupled(process, model, *flow, config, out, endpoint);
+                         : run_coupled(process, model, *flow, config, case_dir, out, endpoint);
   }));
 }

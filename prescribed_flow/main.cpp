@@ -52,7 +52,7 @@ int main(int argc, char **argv) {
     const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     fsi::common::add_log_file(out / "fluid.log");
-    auto settings = fsi::case_config::participant_settings(config, endpoint);
+    auto settings = fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_FLUID);
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed),

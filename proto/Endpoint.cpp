@@ -180,15 +180,16 @@ bool Endpoint::is_loopback() const {
   return is_ipv6_ ? is_ipv6_loopback(host_) : is_ipv4_loopback(host_) || is_localhost(host_);
 }
 
-void Endpoint::check_bindable(bool allow_remote) const {
-  if (allow_remote || is_loopback()) {
+void Endpoint::check_bindable(bool remote_allowed) const {
+  if (remote_allowed || is_loopback()) {
     return;
   }
   throw TransportError(
       "refusing to bind " + text_ +
-      ": other machines could connect to it and the coupling protocol is neither authenticated "
-      "nor encrypted; bind a loopback address (127.0.0.1, [::1] or localhost), ipc:// or "
-      "inproc://, or set allow_remote to true in the case file if remote participants are meant");
+      ": other machines could connect to it, and without CURVE the coupling is neither authenticated "
+      "nor encrypted; set coupling.security: curve (keys from ./fsi keys CASE), or bind a loopback address "
+      "(127.0.0.1, [::1] or localhost), ipc:// or inproc://, or, on a network you trust entirely, set "
+      "coupling.insecure_remote: true");
 }
 
 void Endpoint::check_connectable() const {

@@ -37,8 +37,8 @@ public:
   bool is_loopback() const;
 
   /// Throws TransportError unless the coupler may bind here: a tcp endpoint that is not
-  /// loopback lets other machines in, so it needs allow_remote (set in the case file).
-  void check_bindable(bool allow_remote) const;
+  /// loopback lets other machines in, so it needs CURVE or an explicit insecure_remote.
+  void check_bindable(bool remote_allowed) const;
   /// Throws TransportError for what can only be bound: tcp port 0 or host *.
   void check_connectable() const;
 

@@ -35,6 +35,8 @@ ParticipantChannel::ParticipantChannel(const Endpoint &coupler, Role role,
   socket_ = std::make_unique<Socket>(zmq::socket_type::dealer, options,
                                      "participant " + printable(routing_id_));
   socket_->set_routing_id(routing_id_);
+  if (options.curve)
+    socket_->make_curve_client(*options.curve);
   socket_->connect(coupler);
 }
 

@@ -51,6 +51,18 @@ void Socket::apply(const ChannelOptions &options) {
   socket_.set(zmq::sockopt::tcp_keepalive_cnt, options.tcp_keepalive_probes);
 }
 
+void Socket::make_curve_server(const CurveSettings &curve, const std::string &zap_domain) {
+  socket_.set(zmq::sockopt::curve_server, 1);
+  socket_.set(zmq::sockopt::curve_secretkey, curve.secret_key);
+  socket_.set(zmq::sockopt::zap_domain, zap_domain);
+}
+
+void Socket::make_curve_client(const CurveSettings &curve) {
+  socket_.set(zmq::sockopt::curve_serverkey, curve.server_public_key);
+  socket_.set(zmq::sockopt::curve_publickey, curve.public_key);
+  socket_.set(zmq::sockopt::curve_secretkey, curve.secret_key);
+}
+
 void Socket::set_router_mandatory() { socket_.set(zmq::sockopt::router_mandatory, 1); }
 
 void Socket::set_routing_id(const std::string &routing_id) {
@@ -110,10 +122,12 @@ std::vector<zmq::message_t> Socket::receive_frames() {
   return frames;
 }
 
-Socket::SendStatus Socket::send_frames(std::vector<zmq::message_t> &frames) {
+Socket::SendStatus Socket::send_frames(std::vector<zmq::message_t> &frames, bool wait) {
   try {
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      const auto flags = i + 1 < frames.size() ? zmq::send_flags::sndmore : zmq::send_flags::none;
+      auto flags = i + 1 < frames.size() ? zmq::send_flags::sndmore : zmq::send_flags::none;
+      if (!wait) // later frames of a message never block once the first is queued
+        flags = flags | zmq::send_flags::dontwait;
       if (!socket_.send(frames[i], flags)) {
         return SendStatus::queue_full;
       }

@@ -26,6 +26,12 @@ public:
   /// DEALER: the id the ROUTER on the other side sees; set before connect().
   void set_routing_id(const std::string &routing_id);
 
+  /// CURVE, set before bind/connect: the coupler's ROUTER as server (its connections are
+  /// authenticated by the ZAP handler of domain zap_domain), a participant's DEALER as client
+  /// of the server key.
+  void make_curve_server(const CurveSettings &curve, const std::string &zap_domain);
+  void make_curve_client(const CurveSettings &curve);
+
   /// Binds and returns the endpoint actually bound (tcp port 0 replaced by the chosen port).
   Endpoint bind(const Endpoint &endpoint);
   void connect(const Endpoint &endpoint);
@@ -35,8 +41,9 @@ public:
   bool wait_readable(std::chrono::milliseconds timeout);
   /// All frames of the next message, empty if none is waiting. Never splits a message.
   std::vector<zmq::message_t> receive_frames();
-  /// Sends the frames as one message, waiting up to the send timeout for queue room.
-  SendStatus send_frames(std::vector<zmq::message_t> &frames);
+  /// Sends the frames as one message, waiting up to the send timeout for queue room (or, with
+  /// wait false, not at all: queue_full at once).
+  SendStatus send_frames(std::vector<zmq::message_t> &frames, bool wait = true);
 
 private:
   void apply(const ChannelOptions &options);

@@ -110,8 +110,9 @@ def parse_args(argv):
 # The plan
 
 class Plan:
-    def __init__(self, output_dir, processes, precursors=()):
+    def __init__(self, output_dir, processes, precursors=(), keys_dir=None):
         self.output_dir = output_dir
+        self.keys_dir = keys_dir  # coupling.security: curve: where the keys are
         self.processes = processes  # [(name, executable path)] in the coupler's order
         self.precursors = list(precursors)  # participants with a run of their own to do first
 
@@ -175,7 +176,7 @@ def read_plan(args):
         sys.stderr.flush()
         code = result.returncode if result.returncode > 0 else 128 - result.returncode
         raise UserError("", code)  # the coupler has said why
-    output_dir, processes, precursors = None, [], []
+    output_dir, processes, precursors, keys_dir = None, [], [], None
     for line in result.stdout.decode("utf-8", "replace").splitlines():
         words = line.split(None, 2) if line.strip() else []
         if not words:
@@ -189,10 +190,26 @@ def read_plan(args):
             processes.append((words[1], executable_in(args.bin_dir, words[2].strip())))
         elif words[0] == "precursor" and len(words) >= 2:
             precursors.append(words[1])
+        elif words[0] == "keys" and len(words) >= 2:
+            keys_dir = line.split(None, 1)[1].strip()
         # other lines are for other readers: ignored
     if output_dir is None or not processes:
         raise UserError("'%s --plan' named no output folder or no process" % coupler, EXIT_RUN_FAILED)
-    return Plan(output_dir, processes, precursors)
+    return Plan(output_dir, processes, precursors, keys_dir)
+
+
+def make_missing_keys(args, plan):
+    """A run with CURVE whose processes all start here: its keys are made if there are none
+    (a run over several hosts needs the same keys on each, so there they are made by hand:
+    ./fsi keys CASE, docs/security.md)."""
+    if plan.keys_dir is None or os.path.exists(os.path.join(plan.keys_dir, "coupler.key_secret")):
+        return
+    made = subprocess.run([executable_in(args.bin_dir, "fsi-coupler"), "--make-keys", args.case_dir],
+                          stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    text = made.stdout.decode("utf-8", "replace")
+    if made.returncode != 0:
+        raise UserError("making the CURVE keys failed:\n" + text, made.returncode)
+    say(text.splitlines()[0] if text else "made CURVE keys in " + plan.keys_dir)
 
 
 def run_precursors(args, plan):
@@ -518,6 +535,7 @@ def main(argv):
             return run_flow_alone(command, plan.output_dir, args.verbose)
         exec_process(command)
 
+    make_missing_keys(args, plan)
     run_precursors(args, plan)
     return CoupledRun(args, plan).run()
 

@@ -101,7 +101,7 @@ int main(int argc, char **argv) {
       spdlog::error("--coupled: case {} has no `fluid` section, so there is nothing to couple to", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    auto settings = fsi::case_config::participant_settings(config, endpoint);
+    auto settings = fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_STRUCTURE);
     auto setup = fsi::case_config::structure_setup(std::move(config));
     setup.rigid_motions_from_coupler = true; // the coupler evaluates the prescribed motions
     fsi::structure::StructureRun run(std::move(setup), case_dir, out);

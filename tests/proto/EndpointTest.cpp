@@ -95,18 +95,18 @@ TEST(Endpoint, ErrorsNameTheEndpointAndTheAllowedForms) {
   EXPECT_TRUE(contains(error_of([&] { Endpoint::parse(long_path); }), "at most 107"));
 }
 
-TEST(Endpoint, NonLoopbackBindIsRefusedWithoutAllowRemote) {
+TEST(Endpoint, NonLoopbackBindIsRefusedWithoutCurveOrInsecureRemote) {
   for (const char *text : {"tcp://0.0.0.0:0", "tcp://*:0", "tcp://192.0.2.1:0"}) {
     const std::string message = error_of([&] { CouplerChannel channel(Endpoint::parse(text)); });
     EXPECT_TRUE(contains(message, text)) << message;
-    EXPECT_TRUE(contains(message, "allow_remote")) << message;
+    EXPECT_TRUE(contains(message, "insecure_remote") && contains(message, "security: curve")) << message;
     EXPECT_TRUE(contains(message, "127.0.0.1")) << message;
   }
 }
 
 TEST(Endpoint, NonLoopbackBindWorksWhenAllowed) {
   ChannelOptions options;
-  options.allow_remote = true;
+  options.insecure_remote = true;
   const CouplerChannel channel(Endpoint::parse("tcp://*:0"), options);
   EXPECT_NE(channel.endpoint().port(), 0);
 }
@@ -121,7 +121,7 @@ TEST(Endpoint, LoopbackNamesBind) {
 
 TEST(Endpoint, BindingAHostNameSaysToUseTheAddress) {
   ChannelOptions options;
-  options.allow_remote = true;
+  options.insecure_remote = true;
   const std::string message = error_of(
       [&] { CouplerChannel channel(Endpoint::parse("tcp://coupler.invalid:0"), options); });
   EXPECT_TRUE(contains(message, "tcp://coupler.invalid:0")) << message;
