@@ -293,9 +293,13 @@ void CouplingRun::receive_initial_state() {
                  restart_set_->time_s, restart_set_->folder.string());
     return;
   }
-  x_now_ = message.points(reply.position_m(), n, "AdvanceReply.position_m");
-  const PointArray v0 = message.points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s");
-  x_prev_ = x_now_ - dt_ * v0;
+  try {
+    x_now_ = message.finite_points(reply.position_m(), n, "AdvanceReply.position_m");
+    const PointArray v0 = message.finite_points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s");
+    x_prev_ = x_now_ - dt_ * v0;
+  } catch (const proto::MalformedMessageError &e) {
+    throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad initial state: " + e.what());
+  }
   spdlog::info("initial state received: {} Lagrangian points in {} structure(s)", n, topology_.size());
 }
 
@@ -308,6 +312,15 @@ void CouplingRun::advance_one_step(long n) {
   timings_.waiting_s = participants_->take_wait_s();
   timings_.step_wall_s = seconds_since(step_start);
 }
+
+namespace {
+/// What a rejected array says, with the likely cause when a value is not finite.
+std::string rejected(const proto::MalformedMessageError &e) {
+  const std::string what = e.what();
+  return what.find("not finite") == std::string::npos ? what
+                                                      : what + " (its solver has most likely diverged; see its log)";
+}
+} // namespace
 
 void CouplingRun::interpolate_fluid_velocity(long n) {
   // Section 2.3, first bullet: rigid surfaces move before the fluid forces are computed.
@@ -323,7 +336,12 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
   participants_->send(fluid_id_, request_, static_cast<std::uint64_t>(n));
   const proto::Message &message = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply");
   const auto &reply = message.envelope().interpolate_reply();
-  u_ib_ = message.points(reply.velocity_m_per_s(), x_now_.rows(), "InterpolateReply.velocity_m_per_s");
+  try {
+    u_ib_ = message.finite_points(reply.velocity_m_per_s(), x_now_.rows(), "InterpolateReply.velocity_m_per_s");
+  } catch (const proto::MalformedMessageError &e) {
+    throw ParticipantFailed(fluid_id_, "participant " + fluid_id_ + " sent a bad InterpolateReply at step " +
+                                           std::to_string(n) + ": " + rejected(e));
+  }
   timings_.interpolation_s = reply.solve_wall_s();
 }
 
@@ -389,13 +407,14 @@ void CouplingRun::advance_fluid_and_structure(long n) {
       continue;
     }
     timings_.structure_solve_s = reply.solve_wall_s();
-    x_prev_.swap(x_now_);
-    try {
-      x_now_ = incoming.message().points(reply.position_m(), x_prev_.rows(), "AdvanceReply.position_m");
+    try { // checked before anything changes: a rejected reply leaves X^n and X^{n-1} as they were
+      x_next_ = incoming.message().finite_points(reply.position_m(), x_now_.rows(), "AdvanceReply.position_m");
     } catch (const proto::MalformedMessageError &e) {
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad AdvanceReply at step " +
-                                                 std::to_string(n) + ": " + e.what());
+                                                 std::to_string(n) + ": " + rejected(e));
     }
+    x_prev_.swap(x_now_);
+    x_now_.swap(x_next_);
   }
 }
 
@@ -407,11 +426,12 @@ proto::Message &CouplingRun::await(const std::string &peer, Envelope::BodyCase b
   while (true) {
     auto &incoming = participants_->next(deadline, peer, what, static_cast<std::uint64_t>(step));
     auto &envelope = incoming.envelope();
-    if (incoming.peer() == peer && envelope.body_case() == body)
+    if (incoming.peer() == peer && envelope.body_case() == body && envelope.step() == static_cast<std::uint64_t>(step))
       return incoming.message();
     participants_->answer_error(incoming.peer(),
-                                "unexpected " + std::string(proto::body_name(envelope)) + " at step " +
-                                    std::to_string(step) + "; the coupler waits for " + what + " from " + peer,
+                                "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
+                                    std::to_string(envelope.step()) + " at step " + std::to_string(step) +
+                                    "; the coupler waits for " + what + " from " + peer,
                                 static_cast<std::uint64_t>(step));
   }
 }

@@ -76,6 +76,7 @@ private:
 
   // Lagrangian state of all structures, concatenated (N x 3, SI).
   PointArray x_now_, x_prev_, u_ib_;
+  PointArray x_next_; ///< a structure reply, checked before it becomes X^{n+1}
   Eigen::VectorXd measures_;
   CouplingOutputs coupled_;
 

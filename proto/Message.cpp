@@ -1,5 +1,7 @@
 #include "Message.hpp"
 
+#include <cmath>
+
 #include "TransportError.hpp"
 
 #include <algorithm>
@@ -69,6 +71,19 @@ PointsView Message::points(const ArrayFrame &ref, Eigen::Index expected_n_points
     throw MalformedMessageError(std::string(field_name) + " holds " + std::to_string(ref.n_values()) +
                                 " values, expected " + std::to_string(expected_n_points) + " points x 3");
   }
+  return view;
+}
+
+PointsView Message::finite_points(const ArrayFrame &ref, Eigen::Index expected_n_points,
+                                  std::string_view field_name) const {
+  const PointsView view = points(ref, expected_n_points, field_name);
+  if (view.allFinite())
+    return view;
+  for (Eigen::Index i = 0; i < view.rows(); ++i)
+    for (Eigen::Index c = 0; c < view.cols(); ++c)
+      if (!std::isfinite(view(i, c)))
+        throw MalformedMessageError(std::string(field_name) + " holds " + std::to_string(view(i, c)) + " at point " +
+                                    std::to_string(i) + " (" + "xyz"[c] + "): a value that is not finite");
   return view;
 }
 

@@ -49,6 +49,9 @@ public:
   /// of values that is not a multiple of 3, or not expected_n_points points.
   PointsView points(const ArrayFrame &ref, std::string_view field_name) const;
   PointsView points(const ArrayFrame &ref, Eigen::Index expected_n_points, std::string_view field_name) const;
+  /// As points(ref, expected_n_points, field_name), and throws MalformedMessageError naming the
+  /// first point and component that is NaN or infinite: state a receiver keeps must be finite.
+  PointsView finite_points(const ArrayFrame &ref, Eigen::Index expected_n_points, std::string_view field_name) const;
 
   /// Array frames held: added and not yet sent, or received.
   std::size_t array_frame_count() const { return frames_.size(); }
