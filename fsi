@@ -9,9 +9,12 @@
 #   ./fsi run --participant coupler|structure|fluid CASE_DIR
 #                             start only that process (several machines; see docs/cluster.md)
 #   ./fsi check CASE_DIR      validate a case without running it
+#   ./fsi fuzz [--seconds N] [envelope|coupler_channel|case_file ...]  fuzz the message decoder,
+#                             the coupler's message handling and the case parser with libFuzzer
+#                             (clang; N s each, default 300; crashers in build-fuzz/crashes/)
 #   ./fsi keys [--force] CASE_DIR  make the CURVE keys of a case with coupling.security: curve
 #                             (coupling.keys_dir; kept when present; docs/security.md)
-#   ./fsi test                build and run all tests (plus a sanitizer pass of the structure tests)
+#   ./fsi test                build and run all tests (plus a short fuzzing run and a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
 #   ./fsi bench [structure|transport|coupling|fluid|pump|pump_rag|mpi_coupling]  run a benchmark (fluid, pump: vs stock pimpleFoam;
 #                             mpi_coupling: the Lagrangian side of a step on 1 and 2 MPI ranks against the points;
@@ -30,7 +33,7 @@
 #                             interval, residence and wrap distributions (ensemble.csv, ensemble.png)
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
-# FSI_SANITIZE=0 skips the sanitizer pass of './fsi test'.
+# FSI_SANITIZE=0 skips the sanitizer pass of './fsi test', FSI_FUZZ_SECONDS=0 its fuzzing (default 20 s a target).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -47,7 +50,7 @@ die() { printf 'fsi: error: %s\n' "$*" >&2; exit 2; }
 
 ensure_packages() {
   local missing=()
-  for p in "${PACKAGES[@]}"; do
+  for p in "${PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -181,6 +184,13 @@ cmd_test() {
   fi
   [ $# -eq 0 ] || die "usage: ./fsi test [--stability]"
   ctest --test-dir "$BUILD" --output-on-failure -j "$JOBS" -LE stability --timeout 900
+  local fuzz_seconds=${FSI_FUZZ_SECONDS:-20}
+  if [ "$fuzz_seconds" != "0" ]; then
+    # The case parser's corpus is replayed by ctest (label fuzz); fuzzing it needs the whole
+    # solver built with clang, which is ./fsi fuzz's.
+    say "fuzzing the message decoder and the coupler's message handling ($fuzz_seconds s each; ./fsi fuzz: longer, and the case parser)"
+    cmd_fuzz --seconds "$fuzz_seconds" envelope coupler_channel
+  fi
   if [ "${FSI_SANITIZE:-1}" != "0" ]; then
     say "sanitizer pass (AddressSanitizer + UndefinedBehaviorSanitizer) of the structure tests"
     # Release flags (no debug info) keep the CGAL-heavy sources quick to compile with sanitizers.
@@ -189,6 +199,46 @@ cmd_test() {
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 FSI_SANITIZED=1 \
       ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS" -L structure --timeout 1800
   fi
+}
+
+# libFuzzer (clang-14) over the fuzz targets of tests/fuzz, each from its committed seed corpus
+# and past crashers; new inputs are kept in build-fuzz/corpus/<target> for the next session.
+FUZZ_TARGETS=(envelope coupler_channel case_file)
+cmd_fuzz() {
+  local seconds=300 targets=() status=0
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --seconds) [ $# -ge 2 ] || die "--seconds needs a number"; seconds=$2; shift 2 ;;
+      --seconds=*) seconds=${1#--seconds=}; shift ;;
+      -*) die "unknown option '$1' (usage: ./fsi fuzz [--seconds N] [TARGET ...])" ;;
+      *) [[ " ${FUZZ_TARGETS[*]} " == *" $1 "* ]] || die "unknown fuzz target '$1' (targets: ${FUZZ_TARGETS[*]})"
+         targets+=("$1"); shift ;;
+    esac
+  done
+  [[ "$seconds" =~ ^[0-9]+$ ]] || die "--seconds takes whole seconds, not '$seconds'"
+  [ ${#targets[@]} -gt 0 ] || targets=("${FUZZ_TARGETS[@]}")
+  ensure_packages clang-14 libclang-rt-14-dev
+  local dir="$ROOT/build-fuzz" built=()
+  for t in "${targets[@]}"; do built+=("fuzz_$t"); done
+  build "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSI_FUZZ=ON -DFSI_BUILD_BENCH=OFF \
+    -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 -- "${built[@]}"
+  for t in "${targets[@]}"; do
+    local corpus="$dir/corpus/$t" crashes="$dir/crashes/$t/" seeds="$ROOT/tests/fuzz/corpus/$t"
+    local crashers="$ROOT/tests/fuzz/crashers/$t"
+    mkdir -p "$corpus" "$crashes"
+    local inputs=("$corpus" "$seeds")
+    [ -d "$crashers" ] && inputs+=("$crashers")
+    say "fuzzing $t for $seconds s (log: $dir/fuzz-$t.log)"
+    if "$dir/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$crashes" \
+         -print_final_stats=1 "${inputs[@]}" >"$dir/fuzz-$t.log" 2>&1; then
+      say "  $(grep -E '^Done [0-9]+ runs' "$dir/fuzz-$t.log" | tail -1): no crash"
+    else
+      status=1
+      grep -E "ERROR|SUMMARY|abort|Test unit written" "$dir/fuzz-$t.log" | head -8 >&2
+      say "  $t: a failing input is in $crashes; copy it into tests/fuzz/crashers/$t/ (a regression test) and fix"
+    fi
+  done
+  return "$status"
 }
 
 cmd_bench() {
@@ -224,9 +274,10 @@ case "${1:-help}" in
   rag-ensemble)
     shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/rag_ensemble.py" --bin-dir "$BUILD/bin" "$@" ;;
+  fuzz) shift; cmd_fuzz "$@" ;;
   keys)
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
-  help|-h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, check, keys, test, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
+  help|-h|--help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
 esac

@@ -227,11 +227,12 @@ bool CouplingRun::accept_hello(const proto::Incoming &incoming) {
     topology_.assign(hello.structures().begin(), hello.structures().end());
     Eigen::Index n = 0;
     for (const auto &s : topology_) {
-      if (s.point_measure_size() != static_cast<int>(s.n1() * s.n2()))
-        refuse(peer, "participant " + peer + ": structure '" + s.name() + "' has " +
-                         std::to_string(s.point_measure_size()) + " point measures for " +
-                         std::to_string(s.n1() * s.n2()) + " points");
-      n += s.n1() * s.n2();
+      const std::uint64_t points = std::uint64_t{s.n1()} * s.n2(); // 64 bits: 2^16 x 2^16 must not wrap to 0
+      if (static_cast<std::uint64_t>(s.point_measure_size()) != points)
+        refuse(peer, "participant " + peer + ": structure '" + proto::printable(s.name()) + "' has " +
+                         std::to_string(s.point_measure_size()) + " point measures for " + std::to_string(points) +
+                         " points");
+      n += static_cast<Eigen::Index>(points);
     }
     measures_.resize(n);
     Eigen::Index at = 0;

@@ -15,6 +15,7 @@
 #include "proto/ZmqContext.hpp"
 
 #include "case/ChannelSettings.hpp"
+#include "structure_solver/MemoryBudget.hpp"
 #include "case/CaseOptions.hpp"
 #include "case/ModuleSetups.hpp"
 #include "common/ExitCodes.hpp"
@@ -89,8 +90,11 @@ int main(int argc, char **argv) {
     auto config = options.load();
     const std::string &case_dir = options.case_dir;
     const std::filesystem::path out = options.output_directory(config);
-    if (plan)
+    if (plan) {
+      // Before any process starts or any folder is made: a structure grid that cannot fit.
+      fsi::structure::MemoryBudget::check_fits(config.structures, fsi::structure::MemoryBudget::available_bytes());
       return print_plan(config, case_dir, out);
+    }
     if (keys && !config.coupling) {
       spdlog::error("case {} has no coupling section: a single process needs no keys", case_dir);
       return fsi::common::exit_code_bad_input;

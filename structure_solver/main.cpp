@@ -14,6 +14,7 @@
 #include "case/ModuleSetups.hpp"
 #include "case/SchemaDoc.hpp"
 #include "case/ParticipantSettings.hpp"
+#include "MemoryBudget.hpp"
 #include "StructureParticipant.hpp"
 #include "prescribed_flow/FlowFactory.hpp"
 #include "StructureRun.hpp"
@@ -34,8 +35,14 @@
 
 namespace {
 
+/// A grid that cannot fit in memory is refused here, before any output is made.
+void check_memory(const fsi::case_config::CaseConfig &config) {
+  fsi::structure::MemoryBudget::check_fits(config.structures, fsi::structure::MemoryBudget::available_bytes());
+}
+
 int check_case(const fsi::case_config::CaseOptions &options) {
   auto config = options.load();
+  check_memory(config);
   const std::string &case_dir = options.case_dir;
   const auto n_structures = config.structures.size();
   const long n_steps = config.run.n_steps();
@@ -81,6 +88,7 @@ int main(int argc, char **argv) {
     if (check)
       return check_case(options);
     auto config = options.load();
+    check_memory(config);
     const std::filesystem::path out = options.output_directory(config);
     if (config.is_flow_alone()) {
       spdlog::error("case {} has no structure: its flow runs alone (fsi-openfoam-fluid); run it with ./fsi run {}",

@@ -4,6 +4,7 @@
 // without running; docs/case-reference.md holds the reference generated from the declarations.
 
 #include "CaseFixture.hpp"
+#include "structure_solver/MemoryBudget.hpp"
 #include "case/SchemaDoc.hpp"
 #include "structure_solver/output/ResultsReader.hpp"
 
@@ -44,6 +45,31 @@ void expect_bad_input(const std::string &yaml, const std::string &expected_messa
   EXPECT_EQ(out.exit_code, 2) << out.output;
   EXPECT_NE(out.output.find(expected_message), std::string::npos) << out.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "output" / "structure.h5")) << "a rejected case wrote results";
+}
+
+// A grid that cannot fit in memory: refused when the case is read (exit 2, the memory it needs),
+// before the output folder exists, not by std::bad_alloc. 100000 x 100000 points need ~37 TiB.
+TEST(RunBehaviour, AGridThatCannotFitInMemoryIsRefusedBeforeAnyOutput) {
+  const auto dir = testing::make_case_dir(with("n_points: [11, 6]", "n_points: [100000, 100000]"));
+  for (const std::string arguments : {"--check " + dir.string(), dir.string()}) {
+    const Outcome out = run_solver(arguments);
+    EXPECT_EQ(out.exit_code, 2) << out.output;
+    EXPECT_NE(out.output.find("its grid of 100000 x 100000 points (10000000000 points in all) needs about 37.3 TiB"),
+              std::string::npos)
+        << out.output;
+    EXPECT_NE(out.output.find("available"), std::string::npos) << out.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "output")) << "the output folder was made";
+  }
+}
+
+TEST(RunBehaviour, MemoryBudgetCountsEveryStructuresPoints) {
+  const auto setup = testing::load_case(with("n_points: [11, 6]", "n_points: [101, 201]"));
+  const std::uint64_t expected = MemoryBudget::base_bytes + MemoryBudget::bytes_per_point * 101 * 201;
+  EXPECT_EQ(MemoryBudget::estimate_bytes(setup.structures), expected);
+  EXPECT_NO_THROW(MemoryBudget::check_fits(setup.structures, expected));     // just fits
+  EXPECT_THROW(MemoryBudget::check_fits(setup.structures, expected - 1), common::ConfigError);
+  EXPECT_NO_THROW(MemoryBudget::check_fits(setup.structures, 0));            // unknown: no check
+  EXPECT_GT(MemoryBudget::available_bytes(), 0u);                            // Linux has MemAvailable
 }
 
 TEST(RunBehaviour, UnknownKeyIsRejectedWithASuggestion) {
