@@ -8,6 +8,10 @@
 #                             (after the fluid's precursor run, if the case has one)
 #   ./fsi run --participant coupler|structure|fluid CASE_DIR
 #                             start only that process (several machines; see docs/cluster.md)
+#   ./fsi submit [--partition P] [--time T] [--fluid-nodes N] [--dry-run] CASE_DIR [CASE_DIR ...]
+#                             run on a SLURM cluster: a coupled case as a heterogeneous job, several
+#                             cases as a job array; requeued jobs resume from their checkpoints
+#                             (docs/cluster.md)
 #   ./fsi check CASE_DIR      validate a case without running it
 #   ./fsi fuzz [--seconds N] [envelope|coupler_channel|case_file ...]  fuzz the message decoder,
 #                             the coupler's message handling and the case parser with libFuzzer
@@ -16,6 +20,7 @@
 #                             (coupling.keys_dir; kept when present; docs/security.md)
 #   ./fsi test                build and run all tests (plus a short fuzzing run and a sanitizer pass of the structure tests)
 #   ./fsi test --stability    the stability suite alone (thresholds in build/stability/stability.md)
+#   ./fsi test --cluster      the SLURM tests alone (a two-node SLURM started on this machine)
 #   ./fsi bench [structure|transport|coupling|fluid|pump|pump_rag|mpi_coupling]  run a benchmark (fluid, pump: vs stock pimpleFoam;
 #                             mpi_coupling: the Lagrangian side of a step on 1 and 2 MPI ranks against the points;
 #                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
@@ -43,7 +48,8 @@ PACKAGES=(cmake ninja-build g++ ccache git pkg-config libeigen3-dev libspdlog-de
           libyaml-cpp-dev libcli11-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libnanoflann-dev
           libgtest-dev libgmock-dev libbenchmark-dev python3-h5py python3-matplotlib python3-numpy
           paraview python3-paraview python3-yaml openmpi-bin libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler
-          libgmsh-dev python3-scipy ffmpeg iproute2 nftables clang-14 libclang-rt-14-dev)
+          libgmsh-dev python3-scipy ffmpeg iproute2 nftables clang-14 libclang-rt-14-dev
+          slurm-wlm munge)
 
 say() { printf 'fsi: %s\n' "$*" >&2; }
 die() { printf 'fsi: error: %s\n' "$*" >&2; exit 2; }
@@ -182,7 +188,11 @@ cmd_test() {
     [ -f "$out/stability.md" ] && { cat "$out/stability.md"; say "table: $out/stability.md (runs in $out/runs)"; }
     return "$status"
   fi
-  [ $# -eq 0 ] || die "usage: ./fsi test [--stability]"
+  if [ "${1:-}" = "--cluster" ]; then
+    ctest --test-dir "$BUILD" --output-on-failure -L cluster --timeout 900
+    return
+  fi
+  [ $# -eq 0 ] || die "usage: ./fsi test [--stability|--cluster]"
   ctest --test-dir "$BUILD" --output-on-failure -j "$JOBS" -LE stability --timeout 900
   local fuzz_seconds=${FSI_FUZZ_SECONDS:-20}
   if [ "$fuzz_seconds" != "0" ]; then
@@ -275,9 +285,12 @@ case "${1:-help}" in
     shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/rag_ensemble.py" --bin-dir "$BUILD/bin" "$@" ;;
   fuzz) shift; cmd_fuzz "$@" ;;
+  submit)
+    shift; [ $# -ge 1 ] || die "usage: ./fsi submit [--partition P] [--time T] [--fluid-nodes N] [--dry-run] CASE_DIR [CASE_DIR ...]"
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/fsi_submit.py" --bin-dir "$BUILD/bin" "$@" ;;
   keys)
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
-  help|-h|--help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
+  help|-h|--help) sed -n '2,41p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
 esac

@@ -239,11 +239,22 @@ class KeyFiles(unittest.TestCase):
         self.assertIn("chmod 600", output)
 
     def test_missing_keys_say_how_to_make_them(self):
+        # A process started on its own (one host of several) does not make keys: the hosts must
+        # share one set.
+        made = subprocess.run([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "--participant", "coupler", "-o",
+                               os.path.join(self.tmp, "out"), self.case], stdin=subprocess.DEVNULL,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=60)
+        self.assertEqual(made.returncode, 2, made.stdout[-2000:])
+        self.assertIn(os.path.join(self.keys, "coupler.key_secret"), made.stdout)
+        self.assertIn("./fsi keys CASE", made.stdout)
+        self.assertFalse(os.path.exists(self.keys))
+
+    def test_a_run_on_one_host_makes_its_keys(self):
         child = launch(self.case, os.path.join(self.tmp, "out"))
         output = child.communicate(timeout=60)[0]
-        self.assertEqual(child.returncode, 2, output[-2000:])
-        self.assertIn(os.path.join(self.keys, "coupler.key_secret"), output)
-        self.assertIn("./fsi keys CASE", output)
+        self.assertEqual(child.returncode, 0, output[-2000:])
+        self.assertIn("made CURVE keys in %s" % self.keys, output)
+        self.assertEqual(stat.S_IMODE(os.stat(os.path.join(self.keys, "coupler.key_secret")).st_mode), 0o600)
 
 
 class RemoteBinding(unittest.TestCase):
