@@ -19,6 +19,18 @@ std::vector<hsize_t> with_leading(hsize_t leading, const std::vector<hsize_t> &r
   return dims;
 }
 
+// Rows are appended in order, so only the chunk being filled is worth caching. HDF5's default
+// (1 MiB a dataset) kept every chunk written: a coupler writing 12 series a step grew by 1.2 MiB
+// per 10^4 steps (measured by the soak test) until each dataset's cache was full.
+constexpr std::size_t append_cache_bytes = 64 * 1024;
+constexpr std::size_t append_cache_slots = 101; // a prime, as HDF5 asks
+
+H5Handle append_access(const std::string &what) {
+  H5Handle access = H5Handle::plist(H5Pcreate(H5P_DATASET_ACCESS), what);
+  check_hdf5(H5Pset_chunk_cache(access.get(), append_cache_slots, append_cache_bytes, 1.0), what);
+  return access;
+}
+
 H5Handle create_extendable(hid_t parent_id, const std::string &name, hid_t file_type_id,
                            const std::vector<hsize_t> &row_dims, hsize_t rows_per_chunk) {
   const std::string what = "cannot create dataset '" + name + "' in " + hdf5_object_name(parent_id);
@@ -30,8 +42,9 @@ H5Handle create_extendable(hid_t parent_id, const std::string &name, hid_t file_
       H5Handle::dataspace(H5Screate_simple(rank, initial.data(), maximum.data()), what);
   H5Handle properties = H5Handle::plist(H5Pcreate(H5P_DATASET_CREATE), what);
   check_hdf5(H5Pset_chunk(properties.get(), rank, chunk.data()), what);
+  const H5Handle access = append_access(what);
   return H5Handle::dataset(H5Dcreate2(parent_id, name.c_str(), file_type_id, space.get(),
-                                      H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+                                      H5P_DEFAULT, properties.get(), access.get()),
                            what);
 }
 
@@ -50,7 +63,8 @@ ExtendableDataset::ExtendableDataset(hid_t parent_id, const std::string &name, E
                                      hsize_t keep_rows)
     : element_type_(element_type) {
   const std::string what = "cannot open dataset '" + name + "' in " + hdf5_object_name(parent_id) + " to append";
-  dataset_ = H5Handle::dataset(H5Dopen2(parent_id, name.c_str(), H5P_DEFAULT), what);
+  const H5Handle access = append_access(what);
+  dataset_ = H5Handle::dataset(H5Dopen2(parent_id, name.c_str(), access.get()), what);
   H5Handle space = H5Handle::dataspace(H5Dget_space(dataset_.get()), what);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 1)

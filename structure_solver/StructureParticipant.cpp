@@ -136,6 +136,16 @@ int StructureParticipant::run() {
     if (session_)
       session_->report_error("participant structure: " + std::string(e.what()), static_cast<std::uint64_t>(step));
     return common::exit_code_bad_input;
+  } catch (const std::exception &e) { // writing results failed (a full disk, a read-only folder), ...
+    const std::string message = "participant structure failed at step " + std::to_string(step) + ": " + e.what();
+    spdlog::error("{}", message);
+    if (session_) // the coupler stops the run at once instead of after its timeout
+      session_->report_error(message, static_cast<std::uint64_t>(step));
+    try {
+      run_.finish("failed: " + message, step);
+    } catch (const std::exception &) {
+      // the results file itself may be what cannot be written
+    }
   }
   spdlog::error("results up to step {} are kept", step);
   return common::exit_code_run_failed;

@@ -4,6 +4,8 @@
 
 #include <array>
 #include <charconv>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -91,13 +93,18 @@ void XdmfWriter::write_atomically() const {
   fs::path temporary = xdmf_path_;
   temporary += ".tmp";
   {
+    errno = 0;
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out << document();
     out.close();
     if (!out) {
-      throw std::runtime_error("cannot write the XDMF index '" + xdmf_path_.string() +
-                               "' through '" + temporary.string() +
-                               "': does the folder exist and is it writable?");
+      const int cause = errno; // ENOSPC, EROFS, EACCES, ...: the stream does not say
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw std::runtime_error("cannot write the XDMF index '" + xdmf_path_.string() + "' through '" +
+                               temporary.string() + "': " +
+                               (cause != 0 ? std::string(std::strerror(cause))
+                                           : std::string("does the folder exist and is it writable?")));
     }
   }
   std::error_code error;
