@@ -4,6 +4,8 @@
 #include "common/Fnv1a.hpp"
 
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
@@ -12,6 +14,22 @@
 
 namespace fsi::checkpoint {
 namespace {
+
+/// Fault hook of the reliability tests (R7): FSI_FAULT_KILL_BEFORE_RENAME=NAME:K kills this
+/// process (SIGKILL, nothing cleaned up) when the K-th file named NAME is written and not yet
+/// renamed to its final name.
+void kill_here_if_asked(const std::filesystem::path &path) {
+  static const char *asked = std::getenv("FSI_FAULT_KILL_BEFORE_RENAME");
+  if (!asked)
+    return;
+  static int seen = 0;
+  const std::string spec(asked);
+  const auto colon = spec.rfind(':');
+  const std::string name = spec.substr(0, colon);
+  const int k = colon == std::string::npos ? 1 : std::atoi(spec.c_str() + colon + 1);
+  if (path.filename() == name && ++seen == k)
+    ::raise(SIGKILL);
+}
 
 constexpr char magic[] = "FSI-STATE-ARCHIVE\n";
 constexpr std::size_t magic_size = sizeof magic - 1;
@@ -187,6 +205,7 @@ std::string write_archive(const std::filesystem::path &path, const StateArchive 
     throw;
   }
   ::close(fd);
+  kill_here_if_asked(path);
   if (::rename(temporary.c_str(), path.c_str()) != 0) {
     const int error = errno;
     ::unlink(temporary.c_str());

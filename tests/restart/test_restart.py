@@ -224,6 +224,29 @@ class DamagedCheckpoints(Fixture):
             self.assertIn("resumed from the checkpoint of step 1500 ", made.stdout, fault)
             self.assertEqual(differences(self.full, out), [], fault)
 
+    def test_a_kill_between_write_and_rename_leaves_the_old_or_the_new_set_never_a_partial_one(self):
+        # R7: the fault hook kills the process after the file is written under its temporary
+        # name and before the rename, at the third set: of the part, then of the manifest.
+        for name in ("structure.ckpt", "manifest.ckpt"):
+            out = os.path.join(self.tmp, "killed_before_rename_" + name.split(".")[0])
+            child = subprocess.run([STRUCTURE, self.case, "-o", out], stdin=subprocess.DEVNULL,
+                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                   env=dict(os.environ, FSI_FAULT_KILL_BEFORE_RENAME=name + ":3"))
+            self.assertEqual(child.returncode, -signal.SIGKILL, name)
+            folder = os.path.join(out, "checkpoints")
+            sets = sorted(os.listdir(folder))
+            self.assertEqual(len(sets), 3, (name, sets))
+            for s in sets:  # every file under its final name is whole
+                for f in os.listdir(os.path.join(folder, s)):
+                    if f.endswith(".ckpt"):
+                        state_archive.read(os.path.join(folder, s, f))
+            last = os.listdir(os.path.join(folder, sets[-1]))
+            self.assertIn(name + ".tmp", last)
+            self.assertNotIn("manifest.ckpt", last)
+            made = run(self.case, out, "--restart")
+            self.assertIn("resumed from the checkpoint of step %d " % (2 * EVERY), made.stdout, name)
+            self.assertEqual(differences(self.full, out), [], name)
+
     def test_a_restart_without_a_checkpoint_says_so(self):
         out = os.path.join(self.tmp, "never_run")
         made = run(self.case, out, "--restart", check=False)
