@@ -36,8 +36,6 @@ coupler::CouplingSetup coupling_setup(CaseConfig config, const std::filesystem::
   setup.case_yaml = effective_yaml(config);
   setup.case_fingerprint = config.fingerprint();
   setup.restart_fingerprint = config.restart_fingerprint();
-  setup.fluid_checkpoints =
-      config.fluid && (config.fluid->prescribed || (config.fluid->openfoam && config.fluid->openfoam->mpi_ranks == 1));
   setup.run = config.run;
   setup.coupling = std::move(*config.coupling);
   if (config.collisions)

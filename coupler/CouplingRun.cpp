@@ -143,15 +143,7 @@ void CouplingRun::open() {
   checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_fingerprint,
                                                              config_.run.checkpoint_keep);
   checkpoint_every_ = config_.run.checkpoint_every();
-  if (checkpoint_every_ > 0 && !config_.fluid_checkpoints) {
-    spdlog::warn("run.checkpoint_interval_s: the OpenFOAM fluid checkpoints only serial runs (fluid.openfoam."
-                 "mpi_ranks: 1) so far, so this run writes no checkpoints (docs/restart.md)");
-    checkpoint_every_ = 0;
-  }
   if (config_.restart) {
-    if (!config_.fluid_checkpoints)
-      throw HandshakeRefused("--restart: the OpenFOAM fluid resumes only serial runs (fluid.openfoam.mpi_ranks: 1) so "
-                             "far (docs/restart.md)");
     find_restart_set();
     try {
       results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", first_step_);

@@ -27,9 +27,6 @@ struct CouplingSetup {
   std::string case_fingerprint; ///< what every participant's hello must carry
   std::string restart_fingerprint; ///< what its checkpoints carry (the case without the end time)
   bool restart = false;            ///< --restart: resume from the newest complete checkpoint
-  /// The fluid can write and resume from checkpoints (the prescribed flow; the OpenFOAM fluid on
-  /// one rank): without it run.checkpoint_interval_s is ignored, with a warning.
-  bool fluid_checkpoints = false;
 };
 
 } // namespace fsi::coupler

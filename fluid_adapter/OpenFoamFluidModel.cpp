@@ -69,14 +69,25 @@ void OpenFoamFluidModel::set_checkpoints(std::filesystem::path root, long restar
 }
 
 std::pair<std::string, std::string> OpenFoamFluidModel::write_checkpoint(long n_completed) {
-  if (checkpoints_root_.empty() || flow_.n_ranks() > 1)
-    throw std::runtime_error("the OpenFOAM fluid checkpoints only serial runs (fluid.openfoam.mpi_ranks: 1) so far "
-                             "(docs/restart.md)");
-  flow_.write_now();
+  if (checkpoints_root_.empty())
+    throw std::logic_error("OpenFoamFluidModel::write_checkpoint before set_checkpoints");
+  // Every rank writes its fields (processor<k>/<time> with several ranks: writeNow is collective),
+  // then the master copies them all into the set (the ranks share the case folder).
+  message_.clear();
+  broadcast(Command::write_now, message_);
+  write_fields_on_every_rank();
   const auto folder = checkpoint::CheckpointSet::folder_of(checkpoints_root_, n_completed);
   std::filesystem::create_directories(folder);
-  const auto part = FoamCheckpoint::write(flow_.case_directory(), flow_.time_name(), folder, n_completed);
+  const auto part =
+      FoamCheckpoint::write(flow_.case_directory(), flow_.time_name(), flow_.n_ranks(), folder, n_completed);
   return {part.name, part.checksum};
+}
+
+void OpenFoamFluidModel::write_fields_on_every_rank() {
+  flow_.write_now();
+  // A barrier: the master copies every rank's folder only once each has written it.
+  double written = 1.0;
+  flow_.sum_over_ranks(&written, 1);
 }
 
 void OpenFoamFluidModel::resume(long step, const std::string &checksum) {
@@ -213,6 +224,9 @@ void OpenFoamFluidModel::follow() {
       do_advance(payload[0], payload[1], loads);
       break;
     }
+    case Command::write_now:
+      write_fields_on_every_rank();
+      break;
     case Command::finish:
       log_lagrangian_stats();
       flow_.write_now();

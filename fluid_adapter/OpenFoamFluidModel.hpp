@@ -87,7 +87,7 @@ public:
 private:
   FlowStepTimings timings_;
   PenalizationSwitching switching_;
-  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4 };
+  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5 };
   void broadcast(Command command, std::vector<double> &payload);
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
   /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).
@@ -95,6 +95,8 @@ private:
   /// Sets the bodies' coupled motions from such a block; returns the end of the block.
   const double *unpack_rigid_poses(double time_s, const double *begin, const double *end);
   void do_start(const std::vector<double> &point_measures);
+  /// Every rank writes its fields now; returns once all have (a checkpoint copies them).
+  void write_fields_on_every_rank();
   void do_interpolate(PointArray &u_m_per_s);
   void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);

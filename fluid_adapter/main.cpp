@@ -72,9 +72,6 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
   if (process.restart && process.role == Role::coupled) {
     // The case of the run it resumes, as it is (its mesh, the fields it wrote), started from the
     // newest complete checkpoint's fields; the coupler must name the same checkpoint.
-    if (foam.mpi_ranks > 1)
-      throw fsi::common::UserError("--restart: the OpenFOAM fluid resumes only serial runs (fluid.openfoam.mpi_ranks: "
-                                   "1) so far (docs/restart.md)");
     const fs::path foam_case = base / "openfoam";
     if (!fs::exists(foam_case / "constant" / "polyMesh" / "owner"))
       throw fsi::common::UserError("--restart: " + foam_case.string() + " has no mesh: there is no run to resume");
@@ -87,13 +84,16 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     if (!found)
       throw fsi::common::UserError("--restart: no complete checkpoint of this case in " + sets.root().string());
     try {
-      const std::string time = fsi::fluid::FoamCheckpoint::install(
-          found->folder, foam_case, found->step, found->checksum_of(fsi::fluid::FoamCheckpoint::part_name));
+      const std::string time =
+          fsi::fluid::FoamCheckpoint::install(found->folder, foam_case, foam.mpi_ranks, found->step,
+                                              found->checksum_of(fsi::fluid::FoamCheckpoint::part_name));
       spdlog::info("restart: the fields of t = {} s (step {}) from {}", time, found->step, found->folder.string());
     } catch (const fsi::checkpoint::CheckpointError &e) {
       throw fsi::common::UserError(std::string("--restart: ") + e.what());
     }
     restart_step = found->step;
+    if (foam.mpi_ranks > 1) // the same decomposition, its processor folders restored: no decomposePar
+      fsi::fluid::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
     return foam_case;
   }
   const fs::path foam_case = fsi::fluid::prepare_openfoam_case(case_dir, foam.case_directory, base);
@@ -249,6 +249,14 @@ int main(int argc, char **argv) {
     const fs::path foam_case = process.under_mpirun
                                    ? base / "openfoam"
                                    : prepare_case(process, config, case_dir, base, precursor, restart_step);
+    if (process.under_mpirun && process.restart && process.role == Role::coupled) {
+      // The ranks started by mpirun after the install: the same newest set (its step only).
+      std::vector<std::string> skipped;
+      const auto found = fsi::checkpoint::CheckpointSet(base / "checkpoints", config.restart_fingerprint(),
+                                                        config.run.checkpoint_keep)
+                             .newest(skipped);
+      restart_step = found ? found->step : 0;
+    }
     const bool precursor_run = process.role == Role::precursor;
     const double dt = precursor_run ? precursor.time_step_s() : config.run.time_step_s;
     const double end_time = precursor_run ? precursor.end_time_s() : config.run.end_time_s;

@@ -376,27 +376,12 @@ class CoupledPrescribedFlow(unittest.TestCase):
             resumed += 1
         self.assertGreaterEqual(resumed, 2, "the kills fell outside the run: the test did not test")
 
-    def test_a_restart_of_an_openfoam_fluid_on_several_ranks_is_refused_by_name(self):
-        case = os.path.join(self.tmp, "openfoam_ranks")
-        shutil.copytree(os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), case,
-                        ignore=shutil.ignore_patterns("output"))
-        path = os.path.join(case, "case.yaml")
-        with open(path) as f:
-            text = f.read()
-        with open(path, "w") as f:
-            f.write(re.sub(r"(\n  openfoam:\n)", r"\1    mpi_ranks: 2\n", text, count=1))
-        made = subprocess.run([COUPLER, case, "-o", os.path.join(self.tmp, "openfoam"), "--restart"],
-                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                              timeout=60)
-        self.assertEqual(made.returncode, 2, made.stdout[-2000:])
-        self.assertIn("the OpenFOAM fluid resumes only serial runs", made.stdout)
 
-
-def make_openfoam_case(folder):
+def make_openfoam_case(folder, mpi_ranks=1):
     """sheet-in-openfoam-channel (coupler, structure, OpenFOAM fluid), 0.02 s (400 steps of
     5e-5 s), the backward time scheme (its restart needs U_0 and phi_0), a checkpoint every
-    0.005 s (100 steps)."""
-    case = os.path.join(folder, "openfoam_case")
+    0.005 s (100 steps); the fluid on mpi_ranks MPI ranks."""
+    case = os.path.join(folder, "openfoam_case_%d" % mpi_ranks)
     shutil.copytree(os.path.join(ROOT, "cases", "sheet-in-openfoam-channel"), case,
                     ignore=shutil.ignore_patterns("output", "*.png", "*.gif"))
     path = os.path.join(case, "case.yaml")
@@ -410,6 +395,11 @@ def make_openfoam_case(folder):
     assert "default Euler;" in text
     with open(schemes, "w") as f:
         f.write(text.replace("default Euler;", "default backward;", 1))
+    if mpi_ranks > 1:
+        with open(path) as f:
+            text = f.read()
+        with open(path, "w") as f:
+            f.write(re.sub(r"(\n  openfoam:\n)", r"\1    mpi_ranks: %d\n" % mpi_ranks, text, count=1))
     return case
 
 
@@ -422,7 +412,7 @@ def drop_old_time_fields(set_folder):
     for i in range(entries["n_files"]):
         name, digest = entries.pop("files/%d/name" % i), entries.pop("files/%d/hash" % i)
         if os.path.basename(name) in ("U_0", "phi_0"):
-            os.remove(os.path.join(set_folder, "fluid", entries["time_name"], name))
+            os.remove(os.path.join(set_folder, "fluid", name))  # names under fluid/: <time>/U_0
         else:
             kept.append((name, digest))
     for i, (name, digest) in enumerate(kept):
@@ -496,7 +486,13 @@ class CoupledOpenFoam(unittest.TestCase):
         out = os.path.join(self.tmp, "kill-fluid")
         child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
                                  stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        time.sleep(draw.uniform(0.55, 0.8) * self.full_wall_s)
+        # After its first checkpoint, at a seeded moment within the next tenth of the run (a
+        # fraction of the uninterrupted run's wall time alone would miss on a loaded machine).
+        first = os.path.join(out, "checkpoints", "step-000000100", "manifest.ckpt")
+        deadline = time.time() + 120
+        while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
+            time.sleep(0.05)
+        time.sleep(draw.uniform(0.0, 0.1) * self.full_wall_s)
         subprocess.run(["pkill", "-9", "-f", "fsi-openfoam-fluid .*-o %s" % out])
         self.assertNotEqual(child.wait(timeout=60), 0)
         made = launch(self.case, out, "--restart")
@@ -504,6 +500,60 @@ class CoupledOpenFoam(unittest.TestCase):
         self.assertIn("restart: resumed from the checkpoint of step", made.stdout)
         self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
         self.assertTrue(self.fields_equal(out))
+
+
+class CoupledOpenFoamRanks(unittest.TestCase):
+    """The OpenFOAM fluid on 2 MPI ranks: every rank writes its processor<k>/<time> folder at
+    the checkpoint (a collective write), the master copies them into the set, and a restart
+    restores them into the same decomposition and starts mpirun from them. Bitwise, like one
+    rank. A restart with another number of ranks is refused."""
+
+    @classmethod
+    def setUpClass(cls):
+        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
+            raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
+        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_ranks_")
+        cls.case = make_openfoam_case(cls.tmp, mpi_ranks=2)
+        cls.full = os.path.join(cls.tmp, "full")
+        made = launch(cls.case, cls.full)
+        if made.returncode != 0:
+            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_a_run_on_two_ranks_stopped_and_restarted_equals_the_uninterrupted_run(self):
+        out = os.path.join(self.tmp, "end_time")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.0075").returncode, 0)
+        part = os.path.join(out, "checkpoints", "step-000000150", "fluid")
+        self.assertEqual(sorted(os.listdir(part)), ["processor0", "processor1"])
+        self.assertTrue({"U", "U_0", "phi_0", "uniform"} <= set(os.listdir(os.path.join(part, "processor1", "0.0075"))))
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+        for rank in ("processor0", "processor1"):
+            for field in ("U", "p", "phi"):
+                with open(os.path.join(self.full, "openfoam", rank, "0.02", field), "rb") as a, \
+                        open(os.path.join(out, "openfoam", rank, "0.02", field), "rb") as b:
+                    self.assertEqual(a.read(), b.read(), (rank, field))
+
+    def test_a_restart_with_another_number_of_ranks_is_refused(self):
+        # mpi_ranks is part of the case, so its checkpoints are another case's (fluid.ckpt also
+        # records its ranks, should a set be moved by hand).
+        out = os.path.join(self.tmp, "other_ranks")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.0075").returncode, 0)
+        one_rank = os.path.join(self.tmp, "one_rank_case")
+        shutil.copytree(self.case, one_rank)
+        path = os.path.join(one_rank, "case.yaml")
+        with open(path) as f:
+            text = f.read()
+        with open(path, "w") as f:
+            f.write(text.replace("    mpi_ranks: 2\n", "", 1))
+        made = launch(one_rank, out, "--restart")
+        self.assertEqual(made.returncode, 2, made.stdout[-2000:])
+        self.assertIn("written by another case", made.stdout)
+        self.assertIn("--restart: no complete checkpoint of this case", made.stdout)
 
 
 if __name__ == "__main__":
