@@ -11,9 +11,11 @@ with the real executables (coupler, structure, prescribed flow: the rag in the s
   timeout), and the last checkpoint is intact: the folder copied to a roomy disk resumes
   (--restart) to the uninterrupted run's results, bit for bit.
 
-Soak needs nothing special; DiskFull needs root (mount; skipped otherwise). A folder made
-read-only mid-run is not tested: a tmpfs with files open for writing refuses to be remounted
-read-only, and root ignores permissions.
+- Unwritable: the output folder made unwritable mid-run (chmod 555; the run as user nobody,
+  since root ignores permissions): the same, with "Permission denied".
+
+Soak needs nothing special; DiskFull and Unwritable need root (mount, runuser; skipped
+otherwise).
 FSI_BIN_DIR: the executables."""
 
 import os
@@ -203,6 +205,38 @@ class DiskFull(DiskTest):
         case = make_case(self.tmp, 2.0, output_interval_s=0.001, checkpoint_s=0.05)
         out = os.path.join(self.mount, "out")
         self.check_failure_and_resume(case, out, launch(case, out), "No space left on device")
+
+
+class Unwritable(DiskTest):
+    """The output folder turned unwritable mid-run (chmod 555, the run as user nobody: root
+    ignores permissions): a clear error naming the file and "Permission denied" at once, and
+    the last checkpoint resumes, bit for bit."""
+
+    def setUp(self):
+        if os.geteuid() != 0 or not shutil.which("runuser"):
+            self.skipTest("needs root and runuser (to run as nobody)")
+        self.tmp = tempfile.mkdtemp(prefix="fsi_unwritable_")
+        self.mount = os.path.join(self.tmp, "unused")
+        os.chmod(self.tmp, 0o755)
+
+    def test_an_output_folder_turned_unwritable_stops_the_run_and_the_checkpoint_resumes(self):
+        case = make_case(self.tmp, 2.0, checkpoint_s=0.05)
+        subprocess.run(["chmod", "-R", "a+rX", case], check=True)
+        out = os.path.join(self.tmp, "out")
+        os.makedirs(out)
+        shutil.chown(out, "nobody")
+        child = subprocess.Popen(["runuser", "-u", "nobody", "--", sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o",
+                                  out, case], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, text=True, cwd=self.tmp)
+        second = os.path.join(out, "checkpoints", "step-000002500", "manifest.ckpt")
+        deadline = time.time() + 60
+        while not os.path.exists(second):
+            self.assertLess(time.time(), deadline, "no second checkpoint")
+            self.assertIsNone(child.poll(), "the run ended early")
+            time.sleep(0.05)
+        os.chmod(out, 0o555)
+        os.chmod(os.path.join(out, "checkpoints"), 0o555)
+        self.check_failure_and_resume(case, out, child, "Permission denied")
 
 
 if __name__ == "__main__":
