@@ -56,12 +56,13 @@ def parse_args(argv):
     return parser.parse_args(argv)
 
 
+def launcher_args(bin_dir, case):
+    """What fsi_launch's plan and key helpers read of its command line, for one case."""
+    return argparse.Namespace(bin_dir=bin_dir, case_dir=case, output_dir=None, resolution=None, end_time=None)
+
+
 def plan_of(bin_dir, case):
-    class Args:
-        pass
-    args = Args()
-    args.bin_dir, args.case_dir, args.output_dir, args.resolution, args.end_time = bin_dir, case, None, None, None
-    return fsi_launch.read_plan(args)
+    return fsi_launch.read_plan(launcher_args(bin_dir, case))
 
 
 def case_yaml(case):
@@ -175,12 +176,12 @@ def main(argv):
         coupled = len(plan.processes) > 1
         if coupled:
             check_network_security(case, plan)
-            fsi_launch.make_missing_keys(type("A", (), {"bin_dir": bin_dir, "case_dir": case})(), plan)
+            fsi_launch.make_missing_keys(launcher_args(bin_dir, case), plan)
         script = os.path.join(plan.output_dir, "slurm", "job.sh")
         write(script, (coupled_script if coupled else single_script)(case, plan, args, bin_dir))
     else:
         for case, plan in zip(cases, plans):  # each member on one node, as ./fsi run: loopback
-            fsi_launch.make_missing_keys(type("A", (), {"bin_dir": bin_dir, "case_dir": case})(), plan)
+            fsi_launch.make_missing_keys(launcher_args(bin_dir, case), plan)
         folder = os.path.join(os.path.dirname(cases[0]), "slurm-array")
         script = os.path.join(folder, "job.sh")
         write(script, array_script(cases, plans, args, bin_dir, folder))
