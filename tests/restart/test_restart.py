@@ -25,6 +25,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
 STRUCTURE = os.path.join(BIN_DIR, "fsi-structure")
 COUPLER = os.path.join(BIN_DIR, "fsi-coupler")
@@ -34,6 +35,7 @@ try:
     import h5py
     import numpy
     import state_archive
+    from results_diff import differences
 except ImportError as missing:  # Debian's python3-h5py, python3-numpy
     print("skipped: %s" % missing)
     sys.exit(77)
@@ -63,35 +65,6 @@ def run(case, out, *extra, check=True):
     if check and made.returncode != 0:
         raise AssertionError("fsi-structure %s failed (%d):\n%s" % (" ".join(extra), made.returncode, made.stdout[-3000:]))
     return made
-
-
-def datasets(h5_path):
-    """Every dataset but the wall-clock timings (coupling.h5's /timings: measurements, not results)."""
-    found = {}
-    with h5py.File(h5_path, "r") as f:
-        f.visititems(lambda name, obj: found.__setitem__(name, obj[()])
-                     if isinstance(obj, h5py.Dataset) and not name.startswith("timings/") else None)
-    return found
-
-
-def differences(a_dir, b_dir, files=("structure.h5", "probes.csv", "structure.xdmf")):
-    """What differs between two results folders, bit for bit (empty: the same)."""
-    found = []
-    for h5 in (f for f in files if f.endswith(".h5")):
-        a, b = datasets(os.path.join(a_dir, h5)), datasets(os.path.join(b_dir, h5))
-        if sorted(a) != sorted(b):
-            found.append("%s: datasets %s vs %s" % (h5, sorted(a), sorted(b)))
-        for name in sorted(set(a) & set(b)):
-            x, y = numpy.asarray(a[name]), numpy.asarray(b[name])
-            if x.shape != y.shape or x.tobytes() != y.tobytes():
-                found.append("%s %s: shapes %s %s, %s" % (h5, name, x.shape, y.shape,
-                                                          "max |diff| %.3g" % numpy.max(numpy.abs(x - y))
-                                                          if x.shape == y.shape and x.dtype.kind == "f" else "differ"))
-    for name in (f for f in files if not f.endswith(".h5")):
-        with open(os.path.join(a_dir, name), "rb") as f, open(os.path.join(b_dir, name), "rb") as g:
-            if f.read() != g.read():
-                found.append(name)
-    return found
 
 
 def newest_set(out):
@@ -363,11 +336,18 @@ class CoupledPrescribedFlow(unittest.TestCase):
             out = os.path.join(self.tmp, "kill-" + victim)
             child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
                                      stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            time.sleep(draw.uniform(0.4, 0.8) * self.full_wall_s)
+            # After the first complete set, at a seeded moment within the next 40 % of the run (a
+            # fraction of the uninterrupted run's wall time alone could fall before the first set
+            # on a loaded machine, and the restart then has nothing to resume from).
+            first = os.path.join(out, "checkpoints", "step-000001250", "manifest.ckpt")
+            deadline = time.time() + 120
+            while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
+                time.sleep(0.02)
+            time.sleep(draw.uniform(0.0, 0.4) * self.full_wall_s)
             subprocess.run(["pkill", "-9", "-f", "%s .*-o %s" % (victim, out)])
             code = child.wait(timeout=60)
-            if not os.path.isdir(os.path.join(out, "checkpoints")):
-                continue  # killed before the first checkpoint (or after the end): nothing to resume
+            if code == 0:
+                continue  # the run ended before the kill: nothing to resume
             self.assertNotEqual(code, 0, victim)
             made = launch(self.case, out, "--restart")
             self.assertEqual(made.returncode, 0, victim + ":\n" + made.stdout[-3000:])
