@@ -12,13 +12,14 @@ CouplingOutputs CouplingLaw::compute(const CouplingInputs &in) {
 
 void CouplingLaw::compute(const CouplingInputs &in, CouplingOutputs &out) {
   const auto n = in.x_now_m->rows();
-  if (in.x_prev_m->rows() != n || in.x_ib_now_m->rows() != n || in.u_ib_now_m_per_s->rows() != n)
+  const PointArray &x_ib = interpolation_points(*in.x_now_m);
+  if (in.x_prev_m->rows() != n || x_ib.rows() != n || in.u_ib_now_m_per_s->rows() != n)
     throw std::logic_error("coupling law '" + name() + "': inputs have different numbers of points");
   if (!(in.dt_s > 0.0))
     throw std::logic_error("coupling law '" + name() + "': time step must be positive");
   // Section 2.3: the immersed-boundary points move with the local fluid velocity,
   // X_ib^{n+1} = X_ib^n + U_ib^n dt (explicit Euler).
-  out.x_ib_next_m = *in.x_ib_now_m + in.dt_s * *in.u_ib_now_m_per_s;
+  out.x_ib_next_m = x_ib + in.dt_s * *in.u_ib_now_m_per_s;
   compute_force(in, out);
 }
 

@@ -1,7 +1,6 @@
 #pragma once
-// The one explicit registry of coupling laws. Adding a law (e.g. a feedback law with integral
-// and proportional terms) means writing its CouplingLaw, its config class, and one line in
-// CouplingLawRegistry::builtin().
+// The one explicit registry of coupling laws (penalty, two_point_sets, feedback). Adding a law
+// means writing its CouplingLaw, its config class, and one line in CouplingLawRegistry::builtin().
 
 #include "CouplingLawConfig.hpp"
 #include "common/Registry.hpp"

@@ -278,6 +278,8 @@ void CouplingRun::receive_initial_state() {
     const checkpoint::StateArchive own = checkpoint::read_archive(restart_set_->folder / "coupler.ckpt");
     x_now_ = own.points("x_m", n);
     x_prev_ = own.points("x_previous_m", n);
+    law_->start(x_now_);
+    law_->load_state(own, n); // the IB points, the feedback integral
     const PointArray theirs = message.points(reply.position_m(), n, "AdvanceReply.position_m");
     if (!(theirs.array() == x_now_.array()).all())
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " resumed from positions other than "
@@ -290,6 +292,7 @@ void CouplingRun::receive_initial_state() {
     x_now_ = message.finite_points(reply.position_m(), n, "AdvanceReply.position_m");
     const PointArray v0 = message.finite_points(reply.velocity_m_per_s(), n, "AdvanceReply.velocity_m_per_s");
     x_prev_ = x_now_ - dt_ * v0;
+    law_->start(x_now_); // X_ib^0 = X^0
   } catch (const proto::MalformedMessageError &e) {
     throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad initial state: " + e.what());
   }
@@ -323,9 +326,10 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
   request->mutable_rigid_bodies()->Clear();
   for (const auto &[name, motion] : moving_bodies_)
     write_pose(name, *motion, t, *request->add_rigid_bodies());
-  // The immersed-boundary points are the structure points at the start of the step,
-  // X_ib^n = X^n (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5).
-  request_.add_points(*request->mutable_position_m(), x_now_);
+  // U_ib^n at the immersed-boundary points X_ib^n: the structure points X^n for the penalty
+  // and feedback laws (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5), the law's own
+  // advected points for two_point_sets.
+  request_.add_points(*request->mutable_position_m(), law_->interpolation_points(x_now_));
   participants_->send(fluid_id_, request_, static_cast<std::uint64_t>(n));
   const proto::Message &message = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply");
   const auto &reply = message.envelope().interpolate_reply();
@@ -340,7 +344,7 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
 
 void CouplingRun::apply_coupling_law() {
   const auto start = Clock::now();
-  law_->compute({&x_now_, &x_prev_, &x_now_, &u_ib_, dt_}, coupled_); // X_ib^n = X^n
+  law_->compute({&x_now_, &x_prev_, &u_ib_, dt_}, coupled_);
   if (!coupled_.force_density_n_per_measure.allFinite()) {
     Eigen::Index worst = 0;
     (coupled_.force_density_n_per_measure.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
@@ -356,9 +360,14 @@ void CouplingRun::advance_fluid_and_structure(long n) {
   auto *fluid = fluid_advance_.envelope().mutable_fluid_advance();
   fluid->set_time_s(t);
   fluid->set_dt_s(dt_);
-  // The fluid has X^n (= X_ib^n) from this step's InterpolateRequest: not sent again.
+  // Eq. (8) spreads at X^n. The fluid has the points of this step's InterpolateRequest; when
+  // those are the law's own IB points (X_ib^n != X^n), X^n goes with the force.
   const PointArray &force = coupled_.force_density_n_per_measure;
   fluid_advance_.add_points(*fluid->mutable_force_density_n_per_measure(), force);
+  if (&law_->interpolation_points(x_now_) != &x_now_)
+    fluid_advance_.add_points(*fluid->mutable_spread_position_m(), x_now_);
+  else
+    fluid->clear_spread_position_m();
   auto *structure = structure_advance_.envelope().mutable_structure_advance();
   structure->set_time_s(t);
   structure->set_dt_s(dt_);
@@ -406,6 +415,7 @@ void CouplingRun::advance_fluid_and_structure(long n) {
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad AdvanceReply at step " +
                                                  std::to_string(n) + ": " + rejected(e));
     }
+    law_->accept({&x_now_, &x_prev_, &u_ib_, dt_}, coupled_); // the law's state moves to step n + 1
     x_prev_.swap(x_now_);
     x_now_.swap(x_next_);
   }
@@ -496,6 +506,7 @@ void CouplingRun::checkpoint(long n) {
   own.put_integer("step", n);
   own.put_points("x_m", x_now_);
   own.put_points("x_previous_m", x_prev_);
+  law_->save_state(own);
   parts.push_back({"coupler.ckpt", checkpoint::write_archive(folder / "coupler.ckpt", own)});
   results_->flush(); // coupling.h5 holds every step up to this one
   checkpoints_->complete(n, static_cast<double>(n) * dt_, parts);

@@ -122,6 +122,13 @@ void OpenFoamFluidModel::interpolate(const proto::v2::InterpolateRequest &, prot
   u_m_per_s = u;
 }
 
+void OpenFoamFluidModel::spread_at(proto::PointsView x_m) {
+  message_.assign(x_m.data(), x_m.data() + x_m.size());
+  broadcast(Command::spread_at, message_);
+  positions_ = x_m;
+  build_stencil();
+}
+
 void OpenFoamFluidModel::advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
                                  proto::v2::AdvanceReply &reply) {
   // Payload for the other ranks: t, dt, the moving bodies' poses at t + dt, then F_fsi^n.
@@ -217,6 +224,10 @@ void OpenFoamFluidModel::follow() {
       do_interpolate(u);
       break;
     }
+    case Command::spread_at:
+      positions_ = Eigen::Map<const PointArray>(payload, static_cast<Eigen::Index>(n / 3), 3);
+      build_stencil();
+      break;
     case Command::advance: {
       const double *forces = unpack_rigid_poses(payload[0] + payload[1], payload + 2, payload + n);
       force_density_ = Eigen::Map<const PointArray>(forces, static_cast<Eigen::Index>((payload + n - forces) / 3), 3);
@@ -316,6 +327,20 @@ void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) {
 
 void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
   ++lagrangian_stats_.interpolations;
+  build_stencil();
+  flow_.cell_velocities(cell_velocity_);
+  if (config_.interpolation == InterpolationChoice::kernel) {
+    u_m_per_s = stencil_->interpolate(cell_velocity_); // this rank's part of the kernel sum
+    collective([&] { flow_.sum_over_ranks(u_m_per_s.data(), static_cast<std::size_t>(u_m_per_s.size())); });
+    return;
+  }
+  nearest_ = std::make_unique<ibm::NearestCells>(index_, positions_);
+  ibm::CellGradientArray gradients;
+  flow_.cell_velocity_gradients(gradients);
+  u_m_per_s = ibm::ClosestCellLinear(cells_, *nearest_).interpolate(positions_, cell_velocity_, gradients);
+}
+
+void OpenFoamFluidModel::build_stencil() {
   Eigen::VectorXd widths;
   kernel_widths(widths);
   if (stencil_)
@@ -327,16 +352,6 @@ void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
     collective([&] { flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size())); });
     stencil_->normalise_weights(sums);
   }
-  flow_.cell_velocities(cell_velocity_);
-  if (config_.interpolation == InterpolationChoice::kernel) {
-    u_m_per_s = stencil_->interpolate(cell_velocity_); // this rank's part of the kernel sum
-    collective([&] { flow_.sum_over_ranks(u_m_per_s.data(), static_cast<std::size_t>(u_m_per_s.size())); });
-    return;
-  }
-  nearest_ = std::make_unique<ibm::NearestCells>(index_, positions_);
-  ibm::CellGradientArray gradients;
-  flow_.cell_velocity_gradients(gradients);
-  u_m_per_s = ibm::ClosestCellLinear(cells_, *nearest_).interpolate(positions_, cell_velocity_, gradients);
 }
 
 void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {

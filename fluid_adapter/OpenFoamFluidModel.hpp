@@ -62,6 +62,9 @@ public:
                    proto::MutablePointsView u_m_per_s) override;
   void advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
                proto::v2::AdvanceReply &reply) override;
+  /// The next advance spreads at these points (the coupling law two_point_sets): a second
+  /// kernel stencil, built on every rank.
+  void spread_at(proto::PointsView x_m) override;
   void finish(bool success) override;
   /// Checkpoints (serial runs): the fields of the current time, written and copied into the set
   /// of step n in `checkpoints_root_` (FoamCheckpoint).
@@ -87,7 +90,7 @@ public:
 private:
   FlowStepTimings timings_;
   PenalizationSwitching switching_;
-  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5 };
+  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5, spread_at = 6 };
   void broadcast(Command command, std::vector<double> &payload);
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
   /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).
@@ -98,6 +101,8 @@ private:
   /// Every rank writes its fields now; returns once all have (a checkpoint copies them).
   void write_fields_on_every_rank();
   void do_interpolate(PointArray &u_m_per_s);
+  /// The kernel stencil of Eq. (6) at positions_ (collective: widths and weight sums).
+  void build_stencil();
   void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   void kernel_widths(Eigen::VectorXd &widths_m);

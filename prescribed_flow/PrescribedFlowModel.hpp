@@ -21,7 +21,8 @@ public:
   void start(const proto::v2::Welcome &) override {}
   void interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
                    proto::MutablePointsView u_m_per_s) override;
-  /// One-way coupling: the flow is prescribed, so F_fsi (Eq. 8) is not spread.
+  /// One-way coupling: the flow is prescribed, so F_fsi (Eq. 8) is not spread, wherever.
+  void spread_at(proto::PointsView) override {}
   void advance(const proto::v2::FluidAdvance &, proto::PointsView, proto::v2::AdvanceReply &) override {}
   void finish(bool) override {}
   /// The flow is a function of time and place: the part (fluid.ckpt) holds the step and the

@@ -24,7 +24,11 @@ public:
   /// U_ib^n: the fluid velocity at the points at time t (m/s), with the rigid-body poses at t.
   virtual void interpolate(const v2::InterpolateRequest &request, PointsView x_m, MutablePointsView u_m_per_s) = 0;
 
-  /// Spreads F_fsi^n (Eq. 8) at the points of the last interpolate() and advances the flow
+  /// The next advance() spreads at these points (X^n), not at those of the last interpolate()
+  /// (the coupling law two_point_sets samples U_ib at its own points).
+  virtual void spread_at(PointsView x_m) = 0;
+
+  /// Spreads F_fsi^n (Eq. 8) at the points of the last interpolate() (or of spread_at()) and advances the flow
   /// from t to t + dt; may fill rigid_body_loads of the reply.
   virtual void advance(const v2::FluidAdvance &request, PointsView force_density_n_per_measure, v2::AdvanceReply &reply) = 0;
 

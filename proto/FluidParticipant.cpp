@@ -110,6 +110,8 @@ void FluidParticipant::advance(const Message &request) {
       request.points(body.force_density_n_per_measure(), n_points_, "FluidAdvance.force_density_n_per_measure");
   auto *reply = advance_reply_.envelope().mutable_advance_reply();
   reply->mutable_rigid_body_loads()->Clear();
+  if (body.has_spread_position_m()) // the law's own IB points: Eq. (8) spreads at X^n
+    model_.spread_at(request.points(body.spread_position_m(), n_points_, "FluidAdvance.spread_position_m"));
   model_.advance(body, force, *reply);
   reply->set_time_s(body.time_s() + body.dt_s());
   reply->set_solve_wall_s(seconds_since(start));

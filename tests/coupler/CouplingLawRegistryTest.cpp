@@ -35,7 +35,7 @@ double relaxation_after(double dt, double rho, double k, int steps) {
   PointArray x_prev = PointArray::Zero(1, 3), x = PointArray::Zero(1, 3), u(1, 3);
   u << 1.0, 0.0, 0.0;
   for (int n = 0; n < steps; ++n) {
-    const CouplingOutputs out = law.compute({&x, &x_prev, &x, &u, dt});
+    const CouplingOutputs out = law.compute({&x, &x_prev, &u, dt});
     // rho (X^{n+1} - 2 X^n + X^{n-1}) / dt^2 = -F (Eq. 3 without elastic terms)
     const PointArray x_next = 2.0 * x - x_prev - dt * dt / rho * out.force_density_n_per_measure;
     x_prev = x;

@@ -280,10 +280,10 @@ def launch(case, out, *extra):
                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
 
-def make_coupled_case(folder):
+def make_coupled_case(folder, law=None):
     """rag-in-prescribed-flow (coupler, structure, prescribed flow), 0.2 s (5000 steps of 4e-5 s),
-    a checkpoint every 0.05 s (1250 steps)."""
-    case = os.path.join(folder, "coupled_case")
+    a checkpoint every 0.05 s (1250 steps); `law` replaces the penalty law's line."""
+    case = os.path.join(folder, "coupled_case" + ("_" + law.split()[0] if law else ""))
     shutil.copytree(os.path.join(ROOT, "cases", "rag-in-prescribed-flow"), case,
                     ignore=shutil.ignore_patterns("output", "*.png", "*.gif"))
     path = os.path.join(case, "case.yaml")
@@ -291,6 +291,9 @@ def make_coupled_case(folder):
         text = f.read()
     text = re.sub(r"end_time_s: [0-9.e-]+", "end_time_s: 0.2", text, count=1)
     text = text.replace("output_interval_s: 0.01", "output_interval_s: 0.01\n  checkpoint_interval_s: 0.05")
+    if law:
+        text, n = re.subn(r"\n  law: penalty\n  stiffness_n_per_m_per_measure: [0-9.e+-]+[^\n]*", "\n  law: " + law, text)
+        assert n == 1, "no penalty law in the case"
     with open(path, "w") as f:
         f.write(text)
     return case
@@ -408,6 +411,35 @@ def drop_old_time_fields(set_folder):
             manifest["parts/%d/checksum" % i] = checksum
     state_archive.write(manifest_path, manifest)
     return len(kept)
+
+
+class CouplingLawState(unittest.TestCase):
+    """The laws with a state of their own: the paper's IB points X_ib (two_point_sets) and the
+    feedback integral go into the coupler's part; a restart without them could not be exact."""
+
+    def setUp(self):
+        if not (os.access(STRUCTURE, os.X_OK) and os.access(COUPLER, os.X_OK)):
+            self.skipTest("executables not built in %s" % BIN_DIR)
+        self.tmp = tempfile.mkdtemp(prefix="fsi_restart_law_")
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def test_a_law_with_state_resumes_bit_for_bit(self):
+        for law in ("two_point_sets\n  stiffness_n_per_m_per_measure: 2.5e5",
+                    "feedback\n  alpha_n_per_m_per_measure: 2.5e5\n  beta_n_s_per_m_per_measure: 5"):
+            name = law.split()[0]
+            case = make_coupled_case(self.tmp, law)
+            full = os.path.join(self.tmp, name + "_full")
+            made = launch(case, full)
+            self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+            self.assertIn("coupling law: " + name, made.stdout)
+            out = os.path.join(self.tmp, name + "_stopped")
+            self.assertEqual(launch(case, out, "--end-time", "0.07").returncode, 0)
+            made = launch(case, out, "--restart")
+            self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+            self.assertIn("restart: resumed from the checkpoint of step 1750", made.stdout)
+            self.assertEqual(differences(full, out, COUPLED_FILES), [], name)
 
 
 class CoupledOpenFoam(unittest.TestCase):
