@@ -3,6 +3,7 @@
 // same level), where the coupler listens, and the liveness limits of the run.
 
 #include "CouplingLawRegistry.hpp"
+#include "ImplicitCouplingConfig.hpp"
 #include "common/DidYouMean.hpp"
 
 #include <string>
@@ -11,9 +12,12 @@ namespace fsi::coupler {
 
 struct CouplingConfig {
   enum class Security { none, curve };
+  enum class Scheme { explicit_, implicit };
 
   std::string law = "penalty";
   std::unique_ptr<CouplingLawConfig> parameters = CouplingLawRegistry::builtin().make_config("penalty");
+  Scheme scheme = Scheme::explicit_;
+  ImplicitCouplingConfig implicit;
   std::string endpoint = "tcp://127.0.0.1:0";
   Security security = Security::none;
   std::string keys_dir = "keys";
@@ -35,6 +39,17 @@ struct CouplingConfig {
     }
     if constexpr (!std::is_same_v<V, common::ConfigDocWriter>)
       parameters->visit(v);
+    v.choice("scheme", scheme, {{"explicit", Scheme::explicit_}, {"implicit", Scheme::implicit}},
+             "explicit: the law is evaluated once per step at its start (section 2.3). implicit: the step is "
+             "advanced again with an updated force until the law evaluated at its end agrees (keys in implicit).");
+    v.section("implicit", implicit, "Sub-iterations of implicit coupling (scheme: implicit).");
+    if constexpr (std::is_same_v<V, common::ConfigReader>) {
+      if (v.has("implicit") && scheme != Scheme::implicit)
+        v.fail_value("implicit", "is given, but scheme is explicit: add scheme: implicit, or remove the section.");
+      if (scheme == Scheme::implicit && !parameters->build()->allows_implicit())
+        v.fail_value("scheme", "= implicit takes the law penalty or feedback; " + law +
+                                   " advances its IB points with the velocity at the start of the step.");
+    }
     v.text("endpoint", endpoint,
            "Where the coupler listens (tcp://HOST:PORT, ipc:///PATH). Port 0: any free port, handed to the "
            "participants by ./fsi run; give a fixed port to start the processes by hand on several machines.");

@@ -50,7 +50,7 @@ public:
   /// As above, into out, reusing its arrays' memory (no allocation once sized).
   void compute(const CouplingInputs &in, CouplingOutputs &out);
   /// The step of the last compute() is accepted: the law's state moves on to it.
-  virtual void accept(const CouplingInputs & /*in*/, const CouplingOutputs & /*out*/) {}
+  virtual void accept(const CouplingOutputs & /*out*/) {}
 
   /// The law's state for a checkpoint (names under "law/"), and back.
   virtual void save_state(checkpoint::StateArchive & /*archive*/) const {}

@@ -27,6 +27,12 @@ CouplingResults::CouplingResults(const std::filesystem::path &h5_path, const std
   force_ = std::make_unique<ExtendableDataset>(file_.get(), "total_force_on_fluid_n",
                                                ExtendableDataset::ElementType::float64, std::vector<hsize_t>{3},
                                                chunk, "N");
+  iterations_ = std::make_unique<ExtendableDataset>(file_.get(), "coupling_iterations",
+                                                    ExtendableDataset::ElementType::int64, std::vector<hsize_t>{},
+                                                    chunk, "1");
+  residual_ = std::make_unique<ExtendableDataset>(file_.get(), "coupling_residual",
+                                                  ExtendableDataset::ElementType::float64, std::vector<hsize_t>{},
+                                                  chunk, "1");
   timings_group_ = H5Handle::group(H5Gcreate2(file_.get(), "timings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                    "cannot create /timings in " + h5_path.string());
   for (const auto name : StepTimings::names)
@@ -58,6 +64,10 @@ CouplingResults::CouplingResults(const std::filesystem::path &h5_path, long last
   time_ = std::make_unique<ExtendableDataset>(file_.get(), "time_s", ExtendableDataset::ElementType::float64, kept_rows_);
   force_ = std::make_unique<ExtendableDataset>(file_.get(), "total_force_on_fluid_n",
                                                ExtendableDataset::ElementType::float64, kept_rows_);
+  iterations_ = std::make_unique<ExtendableDataset>(file_.get(), "coupling_iterations",
+                                                    ExtendableDataset::ElementType::int64, kept_rows_);
+  residual_ = std::make_unique<ExtendableDataset>(file_.get(), "coupling_residual",
+                                                  ExtendableDataset::ElementType::float64, kept_rows_);
   timings_group_ = H5Handle::group(H5Gopen2(file_.get(), "timings", H5P_DEFAULT), what);
   for (const auto name : StepTimings::names)
     timings_.emplace_back(timings_group_.get(), std::string(name), ExtendableDataset::ElementType::float64, kept_rows_);
@@ -77,11 +87,13 @@ void CouplingResults::flush() {
 }
 
 void CouplingResults::write_step(long step, double time_s, const StepTimings &timings,
-                                 const double total_force_on_fluid_n[3]) {
-  const std::int64_t s = step;
+                                 const double total_force_on_fluid_n[3], int iterations, double residual) {
+  const std::int64_t s = step, k = iterations;
   step_->append_row(&s);
   time_->append_row(&time_s);
   force_->append_row(total_force_on_fluid_n);
+  iterations_->append_row(&k);
+  residual_->append_row(&residual);
   const auto values = timings.values();
   for (std::size_t i = 0; i < values.size(); ++i)
     timings_[i].append_row(&values[i]);

@@ -1,6 +1,7 @@
 #pragma once
 // The coupler's results file, coupling.h5: per step, the time, the timing breakdown
-// (StepTimings, seconds) and the total force the structures exert on the fluid (N); as
+// (StepTimings, seconds), the total force the structures exert on the fluid (N), the coupling
+// iterations of the step and their last relative residual (implicit coupling); as
 // attributes, the effective configuration, the code version and the run status. Flushed at
 // most once a second (a flush of 11 datasets costs about 0.1 ms, as much as a whole coupled
 // step of 10^3 points) and at every status change: a run that dies loses at most the last
@@ -28,7 +29,10 @@ public:
   CouplingResults(const std::filesystem::path &h5_path, long last_step);
   ~CouplingResults();
 
-  void write_step(long step, double time_s, const StepTimings &timings, const double total_force_on_fluid_n[3]);
+  /// iterations: the coupling iterations of the step (1: explicit); residual: |F~ - F| / |F~| of
+  /// its last iteration (implicit coupling; 0 for explicit).
+  void write_step(long step, double time_s, const StepTimings &timings, const double total_force_on_fluid_n[3],
+                  int iterations = 1, double residual = 0.0);
   /// Force (N) and torque (N m) of the fluid on a rigid body at this step, in
   /// /rigid_bodies/<name>/ (created at the first call for that name).
   void write_rigid_body_load(const std::string &name, const double force_n[3], const double torque_n_m[3]);
@@ -42,7 +46,7 @@ public:
 private:
   std::filesystem::path path_;
   hdf5::H5Handle file_, timings_group_;
-  std::unique_ptr<hdf5::ExtendableDataset> step_, time_, force_;
+  std::unique_ptr<hdf5::ExtendableDataset> step_, time_, force_, iterations_, residual_;
   std::vector<hdf5::ExtendableDataset> timings_;
   struct BodySeries {
     hdf5::H5Handle group;

@@ -26,6 +26,8 @@ using proto::v2::Envelope;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+Eigen::Map<const Eigen::VectorXd> as_vector(const PointArray &points) { return {points.data(), points.size()}; }
+
 std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
 
 void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v2::RigidBodyPose &out) {
@@ -154,7 +156,15 @@ void CouplingRun::open() {
     results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_yaml_, FSI_VERSION);
   }
   law_ = c.parameters->build();
-  spdlog::info("coupling law: {}", law_->name());
+  implicit_ = c.scheme == CouplingConfig::Scheme::implicit;
+  if (implicit_) {
+    accelerator_ = make_accelerator(c.implicit);
+    spdlog::info("coupling law: {}, implicit: {} acceleration, tolerance {:g}, {} to {} iterations a step",
+                 law_->name(), accelerator_->name(), c.implicit.tolerance, c.implicit.min_iterations,
+                 c.implicit.max_iterations);
+  } else {
+    spdlog::info("coupling law: {}", law_->name());
+  }
   for (std::size_t i = 0; i < config_.rigid_surfaces.size(); ++i)
     if (const auto &motion = config_.rigid_surfaces[i].motion)
       moving_bodies_.emplace_back("surface" + std::to_string(i),
@@ -259,6 +269,7 @@ void CouplingRun::welcome(const std::string &id, bool with_structures, const std
   w->set_n_steps(static_cast<std::uint64_t>(n_steps_));
   w->set_heartbeat_interval_s(config_.coupling.heartbeat_interval_s);
   w->set_timeout_s(config_.coupling.timeout_s);
+  w->set_implicit_coupling(implicit_);
   if (with_structures)
     for (const auto &s : topology_)
       *w->add_structures() = s;
@@ -280,6 +291,10 @@ void CouplingRun::receive_initial_state() {
     x_prev_ = own.points("x_previous_m", n);
     law_->start(x_now_);
     law_->load_state(own, n); // the IB points, the feedback integral
+    if (implicit_ && own.has("implicit/guess_n_per_measure")) { // the next step's F_0
+      guess_ = own.points("implicit/guess_n_per_measure", n);
+      have_guess_ = true;
+    }
     const PointArray theirs = message.points(reply.position_m(), n, "AdvanceReply.position_m");
     if (!(theirs.array() == x_now_.array()).all())
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " resumed from positions other than "
@@ -302,11 +317,67 @@ void CouplingRun::receive_initial_state() {
 void CouplingRun::advance_one_step(long n) {
   const auto step_start = Clock::now();
   participants_->take_wait_s();
-  interpolate_fluid_velocity(n);   // U_ib^n at X_ib^n (with the rigid-body poses at t^n)
-  apply_coupling_law();            // X_ib^{n+1} and F_fsi^n, Eq. (5)
-  advance_fluid_and_structure(n);  // Eq. (8) + PIMPLE || Eq. (4) + Eq. (11), concurrently
+  timings_ = StepTimings{};
+  if (implicit_) {
+    advance_implicit_step(n);
+  } else {
+    const double t = static_cast<double>(n) * dt_;
+    interpolate_fluid_velocity(n, t, law_->interpolation_points(x_now_)); // U_ib^n at X_ib^n (rigid bodies at t^n)
+    apply_coupling_law(coupled_);           // X_ib^{n+1} and F_fsi^n, Eq. (5)
+    advance_fluid_and_structure(n, false);  // Eq. (8) + PIMPLE || Eq. (4) + Eq. (11), concurrently
+    law_->accept(coupled_);                 // the law's state (IB points, integral) moves to step n + 1
+  }
   timings_.waiting_s = participants_->take_wait_s();
   timings_.step_wall_s = seconds_since(step_start);
+}
+
+void CouplingRun::advance_implicit_step(long n) {
+  // The fixed point F = H(F) of the step: H advances the fluid and the structure from t^n under
+  // F (the load -F) and evaluates the coupling law at the end of the step, with X^{n+1},
+  // X^n and U_ib^{n+1} = U^{n+1}(X^{n+1}). F_0 is the previous step's last H, which for the
+  // penalty law is the explicit scheme's F^n: one iteration is the explicit step.
+  if (!have_guess_) { // the first step of a run (or of a restart)
+    interpolate_fluid_velocity(n, static_cast<double>(n) * dt_, x_now_);
+    apply_coupling_law(coupled_);
+    have_guess_ = true;
+  } else {
+    coupled_.force_density_n_per_measure = guess_;
+  }
+  const double t_next = static_cast<double>(n + 1) * dt_;
+  const PointArray x_start = x_now_, x_before = x_prev_; // X^n, X^{n-1}: each iteration starts there
+  accelerator_->begin_step();
+  const auto &settings = config_.coupling.implicit;
+  for (int k = 0;; ++k) {
+    if (k > 0) { // back to the start of the step
+      x_now_ = x_start;
+      x_prev_ = x_before;
+    }
+    advance_fluid_and_structure(n, k > 0);             // under F_k; X^{n+1}_k
+    interpolate_fluid_velocity(n, t_next, x_now_);      // U^{n+1}_k at X^{n+1}_k
+    apply_coupling_law(evaluated_);                    // F~_k = H(F_k)
+    const auto f = as_vector(coupled_.force_density_n_per_measure);
+    const auto f_tilde = as_vector(evaluated_.force_density_n_per_measure);
+    const double scale = f_tilde.norm();
+    residual_ = (f_tilde - f).norm() / (scale > 0.0 ? scale : 1.0);
+    iterations_ = k + 1;
+    const bool converged = (f_tilde - f).norm() <= settings.tolerance * scale;
+    if ((converged && iterations_ >= settings.min_iterations) || iterations_ >= settings.max_iterations) {
+      if (!converged) {
+        ++unconverged_steps_;
+        if (unconverged_steps_ <= 10 || unconverged_steps_ % 1000 == 0)
+          spdlog::warn("step {}: not converged after {} coupling iterations (residual {:.3g}, tolerance {:.3g}); "
+                       "accepted ({} such steps so far)",
+                       n, iterations_, residual_, settings.tolerance, unconverged_steps_);
+      }
+      break;
+    }
+    accelerator_->next(f, f_tilde, next_force_);
+    coupled_.force_density_n_per_measure = Eigen::Map<const PointArray>(next_force_.data(), x_now_.rows(), 3);
+  }
+  accelerator_->end_step();
+  law_->accept(evaluated_); // the law's state moves on with the end-of-step evaluation
+  guess_ = evaluated_.force_density_n_per_measure;
+  iterations_sum_ += iterations_;
 }
 
 namespace {
@@ -318,10 +389,9 @@ std::string rejected(const proto::MalformedMessageError &e) {
 }
 } // namespace
 
-void CouplingRun::interpolate_fluid_velocity(long n) {
+void CouplingRun::interpolate_fluid_velocity(long n, double t, const PointArray &points) {
   // Section 2.3, first bullet: rigid surfaces move before the fluid forces are computed.
   auto *request = request_.envelope().mutable_interpolate_request();
-  const double t = static_cast<double>(n) * dt_;
   request->set_time_s(t);
   request->mutable_rigid_bodies()->Clear();
   for (const auto &[name, motion] : moving_bodies_)
@@ -329,7 +399,7 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
   // U_ib^n at the immersed-boundary points X_ib^n: the structure points X^n for the penalty
   // and feedback laws (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5), the law's own
   // advected points for two_point_sets.
-  request_.add_points(*request->mutable_position_m(), law_->interpolation_points(x_now_));
+  request_.add_points(*request->mutable_position_m(), points);
   participants_->send(fluid_id_, request_, static_cast<std::uint64_t>(n));
   const proto::Message &message = await(fluid_id_, Envelope::kInterpolateReply, n, "InterpolateReply");
   const auto &reply = message.envelope().interpolate_reply();
@@ -339,36 +409,40 @@ void CouplingRun::interpolate_fluid_velocity(long n) {
     throw ParticipantFailed(fluid_id_, "participant " + fluid_id_ + " sent a bad InterpolateReply at step " +
                                            std::to_string(n) + ": " + rejected(e));
   }
-  timings_.interpolation_s = reply.solve_wall_s();
+  timings_.interpolation_s += reply.solve_wall_s();
 }
 
-void CouplingRun::apply_coupling_law() {
+void CouplingRun::apply_coupling_law(CouplingOutputs &out) {
   const auto start = Clock::now();
-  law_->compute({&x_now_, &x_prev_, &u_ib_, dt_}, coupled_);
-  if (!coupled_.force_density_n_per_measure.allFinite()) {
+  law_->compute({&x_now_, &x_prev_, &u_ib_, dt_}, out);
+  if (!out.force_density_n_per_measure.allFinite()) {
     Eigen::Index worst = 0;
-    (coupled_.force_density_n_per_measure.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
+    (out.force_density_n_per_measure.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
     throw ParticipantFailed(fluid_id_, "the FSI force is not finite at Lagrangian point " + std::to_string(worst) +
                                            ": the fluid velocity there is " +
                                            std::to_string(u_ib_.row(worst).norm()) + " m/s (NaN?)");
   }
-  timings_.coupling_law_s = seconds_since(start);
+  timings_.coupling_law_s += seconds_since(start);
 }
 
-void CouplingRun::advance_fluid_and_structure(long n) {
+void CouplingRun::advance_fluid_and_structure(long n, bool repeat) {
   const double t = static_cast<double>(n) * dt_;
-  auto *fluid = fluid_advance_.envelope().mutable_fluid_advance();
+  // Eq. (8) spreads at X^n. The fluid has the points of this step's InterpolateRequest; when
+  // those are the law's own IB points (X_ib^n != X^n), or when the step is repeated (implicit
+  // coupling: the last interpolation was at X^{n+1}), X^n goes with the force (a message of its
+  // own: a message's array frames are kept from send to send).
+  const bool spread_elsewhere = &law_->interpolation_points(x_now_) != &x_now_ || repeat;
+  proto::Message &fluid_message = spread_elsewhere ? fluid_advance_spread_ : fluid_advance_;
+  auto *fluid = fluid_message.envelope().mutable_fluid_advance();
   fluid->set_time_s(t);
   fluid->set_dt_s(dt_);
-  // Eq. (8) spreads at X^n. The fluid has the points of this step's InterpolateRequest; when
-  // those are the law's own IB points (X_ib^n != X^n), X^n goes with the force.
   const PointArray &force = coupled_.force_density_n_per_measure;
-  fluid_advance_.add_points(*fluid->mutable_force_density_n_per_measure(), force);
-  if (&law_->interpolation_points(x_now_) != &x_now_)
-    fluid_advance_.add_points(*fluid->mutable_spread_position_m(), x_now_);
-  else
-    fluid->clear_spread_position_m();
+  fluid_message.add_points(*fluid->mutable_force_density_n_per_measure(), force);
+  if (spread_elsewhere)
+    fluid_message.add_points(*fluid->mutable_spread_position_m(), x_now_);
+  fluid->set_repeat(repeat);
   auto *structure = structure_advance_.envelope().mutable_structure_advance();
+  structure->set_repeat(repeat);
   structure->set_time_s(t);
   structure->set_dt_s(dt_);
   // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
@@ -382,7 +456,7 @@ void CouplingRun::advance_fluid_and_structure(long n) {
     *structure->add_rigid_bodies() = fluid->rigid_bodies(fluid->rigid_bodies_size() - 1);
   }
   participants_->send(structure_id_, structure_advance_, static_cast<std::uint64_t>(n));
-  participants_->send(fluid_id_, fluid_advance_, static_cast<std::uint64_t>(n));
+  participants_->send(fluid_id_, fluid_message, static_cast<std::uint64_t>(n));
 
   // Collect both replies, in whichever order they come.
   bool fluid_done = false, structure_done = false;
@@ -404,18 +478,17 @@ void CouplingRun::advance_fluid_and_structure(long n) {
     const auto &reply = envelope.advance_reply();
     done = true;
     if (from_fluid) {
-      timings_.fluid_solve_s = reply.solve_wall_s();
+      timings_.fluid_solve_s += reply.solve_wall_s();
       record_rigid_body_loads(reply);
       continue;
     }
-    timings_.structure_solve_s = reply.solve_wall_s();
+    timings_.structure_solve_s += reply.solve_wall_s();
     try { // checked before anything changes: a rejected reply leaves X^n and X^{n-1} as they were
       x_next_ = incoming.message().finite_points(reply.position_m(), x_now_.rows(), "AdvanceReply.position_m");
     } catch (const proto::MalformedMessageError &e) {
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " sent a bad AdvanceReply at step " +
                                                  std::to_string(n) + ": " + rejected(e));
     }
-    law_->accept({&x_now_, &x_prev_, &u_ib_, dt_}, coupled_); // the law's state moves to step n + 1
     x_prev_.swap(x_now_);
     x_now_.swap(x_next_);
   }
@@ -446,7 +519,11 @@ void CouplingRun::check_stability() const {
       continue;
     const double limit = config_.coupling.parameters->stable_time_step_s(rho);
     spdlog::info("structure '{}': coupling time step limit {:.3g} s (dt = {:.3g} s)", s.name(), limit, dt_);
-    if (dt_ > limit)
+    if (dt_ > limit && implicit_)
+      spdlog::info("structure '{}': dt exceeds the explicit scheme's limit {:.3g} s; implicit coupling iterates each "
+                   "step to the law at its end, which that limit does not bind",
+                   s.name(), limit);
+    else if (dt_ > limit)
       spdlog::warn("structure '{}': run.time_step_s = {:.3g} s exceeds the stability limit {:.3g} s of the coupling "
                    "law (rho_1 = {:.3g}); the run is expected to diverge: lower the penalty constant or the time step",
                    s.name(), dt_, limit, rho);
@@ -507,6 +584,8 @@ void CouplingRun::checkpoint(long n) {
   own.put_points("x_m", x_now_);
   own.put_points("x_previous_m", x_prev_);
   law_->save_state(own);
+  if (implicit_ && have_guess_)
+    own.put_points("implicit/guess_n_per_measure", guess_);
   parts.push_back({"coupler.ckpt", checkpoint::write_archive(folder / "coupler.ckpt", own)});
   results_->flush(); // coupling.h5 holds every step up to this one
   checkpoints_->complete(n, static_cast<double>(n) * dt_, parts);
@@ -518,7 +597,7 @@ void CouplingRun::record_step(long n) {
   const Vec3 total = (coupled_.force_density_n_per_measure.array().colwise() * measures_.array()).colwise().sum();
   for (int k = 0; k < 3; ++k)
     force[k] = total[k];
-  results_->write_step(n, static_cast<double>(n) * dt_, timings_, force);
+  results_->write_step(n, static_cast<double>(n) * dt_, timings_, force, iterations_, residual_);
   timings_sum_ += timings_;
   ++timings_count_;
 }
@@ -544,12 +623,18 @@ void CouplingRun::report_progress(long n, bool force) {
   const double eta = wall * static_cast<double>(n_steps_ - n) / static_cast<double>(std::max(1L, n - first_step_));
   const double per_step_ms = 1e3 / static_cast<double>(std::max(1L, timings_count_));
   const StepTimings &sum = timings_sum_;
+  const std::string iterations =
+      implicit_ ? fmt::format(", {:.2f} coupling iterations/step (residual {:.2g}, {} unconverged)",
+                              static_cast<double>(iterations_sum_) / static_cast<double>(std::max(1L, timings_count_)),
+                              residual_, unconverged_steps_)
+                : std::string();
   spdlog::info("step {}/{}  t = {:.5g} s ({:.0f}%)  wall {}  ETA {}  {:.3g} ms/step: fluid {:.3g}, structure {:.3g}, "
-               "coupling overhead {:.3g}",
+               "coupling overhead {:.3g}{}",
                n, n_steps_, static_cast<double>(n) * dt_, 100.0 * static_cast<double>(n) / static_cast<double>(n_steps_),
                common::format_duration(wall), common::format_duration(eta), per_step_ms * sum.step_wall_s,
                per_step_ms * (sum.interpolation_s + sum.fluid_solve_s), per_step_ms * sum.structure_solve_s,
-               per_step_ms * sum.overhead_s());
+               per_step_ms * sum.overhead_s(), iterations);
+  iterations_sum_ = 0;
   timings_sum_ = StepTimings{};
   timings_count_ = 0;
 }

@@ -5,6 +5,7 @@
 // progress with an ETA. On any failure it tells the participants to stop, keeps what it wrote,
 // and returns non-zero naming the participant and the step.
 
+#include "Accelerator.hpp"
 #include "CouplingLaw.hpp"
 #include "CouplingResults.hpp"
 #include "ParticipantTable.hpp"
@@ -38,9 +39,14 @@ private:
   void handshake();
   void receive_initial_state();
   void advance_one_step(long n);
-  void interpolate_fluid_velocity(long n);
-  void apply_coupling_law();
-  void advance_fluid_and_structure(long n);
+  /// Implicit coupling: step n advanced again and again until the law at its end agrees.
+  void advance_implicit_step(long n);
+  /// U_ib at `points` at time t (rigid bodies at t), into u_ib_.
+  void interpolate_fluid_velocity(long n, double t, const PointArray &points);
+  /// The law with X^n = x_now_, X^{n-1} = x_prev_, U_ib = u_ib_.
+  void apply_coupling_law(CouplingOutputs &out);
+  /// Both participants advance step n under coupled_ (repeat: again, from its start).
+  void advance_fluid_and_structure(long n, bool repeat);
 
   // Helpers.
   int interrupted(long step);
@@ -80,7 +86,19 @@ private:
   Eigen::VectorXd measures_;
   CouplingOutputs coupled_;
 
-  proto::Message request_, fluid_advance_, structure_advance_; // headers reused step to step
+  proto::Message request_, fluid_advance_, fluid_advance_spread_, structure_advance_; // headers reused step to step
+
+  // Implicit coupling (coupling.scheme: implicit).
+  bool implicit_ = false;
+  std::unique_ptr<Accelerator> accelerator_;
+  CouplingOutputs evaluated_;         ///< F~ = H(F): the law at the end of the step
+  PointArray guess_;                  ///< the next step's F_0
+  bool have_guess_ = false;
+  Eigen::VectorXd next_force_;
+  int iterations_ = 1;                ///< of the last step
+  double residual_ = 0.0;             ///< |F~ - F| / |F~| of the last step's last iteration
+  long iterations_sum_ = 0;           ///< since the last progress line
+  long unconverged_steps_ = 0;
   StepTimings timings_;
   StepTimings timings_sum_;   ///< since the last progress line
   long timings_count_ = 0;

@@ -20,7 +20,7 @@ void FeedbackCouplingLaw::compute_force(const CouplingInputs &in, CouplingOutput
   out.force_density_n_per_measure = -(alpha_ * next_ + beta_ * out.force_density_n_per_measure);
 }
 
-void FeedbackCouplingLaw::accept(const CouplingInputs &, const CouplingOutputs &) { integral_.swap(next_); }
+void FeedbackCouplingLaw::accept(const CouplingOutputs &) { integral_.swap(next_); }
 
 void FeedbackCouplingLaw::save_state(checkpoint::StateArchive &archive) const {
   archive.put_points("law/integral_m", integral_);

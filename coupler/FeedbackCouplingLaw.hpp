@@ -26,7 +26,7 @@ public:
   std::string name() const override { return "feedback"; }
 
   void start(const PointArray &x_m) override { integral_ = PointArray::Zero(x_m.rows(), 3); }
-  void accept(const CouplingInputs &in, const CouplingOutputs &out) override;
+  void accept(const CouplingOutputs &out) override;
   void save_state(checkpoint::StateArchive &archive) const override;
   void load_state(const checkpoint::StateArchive &archive, long n_points) override;
 

@@ -15,7 +15,7 @@ void TwoPointSetsCouplingLaw::compute_force(const CouplingInputs &in, CouplingOu
   out.force_density_n_per_measure = -stiffness_ * (out.x_ib_next_m - 2.0 * *in.x_now_m + *in.x_prev_m);
 }
 
-void TwoPointSetsCouplingLaw::accept(const CouplingInputs &, const CouplingOutputs &out) { x_ib_ = out.x_ib_next_m; }
+void TwoPointSetsCouplingLaw::accept(const CouplingOutputs &out) { x_ib_ = out.x_ib_next_m; }
 
 void TwoPointSetsCouplingLaw::save_state(checkpoint::StateArchive &archive) const {
   archive.put_points("law/x_ib_m", x_ib_);

@@ -39,7 +39,7 @@ public:
   /// The IB points advance with U_ib^n at X_ib^n: evaluated at the end of the step the law would
   /// need X_ib^{n+2}; implicit coupling takes the penalty or the feedback law.
   bool allows_implicit() const override { return false; }
-  void accept(const CouplingInputs &in, const CouplingOutputs &out) override;
+  void accept(const CouplingOutputs &out) override;
   void save_state(checkpoint::StateArchive &archive) const override;
   void load_state(const checkpoint::StateArchive &archive, long n_points) override;
 

@@ -64,6 +64,12 @@ public:
   virtual void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) = 0;
   /// One PIMPLE time step of dt; writes fields at the case's write interval.
   virtual void advance(double dt_s) = 0;
+  /// Implicit coupling (collective): keeps every field's values and the time before a step,
+  /// and puts them back so that the next advance() repeats that step. The old-time fields are
+  /// not copied: the first advance of the step shifted them, and a repeat at the same time
+  /// index does not shift them again.
+  virtual void save_step_start() = 0;
+  virtual void restore_step_start() = 0;
   virtual double time_s() const = 0;
   /// Writes the current fields now (end of run, last good state, a checkpoint).
   virtual void write_now() = 0;

@@ -129,6 +129,18 @@ void OpenFoamFluidModel::spread_at(proto::PointsView x_m) {
   build_stencil();
 }
 
+void OpenFoamFluidModel::save_step_start() {
+  message_.clear();
+  broadcast(Command::save_step, message_);
+  flow_.save_step_start();
+}
+
+void OpenFoamFluidModel::restore_step_start() {
+  message_.clear();
+  broadcast(Command::restore_step, message_);
+  flow_.restore_step_start();
+}
+
 void OpenFoamFluidModel::advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
                                  proto::v2::AdvanceReply &reply) {
   // Payload for the other ranks: t, dt, the moving bodies' poses at t + dt, then F_fsi^n.
@@ -224,6 +236,12 @@ void OpenFoamFluidModel::follow() {
       do_interpolate(u);
       break;
     }
+    case Command::save_step:
+      flow_.save_step_start();
+      break;
+    case Command::restore_step:
+      flow_.restore_step_start();
+      break;
     case Command::spread_at:
       positions_ = Eigen::Map<const PointArray>(payload, static_cast<Eigen::Index>(n / 3), 3);
       build_stencil();

@@ -65,6 +65,9 @@ public:
   /// The next advance spreads at these points (the coupling law two_point_sets): a second
   /// kernel stencil, built on every rank.
   void spread_at(proto::PointsView x_m) override;
+  /// Implicit coupling: every rank keeps its fields before a step, and puts them back.
+  void save_step_start() override;
+  void restore_step_start() override;
   void finish(bool success) override;
   /// Checkpoints (serial runs): the fields of the current time, written and copied into the set
   /// of step n in `checkpoints_root_` (FoamCheckpoint).
@@ -90,7 +93,8 @@ public:
 private:
   FlowStepTimings timings_;
   PenalizationSwitching switching_;
-  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5, spread_at = 6 };
+  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5, spread_at = 6,
+                       save_step = 7, restore_step = 8 };
   void broadcast(Command command, std::vector<double> &payload);
   /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
   /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).

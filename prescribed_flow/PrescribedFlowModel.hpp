@@ -23,6 +23,9 @@ public:
                    proto::MutablePointsView u_m_per_s) override;
   /// One-way coupling: the flow is prescribed, so F_fsi (Eq. 8) is not spread, wherever.
   void spread_at(proto::PointsView) override {}
+  /// A function of time and place: a repeated step is the same step.
+  void save_step_start() override {}
+  void restore_step_start() override {}
   void advance(const proto::v2::FluidAdvance &, proto::PointsView, proto::v2::AdvanceReply &) override {}
   void finish(bool) override {}
   /// The flow is a function of time and place: the part (fluid.ckpt) holds the step and the

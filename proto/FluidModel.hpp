@@ -45,6 +45,15 @@ public:
                              std::to_string(step) + "): docs/restart.md");
   }
 
+  /// Implicit coupling: keep the state at the start of the step about to be advanced (fields,
+  /// old-time fields, time), and put it back before a repeated advance of the same step.
+  virtual void save_step_start() {
+    throw std::runtime_error("this fluid (" + describe() + ") cannot repeat a step: implicit coupling needs it");
+  }
+  virtual void restore_step_start() {
+    throw std::runtime_error("this fluid (" + describe() + ") cannot repeat a step: implicit coupling needs it");
+  }
+
   /// The run is over (success: completed): write what is worth keeping.
   virtual void finish(bool success) = 0;
 };

@@ -37,6 +37,7 @@ int FluidParticipant::run() {
       n_points_ += static_cast<Eigen::Index>(s.n1()) * s.n2();
     spdlog::info("joined: {} steps of {} s, {} Lagrangian points", welcome.n_steps(), welcome.time_step_s(), n_points_);
     model_.start(welcome);
+    implicit_ = welcome.implicit_coupling();
     if (welcome.first_step() > 0) {
       model_.resume(static_cast<long>(welcome.first_step()), welcome.checkpoint_checksum());
       steps_ = static_cast<long>(welcome.first_step());
@@ -110,6 +111,16 @@ void FluidParticipant::advance(const Message &request) {
       request.points(body.force_density_n_per_measure(), n_points_, "FluidAdvance.force_density_n_per_measure");
   auto *reply = advance_reply_.envelope().mutable_advance_reply();
   reply->mutable_rigid_body_loads()->Clear();
+  // Implicit coupling: the first advance of a step keeps its start state, a repeat goes back to it.
+  if (body.repeat()) {
+    if (!implicit_ || steps_ != static_cast<long>(request.envelope().step()) + 1)
+      throw MalformedMessageError("FluidAdvance.repeat for step " + std::to_string(request.envelope().step()) +
+                                  (implicit_ ? ", which was not the last step advanced" : " in an explicit run"));
+    model_.restore_step_start();
+    --steps_;
+  } else if (implicit_) {
+    model_.save_step_start();
+  }
   if (body.has_spread_position_m()) // the law's own IB points: Eq. (8) spreads at X^n
     model_.spread_at(request.points(body.spread_position_m(), n_points_, "FluidAdvance.spread_position_m"));
   model_.advance(body, force, *reply);

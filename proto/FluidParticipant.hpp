@@ -32,6 +32,7 @@ private:
   std::unique_ptr<ParticipantSession> session_;
   Message interpolate_reply_, advance_reply_; // reused: no per-step allocation of the headers
   Eigen::Index n_points_ = 0;
+  bool implicit_ = false; ///< Welcome.implicit_coupling: advances may repeat a step
   long steps_ = 0;
 };
 

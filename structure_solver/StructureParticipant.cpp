@@ -67,14 +67,16 @@ int StructureParticipant::run() {
     else
       run_.begin_fresh();
     send_state(static_cast<std::uint64_t>(step), 0.0, true); // the initial state X^0, V^0 (a restart: X^k, V^k)
+    // Implicit coupling: a step may come again (StructureAdvance.repeat) until the coupler
+    // moves on; its output waits until then (the next request is of another kind or step).
+    const bool implicit = welcome.implicit_coupling();
+    const proto::Message *next = &session_->next_request();
     for (; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
-      const proto::Message *next = &session_->next_request();
       while (next->envelope().has_checkpoint_request()) { // at the step boundary, before step `step`
         write_checkpoint(next->envelope(), step);
         next = &session_->next_request();
       }
-      const proto::Message &message = *next;
-      const proto::Envelope &request = message.envelope();
+      const proto::Envelope &request = next->envelope();
       if (request.has_shutdown() && request.shutdown().success()) { // run.stop_when_past, seen by the coupler
         run_.finish("completed", step);
         spdlog::info("completed at step {} of {}: the coupler ended the run ({})", step, run_.n_steps(),
@@ -82,23 +84,36 @@ int StructureParticipant::run() {
         return 0;
       }
       check_request(request, step);
-      unpack_loads(message);
-      take_rigid_poses(request.structure_advance());
-      const auto start = std::chrono::steady_clock::now();
-      const StepOutcome outcome = run_.advance_step(step, &loads_);
-      const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (outcome.kind == StepOutcome::Kind::diverged) {
-        session_->report_error("structure diverged at " + outcome.message, static_cast<std::uint64_t>(step));
-        return common::exit_code_run_failed;
+      if (request.structure_advance().repeat())
+        throw ProtocolViolation("StructureAdvance.repeat for step " + std::to_string(step) +
+                                (implicit ? ", which has not been advanced yet" : " in an explicit run"));
+      if (implicit)
+        run_.save_step_start();
+      while (true) {
+        unpack_loads(*next);
+        take_rigid_poses(next->envelope().structure_advance());
+        const auto start = std::chrono::steady_clock::now();
+        const StepOutcome outcome = run_.advance_step(step, &loads_, !implicit);
+        const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (outcome.kind == StepOutcome::Kind::diverged) {
+          session_->report_error("structure diverged at " + outcome.message, static_cast<std::uint64_t>(step));
+          return common::exit_code_run_failed;
+        }
+        if (outcome.kind == StepOutcome::Kind::interrupted) {
+          session_->report_error("participant " + session_->routing_id() + " " + outcome.message,
+                                 static_cast<std::uint64_t>(step));
+          return common::exit_code_interrupted;
+        }
+        send_state(static_cast<std::uint64_t>(step), solve_s, false);
+        next = &session_->next_request();
+        if (!implicit || !next->envelope().has_structure_advance() || !next->envelope().structure_advance().repeat())
+          break;
+        check_request(next->envelope(), step); // a repeat of this step
+        run_.restore_step_start();
       }
-      if (outcome.kind == StepOutcome::Kind::interrupted) {
-        session_->report_error("participant " + session_->routing_id() + " " + outcome.message,
-                               static_cast<std::uint64_t>(step));
-        return common::exit_code_interrupted;
-      }
-      send_state(static_cast<std::uint64_t>(step), solve_s, false);
+      if (implicit)
+        run_.record_step(step); // accepted
     }
-    const proto::Message *next = &session_->next_request();
     while (next->envelope().has_checkpoint_request()) { // the checkpoint at the end of the run
       write_checkpoint(next->envelope(), step);
       next = &session_->next_request();

@@ -274,7 +274,18 @@ void StructureRun::resume_from(long step, const std::string &checksum) {
                folder.string());
 }
 
-StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *load_densities) {
+void StructureRun::save_step_start() {
+  step_start_ = checkpoint::StateArchive();
+  for (const auto &s : scene_->structures())
+    s->save_state(step_start_, "structures/" + s->name() + "/");
+}
+
+void StructureRun::restore_step_start() {
+  for (const auto &s : scene_->structures())
+    s->load_state(step_start_, "structures/" + s->name() + "/");
+}
+
+StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *load_densities, bool record) {
   const long step = n + 1; // the state X^{n+1} this step reaches (saved states are numbered from X^0)
   for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
     last_good_x_[i] = scene_->structures()[i]->positions_m();
@@ -297,11 +308,16 @@ StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *lo
                  results_->h5_path().string());
     return {StepOutcome::Kind::interrupted, "interrupted by signal " + std::to_string(int(received_stop_signal))};
   }
-  const long n_total = n_steps();
+  if (record)
+    record_step(n);
+  return {};
+}
+
+void StructureRun::record_step(long n) {
+  const long step = n + 1, n_total = n_steps();
   if (step % output_every() == 0 || step == n_total)
     write_state(step);
   report_progress(step, n_total, step == n_total);
-  return {};
 }
 
 void StructureRun::finish(const std::string &status, long n_completed) {

@@ -70,7 +70,15 @@ public:
   /// the given load densities (nullptr: none), checks for divergence (then the last good state
   /// is on disk), writes results at the output interval. Saved states are numbered as the
   /// positions they hold: step n writes X^{n+1}.
-  StepOutcome advance_step(long n, const std::vector<PointArray> *load_densities);
+  /// With record = false (implicit coupling: the step may be repeated) the output and progress
+  /// of the step wait for record_step(n), once the coupler has accepted it.
+  StepOutcome advance_step(long n, const std::vector<PointArray> *load_densities, bool record = true);
+  /// Output and progress of step n (when due), after advance_step(n, ..., false).
+  void record_step(long n);
+  /// Implicit coupling: keeps the state at the start of the step (what a checkpoint keeps, in
+  /// memory), and puts it back before the step is advanced again.
+  void save_step_start();
+  void restore_step_start();
   /// After n_completed steps: writes X^{n_completed} if not written yet and sets the status.
   void finish(const std::string &status, long n_completed);
   /// run.stop_when_past holds for every structure (a run without a coupler checks it itself).
@@ -105,6 +113,7 @@ private:
   std::unique_ptr<ProbeSet> probes_;
   std::unique_ptr<output::ProbeCsv> probe_csv_; ///< null without probes
   std::vector<PointArray> last_good_x_, last_good_v_;
+  checkpoint::StateArchive step_start_; ///< implicit coupling: the state at the start of the step
   std::chrono::steady_clock::time_point start_, last_progress_;
   long last_written_step_ = -1;
   long first_step_ = 0;

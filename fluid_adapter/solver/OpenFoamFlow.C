@@ -99,6 +99,8 @@ public:
   bool uses_wall_distance() const override;
   void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) override;
   void advance(double dt_s) override;
+  void save_step_start() override;
+  void restore_step_start() override;
   double time_s() const override { return runTime_->value(); }
   void write_now() override { runTime_->writeNow(); }
   std::string time_name() const override { return runTime_->timeName(); }
@@ -110,6 +112,18 @@ public:
   void min_over_ranks(double *data, std::size_t n) const override;
 
 private:
+  /// The fields of one type saved at the start of a step (implicit coupling).
+  template <class FieldType> struct SavedFields {
+    std::vector<std::pair<FieldType *, std::unique_ptr<FieldType>>> fields;
+    void save(Foam::fvMesh &mesh);
+    void restore();
+  };
+  SavedFields<Foam::volScalarField> savedScalars_;
+  SavedFields<Foam::volVectorField> savedVectors_;
+  SavedFields<Foam::volSymmTensorField> savedSymmTensors_;
+  SavedFields<Foam::surfaceScalarField> savedFluxes_;
+  Foam::scalar stepStartTime_ = 0.0;
+  Foam::label stepStartIndex_ = -1;
   void step(double dt_s);
   std::string find_divergence(double dt_s) const;
   double speed_limit_ = 1.0;
@@ -450,6 +464,51 @@ void OpenFoamFlow::advance(double dt_s) {
   }
   runTime_->write();
   runTime_->functionObjects().execute();
+}
+
+template <class FieldType> void OpenFoamFlow::SavedFields<FieldType>::save(Foam::fvMesh &mesh) {
+  // Every registered field of this type but the old-time ones ("U_0"): a copy not registered
+  // (it must not be found here the next time). Saved and restored in name order on every rank.
+  fields.clear();
+  const auto table = mesh.thisDb().lookupClass<FieldType>();
+  for (const Foam::word &name : table.sortedToc()) {
+    if (name.endsWith("_0"))
+      continue;
+    FieldType &field = const_cast<FieldType &>(*table[name]);
+    Foam::IOobject io(name + "_stepStart", mesh.time().timeName(), mesh, Foam::IOobject::NO_READ,
+                      Foam::IOobject::NO_WRITE, false);
+    auto copy = std::make_unique<FieldType>(io, field);
+    fields.emplace_back(&field, std::move(copy));
+  }
+}
+
+template <class FieldType> void OpenFoamFlow::SavedFields<FieldType>::restore() {
+  for (auto &[field, copy] : fields) {
+    // Values only, at the step's end time index: no old-time shift is triggered (see FoamFlow).
+    field->primitiveFieldRef() = copy->primitiveField();
+    field->boundaryFieldRef() == copy->boundaryField();
+  }
+}
+
+void OpenFoamFlow::save_step_start() {
+  savedScalars_.save(*mesh_);
+  savedVectors_.save(*mesh_);
+  savedSymmTensors_.save(*mesh_);
+  savedFluxes_.save(*mesh_);
+  stepStartTime_ = runTime_->value();
+  stepStartIndex_ = runTime_->timeIndex();
+}
+
+void OpenFoamFlow::restore_step_start() {
+  if (stepStartIndex_ < 0)
+    throw std::logic_error("OpenFoamFlow: restore_step_start() before save_step_start()");
+  // Values first, while the time index is still the step's end (the fields' own): then the
+  // time goes back, and the repeated ++time comes to the same index without shifting old times.
+  savedScalars_.restore();
+  savedVectors_.restore();
+  savedSymmTensors_.restore();
+  savedFluxes_.restore();
+  runTime_->setTime(stepStartTime_, stepStartIndex_);
 }
 
 std::string OpenFoamFlow::find_divergence(double dt_s) const {
