@@ -98,6 +98,8 @@ int CouplingRun::run() {
       participants_->shutdown_all(std::string("stopped by the coupler: ") + e.what(), false, step);
     if (results_)
       results_->set_status(std::string("failed: ") + e.what());
+    if (!stability_note_.empty())
+      spdlog::error("likely cause: {}", stability_note_);
     spdlog::error("run stopped at step {} because of participant {}; results so far are kept in {}", step,
                   e.participant, output_dir_.string());
     return common::exit_code_run_failed;
@@ -512,7 +514,7 @@ proto::Message &CouplingRun::await(const std::string &peer, Envelope::BodyCase b
   }
 }
 
-void CouplingRun::check_stability() const {
+void CouplingRun::check_stability() {
   for (const auto &s : topology_) {
     const double rho = s.mass_per_measure();
     if (!(rho > 0.0))
@@ -523,10 +525,15 @@ void CouplingRun::check_stability() const {
       spdlog::info("structure '{}': dt exceeds the explicit scheme's limit {:.3g} s; implicit coupling iterates each "
                    "step to the law at its end, which that limit does not bind",
                    s.name(), limit);
-    else if (dt_ > limit)
+    else if (dt_ > limit) {
+      stability_note_ = fmt::format("run.time_step_s = {:.3g} s exceeds the coupling law's stability limit {:.3g} s "
+                                    "for structure '{}' (rho_1 = {:.3g}): lower the penalty constant or the time "
+                                    "step, or use coupling.scheme: implicit",
+                                    dt_, limit, s.name(), rho);
       spdlog::warn("structure '{}': run.time_step_s = {:.3g} s exceeds the stability limit {:.3g} s of the coupling "
                    "law (rho_1 = {:.3g}); the run is expected to diverge: lower the penalty constant or the time step",
                    s.name(), dt_, limit, rho);
+    }
   }
 }
 

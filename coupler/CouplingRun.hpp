@@ -58,7 +58,9 @@ private:
   /// Every participant's part, then the coupler's, then the manifest: the set of step n.
   void checkpoint(long n);
   proto::Message &await(const std::string &peer, proto::v2::Envelope::BodyCase body, long step, const std::string &what);
-  void check_stability() const;
+  /// Logs each structure's stability limit of the law; beyond it (explicit), warns and keeps
+  /// the note for the error should the run fail.
+  void check_stability();
   /// run.stop_when_past holds for the structures' latest positions.
   bool structures_past_stop_plane() const;
   void record_step(long n);
@@ -99,6 +101,7 @@ private:
   double residual_ = 0.0;             ///< |F~ - F| / |F~| of the last step's last iteration
   long iterations_sum_ = 0;           ///< since the last progress line
   long unconverged_steps_ = 0;
+  std::string stability_note_; ///< explicit beyond the law's limit: the likely cause of a failure
   StepTimings timings_;
   StepTimings timings_sum_;   ///< since the last progress line
   long timings_count_ = 0;
