@@ -33,6 +33,8 @@
 #                             geometry.yaml, geometry.png; docs/pump-design.md)
 #   ./fsi pump-curve [--points 0.36,0.6,0.8,1.0,1.2] [--jobs N] [--resolution NAME] CASE_DIR
 #                             a pump case at several flow rates: pump_curve.csv and pump_curve.png
+#   ./fsi coupling-study [--only laws|implicit]  the coupling laws at equal cost and implicit coupling
+#                             against explicit on real runs (study/coupling/COUPLING.md; docs/coupling.md)
 #   ./fsi rag-ensemble [--runs 8] [--seed 1] [--flow-fraction 1.0] [--sizes LxW,...] [--jobs N] CASE_DIR
 #                             rag releases into a pump case (cases/rag-in-pump): P(hang-up) with its
 #                             interval, residence and wrap distributions (ensemble.csv, ensemble.png)
@@ -284,6 +286,8 @@ case "${1:-help}" in
   rag-ensemble)
     shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/rag_ensemble.py" --bin-dir "$BUILD/bin" "$@" ;;
+  coupling-study)
+    shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/coupling_study.py" --bin-dir "$BUILD/bin" "$@" ;;
   fuzz) shift; cmd_fuzz "$@" ;;
   submit)
     shift; [ $# -ge 1 ] || die "usage: ./fsi submit [--partition P] [--time T] [--fluid-nodes N] [--dry-run] CASE_DIR [CASE_DIR ...]"
@@ -292,5 +296,5 @@ case "${1:-help}" in
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
   help|-h|--help) sed -n '2,41p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, build, help)" ;;
+  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, coupling-study, build, help)" ;;
 esac

@@ -362,7 +362,9 @@ void CouplingRun::advance_implicit_step(long n) {
     const double scale = f_tilde.norm();
     residual_ = (f_tilde - f).norm() / (scale > 0.0 ? scale : 1.0);
     iterations_ = k + 1;
-    const bool converged = (f_tilde - f).norm() <= settings.tolerance * scale;
+    const double rms = (f_tilde - f).norm() / std::sqrt(static_cast<double>(std::max<Eigen::Index>(1, x_now_.rows())));
+    const bool converged = (f_tilde - f).norm() <= settings.tolerance * scale ||
+                           rms <= settings.absolute_tolerance_n_per_measure;
     if ((converged && iterations_ >= settings.min_iterations) || iterations_ >= settings.max_iterations) {
       if (!converged) {
         ++unconverged_steps_;

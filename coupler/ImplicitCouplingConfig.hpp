@@ -14,6 +14,7 @@ struct ImplicitCouplingConfig {
   Acceleration acceleration = Acceleration::iqn_ils;
   double relaxation = 0.5;
   double tolerance = 1e-3;
+  double absolute_tolerance_n_per_measure = 1e-4;
   int min_iterations = 1;
   int max_iterations = 30;
   int reuse_steps = 8;
@@ -30,6 +31,10 @@ struct ImplicitCouplingConfig {
     v.number("tolerance", tolerance, common::Range::positive("1"),
              "A step has converged when |F~ - F| <= tolerance |F~| (2-norms over all points), F the force the "
              "step was advanced with and F~ the coupling law evaluated at its end.");
+    v.number("absolute_tolerance_n_per_measure", absolute_tolerance_n_per_measure,
+             common::Range::non_negative("N/m^2 (sheet), N/m (filament)"),
+             "A step has also converged when the root mean square over the points of |F~ - F| is below this: "
+             "the relative test cannot be met where the force itself vanishes (a structure moving with the flow).");
     v.integer("min_iterations", min_iterations, common::Range::at_least(1.0, "iterations"),
               "Iterations of every step at least.");
     v.integer("max_iterations", max_iterations, common::Range::at_least(1.0, "iterations"),

@@ -104,7 +104,8 @@ def membrane(name="sheet", size=(0.1, 0.1), n=(26, 26), origin=(0, 0, 0), s1=(1,
 
 
 def case(structures, end_time_s, dt, output_interval_s=None, gravity=(0, 0, -9.81), collisions=None,
-         flow=None, stiffness=None):
+         flow=None, stiffness=None, coupling=None):
+    """coupling: the whole coupling section (a law other than penalty, implicit coupling)."""
     c = {"run": {"end_time_s": float(end_time_s), "time_step_s": float(dt),
                  "output_interval_s": float(output_interval_s or end_time_s / 50.0),
                  "progress_interval_s": 60},
@@ -114,7 +115,7 @@ def case(structures, end_time_s, dt, output_interval_s=None, gravity=(0, 0, -9.8
     c["structures"] = structures
     if flow is not None:
         c["fluid"] = {"prescribed": flow}
-        c["coupling"] = {"law": "penalty", "stiffness_n_per_m_per_measure": float(stiffness)}
+        c["coupling"] = coupling or {"law": "penalty", "stiffness_n_per_m_per_measure": float(stiffness)}
     return c
 
 

@@ -111,8 +111,13 @@ int StructureParticipant::run() {
         check_request(next->envelope(), step); // a repeat of this step
         run_.restore_step_start();
       }
-      if (implicit)
-        run_.record_step(step); // accepted
+      if (implicit) { // accepted: now the stretch and speed guards, and the output
+        const StepOutcome accepted = run_.accept_step(step);
+        if (accepted.kind == StepOutcome::Kind::diverged) {
+          session_->report_error("structure diverged at " + accepted.message, static_cast<std::uint64_t>(step));
+          return common::exit_code_run_failed;
+        }
+      }
     }
     while (next->envelope().has_checkpoint_request()) { // the checkpoint at the end of the run
       write_checkpoint(next->envelope(), step);

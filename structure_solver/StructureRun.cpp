@@ -167,9 +167,11 @@ void StructureRun::write_state(long step) {
   last_written_step_ = step;
 }
 
-std::optional<Divergence> StructureRun::find_divergence(long step) const {
+std::optional<Divergence> StructureRun::find_divergence(long step, bool finite_only) const {
   for (const auto &s : scene_->structures()) {
     const bool finite = s->positions_m().allFinite() && s->velocities_m_per_s().allFinite();
+    if (finite && finite_only)
+      continue;
     const double stretch = finite ? s->max_stretch_ratio() : NAN;
     Eigen::Index fastest = 0;
     const double speed = finite ? std::sqrt(s->velocities_m_per_s().rowwise().squaredNorm().maxCoeff(&fastest)) : NAN;
@@ -295,12 +297,10 @@ StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *lo
     scene_->advance(*load_densities);
   else
     scene_->advance();
-  if (const auto divergence = find_divergence(step)) {
-    spdlog::error("diverged at {}", divergence->message);
-    stop_with("diverged: " + divergence->message, step - 1);
-    spdlog::error("the last good state (step {}) is in {}", step - 1, results_->h5_path().string());
-    return {StepOutcome::Kind::diverged, divergence->message};
-  }
+  // An iterate of implicit coupling (record = false) is no state yet: only non-finite values
+  // stop it; the stretch and speed guards judge the step the coupler accepts (accept_step).
+  if (const auto divergence = find_divergence(step, !record))
+    return diverged(*divergence, step);
   if (received_stop_signal != 0) {
     write_state(step);
     results_->set_status("interrupted");
@@ -310,6 +310,20 @@ StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *lo
   }
   if (record)
     record_step(n);
+  return {};
+}
+
+StepOutcome StructureRun::diverged(const Divergence &divergence, long step) {
+  spdlog::error("diverged at {}", divergence.message);
+  stop_with("diverged: " + divergence.message, step - 1);
+  spdlog::error("the last good state (step {}) is in {}", step - 1, results_->h5_path().string());
+  return {StepOutcome::Kind::diverged, divergence.message};
+}
+
+StepOutcome StructureRun::accept_step(long n) {
+  if (const auto divergence = find_divergence(n + 1, false))
+    return diverged(*divergence, n + 1);
+  record_step(n);
   return {};
 }
 

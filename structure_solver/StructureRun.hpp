@@ -71,10 +71,11 @@ public:
   /// is on disk), writes results at the output interval. Saved states are numbered as the
   /// positions they hold: step n writes X^{n+1}.
   /// With record = false (implicit coupling: the step may be repeated) the output and progress
-  /// of the step wait for record_step(n), once the coupler has accepted it.
+  /// of the step wait for accept_step(n), once the coupler has accepted it.
   StepOutcome advance_step(long n, const std::vector<PointArray> *load_densities, bool record = true);
-  /// Output and progress of step n (when due), after advance_step(n, ..., false).
-  void record_step(long n);
+  /// Implicit coupling: the coupler accepted step n (advanced with record = false): the
+  /// stretch and speed guards, then its output and progress.
+  StepOutcome accept_step(long n);
   /// Implicit coupling: keeps the state at the start of the step (what a checkpoint keeps, in
   /// memory), and puts it back before the step is advanced again.
   void save_step_start();
@@ -101,7 +102,11 @@ private:
   void open_probes();
   void write_state(long step);
   std::vector<output::ProbeState> probe_states() const;
-  std::optional<Divergence> find_divergence(long step) const;
+  /// finite_only: only non-finite positions or velocities (an iterate of implicit coupling).
+  std::optional<Divergence> find_divergence(long step, bool finite_only = false) const;
+  StepOutcome diverged(const Divergence &divergence, long step);
+  /// Output and progress of step n (when due).
+  void record_step(long n);
   void report_progress(long step, long n_steps, bool force);
   void stop_with(const std::string &status, long last_good_step);
 

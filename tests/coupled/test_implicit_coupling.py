@@ -8,7 +8,8 @@
   law is the explicit F^n).
 - RepeatedSteps: relaxation 0 repeats every step with the same force, so the participants'
   in-step checkpoints must put everything back: the result is the explicit run's, bit for bit,
-  with the prescribed flow and with OpenFOAM (every field, at the step's end time index).
+  with the prescribed flow and with OpenFOAM (every field, at the step's end time index), also
+  on two MPI ranks.
 - BeyondTheExplicitLimit: the rag in the solid-body rotation at K = 1e9 N/m^3, 10x the explicit
   limit 2 rho_1 / dt^2 = 1e8: explicit diverges and says so; implicit (each accelerator)
   converges in a few iterations a step and its centroid follows the exact recurrence of the
@@ -28,8 +29,9 @@ from coupled_support import StructureResults, TempDirTest, case_dir, np
 BIN_DIR = os.environ.get("FSI_BIN_DIR", "")
 
 
-def make_case(folder, source, coupling_lines="", stiffness=None, end_time_s=None):
-    case = os.path.join(folder, os.path.basename(source) + "_" + str(abs(hash(coupling_lines + str(stiffness)))))
+def make_case(folder, source, coupling_lines="", stiffness=None, end_time_s=None, ranks=1):
+    case = os.path.join(folder, "%s_%d_%d" % (os.path.basename(source), ranks,
+                                              abs(hash(coupling_lines + str(stiffness)))))
     shutil.copytree(case_dir(source), case, ignore=shutil.ignore_patterns("output", "*.png", "*.gif", "keys"))
     path = os.path.join(case, "case.yaml")
     with open(path) as f:
@@ -41,6 +43,9 @@ def make_case(folder, source, coupling_lines="", stiffness=None, end_time_s=None
                           text, count=1)
         assert n == 1
     text = text.replace("\n  law: penalty\n", "\n  law: penalty\n" + coupling_lines, 1)
+    if ranks > 1:
+        assert "\n  openfoam:\n" in text and "mpi_ranks" not in text
+        text = text.replace("\n  openfoam:\n", "\n  openfoam:\n    mpi_ranks: %d\n" % ranks, 1)
     with open(path, "w") as f:
         f.write(text)
     return case
@@ -76,10 +81,10 @@ class RepeatedSteps(TempDirTest):
     REPEAT = ("  scheme: implicit\n  implicit:\n    acceleration: constant\n    relaxation: 0\n"
               "    min_iterations: 2\n    max_iterations: 2\n")
 
-    def check(self, source, end_time_s, timeout):
-        explicit = make_case(self.tmp, source, end_time_s=end_time_s)
-        repeated = make_case(self.tmp, source, self.REPEAT, end_time_s=end_time_s)
-        outs = [os.path.join(self.tmp, n) for n in ("explicit", "repeated")]
+    def check(self, source, end_time_s, timeout, ranks=1):
+        explicit = make_case(self.tmp, source, end_time_s=end_time_s, ranks=ranks)
+        repeated = make_case(self.tmp, source, self.REPEAT, end_time_s=end_time_s, ranks=ranks)
+        outs = [os.path.join(self.tmp, "%s_%d" % (n, ranks)) for n in ("explicit", "repeated")]
         for case, out in zip((explicit, repeated), outs):
             code, stderr = self.launch(case, out, timeout=timeout)
             self.assert_run_completed(out, code, stderr)
@@ -95,6 +100,13 @@ class RepeatedSteps(TempDirTest):
         if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
             self.skipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
         self.check("sheet-in-openfoam-channel", 0.01, 300)
+
+    def test_a_repeated_step_with_the_same_force_is_the_same_step_openfoam_on_two_ranks(self):
+        # Every rank keeps and restores its own fields (a broadcast command), and the spreading
+        # at X^n of a repeat is built on every rank.
+        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK) or not shutil.which("mpirun"):
+            self.skipTest("fsi-openfoam-fluid or mpirun missing")
+        self.check("sheet-in-openfoam-channel", 0.005, 300, ranks=2)
 
 
 class BeyondTheExplicitLimit(TempDirTest):

@@ -269,6 +269,77 @@ class PenaltyLaw(StabilityCase):
 
 
 # ------------------------------------------------------------------------------------------------
+class CouplingLaws(StabilityCase):
+    """The coupling laws' explicit limits on the pump's light rag (rho_1 = 0.03 kg/m^2, phi = 10,
+    a free 11 x 11 sheet, Delta s = 5 mm) in a uniform flow, by bisection in K (penalty,
+    two_point_sets) and in beta (feedback, alpha = 0), against the law-alone predictions of
+    docs/coupling.md (a = K dt^2 / rho_1 < 2, < 4/3; B = beta dt / rho_1 < 2); and the implicit
+    penalty law stable far beyond (coupling.scheme: implicit)."""
+
+    U = np.array([0.2, 0.0, 0.1])
+    RHO = 0.03
+
+    def sheet(self, coupling, dt=DT, end=0.15):
+        flow = {"uniform": {"velocity_m_per_s": self.U.tolist()}}
+        sheet = S.membrane(size=(0.05, 0.05), n=(11, 11), rho=self.RHO, phi=10.0, zeta=1e-6)
+        return S.case([sheet], end, dt, gravity=(0, 0, 0), flow=flow, coupling=coupling)
+
+    def energy_max(self):
+        return 0.5 * self.RHO * 0.05 ** 2 * float(self.U @ self.U) * 1.01   # the sheet cannot outrun the flow
+
+    def threshold(self, law, key, predicted, extra=None, energy_factor=1.0):
+        def make(value):
+            coupling = {"law": law, key: float(value)}
+            coupling.update(extra or {})
+            return S.with_time_step(self.sheet(coupling), DT, min_steps=3000, min_time_s=0.0)
+        stable, unstable, _ = S.largest_stable(make, predicted / 10.0, predicted * 10.0,
+                                               S.stable_by(max_stretch=1.3,
+                                                           energy_max_j=energy_factor * self.energy_max()),
+                                               iterations=7, name="%s-%s" % (law, key))
+        return stable, unstable
+
+    def test_1_explicit_limits(self):
+        # The sheet's fastest mode, omega dt = 2 c dt / Delta s (c = sqrt(2 phi / rho_1)), takes its
+        # part of the margin of an explicit law: (omega dt)^2 + 2a < 4 for the drag (docs/coupling.md).
+        mode = (2.0 * math.sqrt(2.0 * 10.0 / self.RHO) * DT / 0.005) ** 2
+        rows = [("penalty", "stiffness_n_per_m_per_measure", (2.0 - mode / 2.0) * self.RHO / DT ** 2, "K_fsi (N/m^3)",
+                 None, 1.0),
+                # A spring: the sheet overshoots the flow and swings about its IB points (kinetic
+                # energy up to that of 2 U), so the energy bound is four times the drag's.
+                # With the mode: X^{n+1} = (2 - 2a - (omega dt)^2) X^n - (1 - a) X^{n-1}, so
+                # 3a + (omega dt)^2 < 4.
+                ("two_point_sets", "stiffness_n_per_m_per_measure", (4.0 - mode) / 3.0 * self.RHO / DT ** 2,
+                 "K_fsi (N/m^3)", None, 4.1),
+                ("feedback", "beta_n_s_per_m_per_measure", (2.0 - mode / 2.0) * self.RHO / DT,
+                 "beta (N s/m^3), alpha = 0", {"alpha_n_per_m_per_measure": 0.0}, 1.0)]
+        for i, (law, key, predicted, quantity, extra, energy_factor) in enumerate(rows):
+            stable, unstable = self.threshold(law, key, predicted, extra, energy_factor)
+            self.rows.append({"case": "coupling law %s, explicit" % law, "quantity": quantity, "fixed": "dt = 5e-05 s",
+                              "stable": stable, "unstable": unstable, "predicted": predicted, "ds_over_dt": 0.005 / DT,
+                              "note": "free sheet, uniform flow, rho_1 = 0.03; predicted with the sheet's fastest "
+                                      "mode (omega dt)^2 = %.2f where it applies" % mode, "_order": i})
+            self.assertIsNotNone(stable, law)
+            self.assertGreater(stable, 0.8 * predicted, law)
+            self.assertLess(unstable, 1.25 * predicted, law)
+
+    def test_2_implicit_penalty_far_beyond_the_explicit_limit(self):
+        limit = 2.0 * self.RHO / DT ** 2
+        for factor in (10.0, 100.0):
+            coupling = {"law": "penalty", "stiffness_n_per_m_per_measure": factor * limit, "scheme": "implicit",
+                        "implicit": {"acceleration": "iqn_ils", "relaxation": 0.1, "tolerance": 1e-6,
+                                     "max_iterations": 40}}
+            r = S.run_case(S.with_time_step(self.sheet(coupling), DT, min_steps=1000, min_time_s=0.0),
+                           "implicit-penalty-%gx" % factor)
+            self.assertHealthy(r, max_stretch=1.01, energy_max_j=self.energy_max())
+            v = r.structures["sheet"]["velocity_m_per_s"][-1]
+            self.assertLess(float(np.abs(v - self.U).max()), 1e-6)   # tau = rho_1 / (K dt) < 1 step: with the flow
+            self.rows.append({"case": "coupling law penalty, implicit (IQN-ILS)", "quantity": "K_fsi (N/m^3)",
+                              "fixed": "dt = 5e-05 s", "stable": factor * limit, "unstable": None,
+                              "predicted": None, "ds_over_dt": 0.005 / DT,
+                              "note": "%gx the explicit limit: stable, the sheet moves with the flow" % factor,
+                              "_order": 3 + int(factor > 10)})
+
+
 class WallAndRotor(StabilityCase):
     """A rag thrown at 10 m/s into the corner of a box (floor plane + box walls), and a rag falling
     onto a paddle (solid cylinder, radius 0.1 m) rotating at 150 rad/s: 15 m/s tip speed."""
