@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The coupling laws and schemes side by side on real coupled runs (issue 15; docs/coupling.md).
 
-    ./fsi coupling-study [--only laws|implicit] [-o DIR]
+    ./fsi coupling-study [--only laws|pole|pump|implicit] [-o DIR]
 
 Writes DIR/COUPLING.md (default study/coupling) and keeps every run's results in DIR/runs/.
 
@@ -9,6 +9,8 @@ Writes DIR/COUPLING.md (default study/coupling) and keeps every run's results in
   paper's two point sets and the feedback law at equal cost (same mesh, dt and stiffness:
   two_point_sets with the same K, feedback with alpha = K and beta = K dt): St_L and A/L against
   the case's references, wall time.
+- pole, pump: the same three laws on the rag behind the pole (its path) and the rag in the pump
+  at Q_BEP (residence and wrap), coarse, the precursor run once and reused.
 - implicit: the flag at mass ratio rho_1 / (rho_f L) = 0.025 (rho_1 = 1 kg/m^2, phi and zeta
   scaled with rho_1 so that K_T and K_B stay those of the case), where the explicit penalty law
   at the case's K = 6.4e9 N/m^3 has a = K dt^2 / rho_1 = 4 (limit 2): explicit diverges;
@@ -70,7 +72,8 @@ def make_case(runs_dir, name, source, law="penalty", k=None, dt=None, scheme=Non
     text = edit(text, r"time_step_s: [0-9.e+-]+", "time_step_s: %g" % dt)
     if end_time_s:
         text = edit(text, r"end_time_s: [0-9.e+-]+", "end_time_s: %g" % end_time_s)
-    text = edit(text, r"  law: penalty\n  stiffness_n_per_m_per_measure: [^\n]*\n", law_lines(law, k, dt, scheme))
+    text = edit(text, r"  law: penalty\n(?:  #[^\n]*\n)*  stiffness_n_per_m_per_measure: [^\n]*\n",
+                law_lines(law, k, dt, scheme))
     if rho is not None:
         text = edit(text, r"mass_per_area_kg_per_m2: [0-9.e+-]+", "mass_per_area_kg_per_m2: %g" % rho)
         text = edit(text, r"coefficients: \{[^}]*\}",
@@ -125,6 +128,63 @@ def laws(runs_dir, bin_dir):
     return lines
 
 
+def pole(runs_dir, bin_dir):
+    """The rag behind the pole (coarse, 0.6 s): its upstream edge's path (rag_path.csv) per law."""
+    lines = ["## The laws at equal cost: the rag behind the pole (coarse, dt = 1e-4 s, K = 2.5e5 N/m^3)", "",
+             "| law | u* at t* = 1, 2, 4 | z* at t* = 4 | pitch at t* = 2, 4 (deg) | wall (s) | outcome |",
+             "|---|---|---|---|---|---|"]
+    precursor = None
+    for law in ("penalty", "two_point_sets", "feedback"):
+        case = make_case(runs_dir, "pole-" + law, "rag-behind-pole", law)
+        seed_precursor(precursor, case)
+        row = run(case, bin_dir)
+        precursor = precursor or os.path.join(row["out"], "precursor")
+        cells = ["-"] * 3
+        path = os.path.join(row["out"], "rag_path.csv")
+        if os.path.exists(path):
+            data = np.loadtxt(path, delimiter=",", ndmin=2)
+            t, z, u, pitch = data[:, 0], data[:, 2], data[:, 3], data[:, 5]
+            at = lambda series, ts: ", ".join("%.2f" % np.interp(x, t, series) for x in ts)  # noqa: E731
+            cells = [at(u, (1, 2, 4)), at(z, (4,)), at(pitch, (2, 4))]
+        lines.append("| %s | %s | %.0f | %s |" % (law, " | ".join(cells), row["wall_s"], row["outcome"]))
+        print(lines[-1], flush=True)
+    return lines + [""]
+
+
+def pump(runs_dir, bin_dir):
+    """The rag in the pump (coarse, Q_BEP): residence and wrap (rag_metrics.csv) per law."""
+    lines = ["## The laws at equal cost: the rag in the pump (coarse, Q_BEP, dt = 2.5e-4 s, K = 2e4 N/m^3)", "",
+             "| law | outcome | residence (rev) | wrap fraction of the run | longest wrap (rev) | max strain | "
+             "wall (s) |", "|---|---|---|---|---|---|---|"]
+    precursor = None
+    for law in ("penalty", "two_point_sets", "feedback"):
+        case = make_case(runs_dir, "pump-" + law, "rag-in-pump", law)
+        seed_precursor(precursor, case)
+        row = run(case, bin_dir, timeout_s=7200)
+        precursor = precursor or os.path.join(row["out"], "precursor")
+        metrics = {}
+        path = os.path.join(row["out"], "rag_metrics.csv")
+        if os.path.exists(path):
+            with open(path) as f:
+                keys, values = f.readline().strip().split(","), f.readline().strip().split(",")
+            metrics = dict(zip(keys, values))
+        cell = lambda key: metrics.get(key) or "-"  # noqa: E731
+        lines.append("| %s | %s | %s | %s | %s | %s | %.0f |" % (
+            law, cell("outcome"), cell("residence_time_revolutions"), cell("wrap_fraction_of_run"),
+            cell("longest_wrap_revolutions"), cell("max_strain"), row["wall_s"]))
+        print(lines[-1], flush=True)
+    return lines + [""]
+
+
+def seed_precursor(source, case):
+    """The first run's precursor (the flow alone: the law does not change it), hard-linked into
+    the next run's results, where the launcher reuses it when its fingerprint matches."""
+    target = os.path.join(os.path.dirname(case), "out", "precursor")
+    if source and os.path.isdir(source) and not os.path.exists(target):
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copytree(source, target, copy_function=os.link)
+
+
 def implicit(runs_dir, bin_dir):
     lines = []
     # The flag at mass ratio 0.025: K_T = phi / (rho_1 U^2) = 15 and K_B = 1e-4 kept.
@@ -174,13 +234,19 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--bin-dir", default=os.path.join(ROOT, "build", "bin"))
     parser.add_argument("-o", "--out", default=os.path.join(ROOT, "study", "coupling"))
-    parser.add_argument("--only", choices=("laws", "implicit"))
+    parser.add_argument("--only", choices=("laws", "pole", "pump", "implicit"),
+                        help="one part: laws (the flag, about 1 min), pole (about 10 min), pump (about 40 min), "
+                             "implicit (about 10 min)")
     args = parser.parse_args()
     runs_dir = os.path.join(args.out, "runs")
     os.makedirs(runs_dir, exist_ok=True)
     lines = ["# Coupling laws and schemes (./fsi coupling-study)", ""]
     if args.only in (None, "laws"):
         lines += laws(runs_dir, args.bin_dir)
+    if args.only in (None, "pole"):
+        lines += pole(runs_dir, args.bin_dir)
+    if args.only in (None, "pump"):
+        lines += pump(runs_dir, args.bin_dir)
     if args.only in (None, "implicit"):
         lines += implicit(runs_dir, args.bin_dir)
     path = os.path.join(args.out, "COUPLING.md" if not args.only else "COUPLING-%s.md" % args.only)

@@ -50,6 +50,14 @@ int StructureParticipant::run() {
   for (const auto &s : run_.scene().structures())
     loads_.push_back(PointArray::Zero(s->n_points(), 3));
   long step = 0;
+  // Implicit coupling: the scene holds an iterate of step `step`, not a state; a run that ends
+  // then keeps the state at the step's start (what the results and the status say).
+  bool iterate_pending = false;
+  const auto settle = [&] {
+    if (iterate_pending)
+      run_.restore_step_start();
+    iterate_pending = false;
+  };
   try {
     session_ = std::make_unique<proto::ParticipantSession>(settings_);
     spdlog::info("joining the coupler at {} as {}", settings_.coupler.str(), session_->routing_id());
@@ -70,8 +78,10 @@ int StructureParticipant::run() {
     // Implicit coupling: a step may come again (StructureAdvance.repeat) until the coupler
     // moves on; its output waits until then (the next request is of another kind or step).
     const bool implicit = welcome.implicit_coupling();
-    const proto::Message *next = &session_->next_request();
+    const proto::Message *next = nullptr; // a request read but not handled yet (implicit coupling)
     for (; step < run_.n_steps(); ++step) { // Envelope.step: t^step -> t^{step+1}
+      if (!next)
+        next = &session_->next_request();
       while (next->envelope().has_checkpoint_request()) { // at the step boundary, before step `step`
         write_checkpoint(next->envelope(), step);
         next = &session_->next_request();
@@ -87,8 +97,10 @@ int StructureParticipant::run() {
       if (request.structure_advance().repeat())
         throw ProtocolViolation("StructureAdvance.repeat for step " + std::to_string(step) +
                                 (implicit ? ", which has not been advanced yet" : " in an explicit run"));
-      if (implicit)
+      if (implicit) {
         run_.save_step_start();
+        iterate_pending = true;
+      }
       while (true) {
         unpack_loads(*next);
         take_rigid_poses(next->envelope().structure_advance());
@@ -105,13 +117,18 @@ int StructureParticipant::run() {
           return common::exit_code_interrupted;
         }
         send_state(static_cast<std::uint64_t>(step), solve_s, false);
+        if (!implicit) { // the step is done: the next request is read at the next step
+          next = nullptr;
+          break;
+        }
         next = &session_->next_request();
-        if (!implicit || !next->envelope().has_structure_advance() || !next->envelope().structure_advance().repeat())
+        if (!next->envelope().has_structure_advance() || !next->envelope().structure_advance().repeat())
           break;
         check_request(next->envelope(), step); // a repeat of this step
         run_.restore_step_start();
       }
       if (implicit) { // accepted: now the stretch and speed guards, and the output
+        iterate_pending = false;
         const StepOutcome accepted = run_.accept_step(step);
         if (accepted.kind == StepOutcome::Kind::diverged) {
           session_->report_error("structure diverged at " + accepted.message, static_cast<std::uint64_t>(step));
@@ -119,6 +136,8 @@ int StructureParticipant::run() {
         }
       }
     }
+    if (!next)
+      next = &session_->next_request();
     while (next->envelope().has_checkpoint_request()) { // the checkpoint at the end of the run
       write_checkpoint(next->envelope(), step);
       next = &session_->next_request();
@@ -130,6 +149,7 @@ int StructureParticipant::run() {
     spdlog::info("completed: the coupler ended the run ({})", last.shutdown().reason());
     return 0;
   } catch (const proto::Interrupted &e) {
+    settle();
     run_.finish("interrupted", step);
     if (session_)
       session_->report_error("participant " + session_->routing_id() + " " + e.what(),
@@ -137,18 +157,22 @@ int StructureParticipant::run() {
     spdlog::warn("{} while waiting for the coupler at step {}", e.what(), step);
     return common::exit_code_interrupted;
   } catch (const proto::RunStopped &e) {
+    settle();
     spdlog::error("the coupler stopped the run at step {}: {}", step, e.what());
     run_.finish(std::string("stopped: ") + e.what(), step);
   } catch (const proto::CouplerLost &e) {
+    settle();
     spdlog::error("{}", e.what());
     run_.finish(std::string("coupler lost: ") + e.what(), step);
   } catch (const ProtocolViolation &e) {
+    settle();
     const std::string message = "participant structure at step " + std::to_string(step) + ": " + e.what();
     spdlog::error("{}", message);
     if (session_)
       session_->report_error(message, static_cast<std::uint64_t>(step));
     run_.finish("failed: " + message, step);
   } catch (const proto::TransportError &e) {
+    settle();
     spdlog::error("transport failed at step {}: {}", step, e.what());
     run_.finish(std::string("failed: ") + e.what(), step);
   } catch (const common::UserError &e) { // a checkpoint the coupler named that cannot be resumed from
@@ -162,6 +186,7 @@ int StructureParticipant::run() {
     if (session_) // the coupler stops the run at once instead of after its timeout
       session_->report_error(message, static_cast<std::uint64_t>(step));
     try {
+      settle();
       run_.finish("failed: " + message, step);
     } catch (const std::exception &) {
       // the results file itself may be what cannot be written
