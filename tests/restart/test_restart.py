@@ -283,7 +283,8 @@ def launch(case, out, *extra):
 def make_coupled_case(folder, law=None):
     """rag-in-prescribed-flow (coupler, structure, prescribed flow), 0.2 s (5000 steps of 4e-5 s),
     a checkpoint every 0.05 s (1250 steps); `law` replaces the penalty law's line."""
-    case = os.path.join(folder, "coupled_case" + ("_" + law.split()[0] if law else ""))
+    case = os.path.join(folder, "coupled_case" + ("_" + law.split()[0] + ("_implicit" if "implicit" in law else "")
+                                                  if law else ""))
     shutil.copytree(os.path.join(ROOT, "cases", "rag-in-prescribed-flow"), case,
                     ignore=shutil.ignore_patterns("output", "*.png", "*.gif"))
     path = os.path.join(case, "case.yaml")
@@ -427,13 +428,17 @@ class CouplingLawState(unittest.TestCase):
 
     def test_a_law_with_state_resumes_bit_for_bit(self):
         for law in ("two_point_sets\n  stiffness_n_per_m_per_measure: 2.5e5",
-                    "feedback\n  alpha_n_per_m_per_measure: 2.5e5\n  beta_n_s_per_m_per_measure: 5"):
-            name = law.split()[0]
+                    "feedback\n  alpha_n_per_m_per_measure: 2.5e5\n  beta_n_s_per_m_per_measure: 5",
+                    # Implicit coupling: the next step's first iterate is in the coupler's part
+                    # (Aitken keeps nothing across steps; IQN-ILS's columns are not kept).
+                    "penalty\n  stiffness_n_per_m_per_measure: 2.5e7\n  scheme: implicit\n  implicit:\n"
+                    "    acceleration: aitken\n    tolerance: 1.0e-8"):
+            name = law.split()[0] + ("_implicit" if "implicit" in law else "")
             case = make_coupled_case(self.tmp, law)
             full = os.path.join(self.tmp, name + "_full")
             made = launch(case, full)
             self.assertEqual(made.returncode, 0, made.stdout[-3000:])
-            self.assertIn("coupling law: " + name, made.stdout)
+            self.assertIn("coupling law: " + law.split()[0], made.stdout)
             out = os.path.join(self.tmp, name + "_stopped")
             self.assertEqual(launch(case, out, "--end-time", "0.07").returncode, 0)
             made = launch(case, out, "--restart")
