@@ -91,6 +91,11 @@ def run(case, bin_dir, timeout_s=3600):
                           stderr=subprocess.STDOUT, text=True, timeout=timeout_s)
     wall = time.time() - started
     row = {"out": out, "code": made.returncode, "wall_s": wall}
+    script = os.path.join(case, "postprocess.py")  # the case's own quantities, as ./fsi run makes them
+    if os.path.exists(script) and os.path.exists(os.path.join(out, "structure.h5")):
+        env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "scripts"))
+        subprocess.run([sys.executable, script, out, case], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, env=env)
     with h5py.File(os.path.join(out, "coupling.h5"), "r") as f:
         n = int(f.attrs.get("complete_steps", len(f["step"])))
         row["steps"] = n
