@@ -147,7 +147,7 @@ def pole(runs_dir, bin_dir):
         cells = ["-"] * 3
         path = os.path.join(row["out"], "rag_path.csv")
         if os.path.exists(path):
-            data = np.loadtxt(path, delimiter=",", ndmin=2)
+            data = np.loadtxt(path, delimiter=",", ndmin=2, skiprows=1)  # a header line without '#'
             t, z, u, pitch = data[:, 0], data[:, 2], data[:, 3], data[:, 5]
             at = lambda series, ts: ", ".join("%.2f" % np.interp(x, t, series) for x in ts)  # noqa: E731
             cells = [at(u, (1, 2, 4)), at(z, (4,)), at(pitch, (2, 4))]
