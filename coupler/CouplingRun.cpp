@@ -329,6 +329,7 @@ void CouplingRun::advance_one_step(long n) {
     advance_fluid_and_structure(n, false);  // Eq. (8) + PIMPLE || Eq. (4) + Eq. (11), concurrently
     law_->accept(coupled_);                 // the law's state (IB points, integral) moves to step n + 1
   }
+  record_rigid_body_loads();
   timings_.waiting_s = participants_->take_wait_s();
   timings_.step_wall_s = seconds_since(step_start);
 }
@@ -483,7 +484,7 @@ void CouplingRun::advance_fluid_and_structure(long n, bool repeat) {
     done = true;
     if (from_fluid) {
       timings_.fluid_solve_s += reply.solve_wall_s();
-      record_rigid_body_loads(reply);
+      fluid_loads_ = reply.rigid_body_loads(); // recorded once the step is accepted (implicit: the last iterate's)
       continue;
     }
     timings_.structure_solve_s += reply.solve_wall_s();
@@ -611,8 +612,8 @@ void CouplingRun::record_step(long n) {
   ++timings_count_;
 }
 
-void CouplingRun::record_rigid_body_loads(const proto::v2::AdvanceReply &reply) {
-  for (const auto &load : reply.rigid_body_loads()) {
+void CouplingRun::record_rigid_body_loads() {
+  for (const auto &load : fluid_loads_) {
     try {
       const Vec3 force = proto::read_vector3(load.force_n(), "RigidBodyLoad.force_n");
       const Vec3 torque = proto::read_vector3(load.torque_n_m(), "RigidBodyLoad.torque_n_m");

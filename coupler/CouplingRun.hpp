@@ -64,7 +64,8 @@ private:
   /// run.stop_when_past holds for the structures' latest positions.
   bool structures_past_stop_plane() const;
   void record_step(long n);
-  void record_rigid_body_loads(const proto::v2::AdvanceReply &reply);
+  /// The fluid's forces on the rigid bodies of the step's (last) advance, into coupling.h5.
+  void record_rigid_body_loads();
   void report_progress(long n, bool force);
   void write_endpoint_file(const std::string &endpoint) const;
 
@@ -102,6 +103,7 @@ private:
   long iterations_sum_ = 0;           ///< since the last progress line
   long unconverged_steps_ = 0;
   std::string stability_note_; ///< explicit beyond the law's limit: the likely cause of a failure
+  google::protobuf::RepeatedPtrField<proto::v2::RigidBodyLoad> fluid_loads_; ///< of the step's last advance
   StepTimings timings_;
   StepTimings timings_sum_;   ///< since the last progress line
   long timings_count_ = 0;

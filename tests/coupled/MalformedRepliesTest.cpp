@@ -320,7 +320,10 @@ const Row rows[] = {
        send(bad_step, normal, false); // ... and this one is a duplicate
        return false;
      },
-     true, {"unexpected advance_reply for step 5 at step 6; the coupler waits for InterpolateReply"}},
+     // Rejected while the coupler still collects step 5 ("...; the coupler waits for the
+     // AdvanceReply of step 5") or once it has moved on ("... at step 6; the coupler waits for
+     // InterpolateReply"): which, depends on when the fluid's reply of step 5 arrived.
+     true, {"unexpected advance_reply for step 5"}},
     {"StaleFluidStep", Who::fluid,
      [](const auto &send, const PointArray &) {
        send(bad_step - 1, PointArray(PointArray::Zero(n_points, 3)), true);
