@@ -4,8 +4,8 @@ with the real executables (coupler, structure, prescribed flow: the rag in the s
 
 - Soak: 10^5 coupled steps. Every process's resident memory and open files are sampled twice a
   second, the step time comes from coupling.h5. After the first tenth (warm-up), the slopes
-  per 10^4 steps must be flat: memory under 1 MiB, open files 0, step time under 5 % of its
-  median. The figures are printed.
+  per 10^4 steps must be flat: memory under 1 MiB, step time under 5 % of its median; the
+  fewest open files of each quarter of the run the same (a file open during one write is no leak). The figures are printed.
 - DiskFull: the output folder on a 3 MiB tmpfs fills up mid-run. The structure's error names
   the file and "No space left on device", the coupler stops the run at once (not after its
   timeout), and the last checkpoint is intact: the folder copied to a roomy disk resumes
@@ -145,7 +145,10 @@ class Soak(unittest.TestCase):
                              fds.max()))
             failures += [] if len(rss) > 20 else ["%s: too few samples" % name]
             failures += [] if abs(rss_slope) < 1024 else ["%s: resident memory grows" % name]
-            failures += [] if fds.max() == fds.min() else ["%s: open files change" % name]
+            # A leak raises the floor; a file open for the instant of a write (the XDMF index, a
+            # checkpoint's temporary file) is one sample above it (seen once on CI: 14-15).
+            floors = [int(q.min()) for q in numpy.array_split(fds, 4)]
+            failures += [] if len(set(floors)) == 1 else ["%s: open files grow (floor per quarter %s)" % (name, floors)]
         print("\n".join(report))
         self.assertEqual(failures, [], report)
 
