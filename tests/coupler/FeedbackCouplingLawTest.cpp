@@ -7,8 +7,7 @@
 #include "coupler/FeedbackCouplingLaw.hpp"
 #include "coupler/FeedbackLawConfig.hpp"
 #include "coupler/PenaltyCouplingLaw.hpp"
-#include "structure_solver/InitialShape.hpp"
-#include "structure_solver/LagrangianSheet.hpp"
+#include "LawHarness.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,14 +22,8 @@ TEST(FeedbackCouplingLaw, AFreeSheetFollowsTheExactDiscreteSolution) {
   // A + A_mode + 2B < 4, a margin the law's damping takes from the membrane).
   const double rho = 0.03, alpha = 3e5, beta = 30.0, dt = 5e-5, flow = 0.4;
   const double A = alpha * dt * dt / rho, B = beta * dt / rho;
-  structure::LagrangianGrid grid(9, 9, 0.04, 0.04);
-  structure::SheetSetup setup("sheet", "membrane", grid,
-                              structure::initial_shape(grid, Vec3::Zero(), structure::make_frame(Vec3::UnitX(), Vec3::UnitY()), 0.0));
-  setup.mass_per_measure = rho;
-  setup.tension_coefficient = 10.0;
-  setup.bending_rigidity = 1e-8;
-  setup.time_step_s = dt;
-  structure::LagrangianSheet sheet(setup);
+  const auto made = testing::flat_sheet(9, 0.04, rho, 10.0, 1e-8, dt);
+  structure::LagrangianSheet &sheet = *made;
   FeedbackCouplingLaw law(alpha, beta);
   law.start(sheet.positions_m());
   PointArray x_prev = sheet.positions_m() - dt * sheet.velocities_m_per_s();
@@ -78,18 +71,7 @@ TEST(FeedbackCouplingLaw, WithoutTheIntegralItIsThePenaltyDrag) {
 // |U - V| after `steps` of one free point under the law alone.
 double slip_after(double dt, double rho, double alpha, double beta, int steps) {
   FeedbackCouplingLaw law(alpha, beta);
-  PointArray x_prev = PointArray::Zero(1, 3), x = PointArray::Zero(1, 3), u(1, 3);
-  u << 1.0, 0.0, 0.0;
-  law.start(x);
-  for (int n = 0; n < steps; ++n) {
-    const CouplingInputs in{&x, &x_prev, &u, dt};
-    const CouplingOutputs out = law.compute(in);
-    law.accept(out);
-    const PointArray x_next = 2.0 * x - x_prev - dt * dt / rho * out.force_density_n_per_measure;
-    x_prev = x;
-    x = x_next;
-  }
-  return std::abs(1.0 - (x(0, 0) - x_prev(0, 0)) / dt);
+  return testing::free_point_after(law, dt, rho, steps).slip(dt);
 }
 
 TEST(FeedbackLawConfig, StabilityLimitIsWhereAPlusTwoBReachesFour) {

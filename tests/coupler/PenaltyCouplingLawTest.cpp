@@ -4,8 +4,7 @@
 // PenaltyCouplingLaw.hpp), checked with the real membrane solver of Eq. (4).
 
 #include "coupler/PenaltyCouplingLaw.hpp"
-#include "structure_solver/InitialShape.hpp"
-#include "structure_solver/LagrangianSheet.hpp"
+#include "LawHarness.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,14 +30,8 @@ TEST(PenaltyCouplingLaw, MatchesEquationFiveAndPullsTheStructureTowardTheFluid) 
 
 TEST(PenaltyCouplingLaw, FreeSheetRelaxesToAUniformFlowWithTauRhoOverKDt) {
   const double rho = 0.08, k = 2e5, dt = 5e-5, flow = 0.3;
-  structure::LagrangianGrid grid(11, 11, 0.04, 0.04);
-  structure::SheetSetup setup("sheet", "membrane", grid,
-                              structure::initial_shape(grid, Vec3::Zero(), structure::make_frame(Vec3::UnitX(), Vec3::UnitY()), 0.0));
-  setup.mass_per_measure = rho;
-  setup.tension_coefficient = 100.0;
-  setup.bending_rigidity = 1e-4;
-  setup.time_step_s = dt;
-  structure::LagrangianSheet sheet(setup);
+  const auto made = testing::flat_sheet(11, 0.04, rho, 100.0, 1e-4, dt);
+  structure::LagrangianSheet &sheet = *made;
   PenaltyCouplingLaw law(k);
   PointArray x_prev = sheet.positions_m() - dt * sheet.velocities_m_per_s();
   const PointArray u = PointArray::Zero(sheet.n_points(), 3).rowwise() + Eigen::RowVector3d(flow, 0.0, 0.0);

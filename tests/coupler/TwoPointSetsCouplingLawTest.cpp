@@ -7,8 +7,7 @@
 
 #include "coupler/TwoPointSetsCouplingLaw.hpp"
 #include "coupler/TwoPointSetsLawConfig.hpp"
-#include "structure_solver/InitialShape.hpp"
-#include "structure_solver/LagrangianSheet.hpp"
+#include "LawHarness.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,14 +19,8 @@ namespace {
 TEST(TwoPointSetsCouplingLaw, AFreeSheetFollowsTheExactDiscreteSpringAboutItsAdvectedPoints) {
   const double rho = 0.03, k = 1e5, dt = 2e-4, flow = 0.4;
   const double a = k * dt * dt / rho; // 0.133: oscillating, damped by sqrt(1 - a) per step
-  structure::LagrangianGrid grid(9, 9, 0.04, 0.04);
-  structure::SheetSetup setup("sheet", "membrane", grid,
-                              structure::initial_shape(grid, Vec3::Zero(), structure::make_frame(Vec3::UnitX(), Vec3::UnitY()), 0.0));
-  setup.mass_per_measure = rho;
-  setup.tension_coefficient = 10.0;
-  setup.bending_rigidity = 1e-8;
-  setup.time_step_s = dt;
-  structure::LagrangianSheet sheet(setup);
+  const auto made = testing::flat_sheet(9, 0.04, rho, 10.0, 1e-8, dt);
+  structure::LagrangianSheet &sheet = *made;
   TwoPointSetsCouplingLaw law(k);
   law.start(sheet.positions_m());
   PointArray x_prev = sheet.positions_m() - dt * sheet.velocities_m_per_s();
@@ -60,18 +53,7 @@ TEST(TwoPointSetsCouplingLaw, AFreeSheetFollowsTheExactDiscreteSpringAboutItsAdv
 // |X - X_ib| after `steps` of one free point under the law alone, from rest in a flow of 1 m/s.
 double gap_after(double dt, double rho, double k, int steps) {
   TwoPointSetsCouplingLaw law(k);
-  PointArray x_prev = PointArray::Zero(1, 3), x = PointArray::Zero(1, 3), u(1, 3);
-  u << 1.0, 0.0, 0.0;
-  law.start(x);
-  for (int n = 0; n < steps; ++n) {
-    const CouplingInputs in{&x, &x_prev, &u, dt};
-    const CouplingOutputs out = law.compute(in);
-    law.accept(out);
-    const PointArray x_next = 2.0 * x - x_prev - dt * dt / rho * out.force_density_n_per_measure;
-    x_prev = x;
-    x = x_next;
-  }
-  return (x - law.ib_points_m()).norm() / dt;
+  return (testing::free_point_after(law, dt, rho, steps).x - law.ib_points_m()).norm() / dt;
 }
 
 TEST(TwoPointSetsLawConfig, StabilityLimitIsFourThirdsOfRhoOverKDtSquared) {
