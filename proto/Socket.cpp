@@ -65,13 +65,9 @@ void Socket::make_curve_client(const CurveSettings &curve) {
 
 void Socket::set_router_mandatory() { socket_.set(zmq::sockopt::router_mandatory, 1); }
 
-void Socket::set_routing_id(const std::string &routing_id) {
-  socket_.set(zmq::sockopt::routing_id, routing_id);
-}
+void Socket::set_routing_id(const std::string &routing_id) { socket_.set(zmq::sockopt::routing_id, routing_id); }
 
-void Socket::use_ipv6_for(const Endpoint &endpoint) {
-  socket_.set(zmq::sockopt::ipv6, endpoint.is_ipv6() ? 1 : 0);
-}
+void Socket::use_ipv6_for(const Endpoint &endpoint) { socket_.set(zmq::sockopt::ipv6, endpoint.is_ipv6() ? 1 : 0); }
 
 Endpoint Socket::bind(const Endpoint &endpoint) {
   use_ipv6_for(endpoint);
@@ -108,18 +104,30 @@ bool Socket::wait_readable(std::chrono::milliseconds timeout) {
 }
 
 std::vector<zmq::message_t> Socket::receive_frames() {
+  // Part by part: a signal (EINTR) between two parts of a message must not drop the parts read
+  // and leave the rest to be read as a message of its own. ZeroMQ delivers a message's parts
+  // together, so once the first is here the others are.
   std::vector<zmq::message_t> frames;
-  try {
-    if (!zmq::recv_multipart(socket_, std::back_inserter(frames), zmq::recv_flags::dontwait)) {
-      return {}; // nothing waiting after all
+  while (true) {
+    zmq::message_t part;
+    try {
+      if (!socket_.recv(part, zmq::recv_flags::dontwait)) {
+        if (frames.empty())
+          return {}; // nothing waiting after all
+        continue;
+      }
+    } catch (const zmq::error_t &error) {
+      if (error.num() != EINTR)
+        throw TransportError(owner_ + " cannot receive (" + error.what() + ")");
+      if (frames.empty())
+        return {};
+      continue;
     }
-  } catch (const zmq::error_t &error) {
-    if (error.num() == EINTR) {
-      return {};
-    }
-    throw TransportError(owner_ + " cannot receive (" + error.what() + ")");
+    const bool more = part.more();
+    frames.push_back(std::move(part));
+    if (!more)
+      return frames;
   }
-  return frames;
 }
 
 Socket::SendStatus Socket::send_frames(std::vector<zmq::message_t> &frames, bool wait) {

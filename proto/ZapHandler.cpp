@@ -7,6 +7,7 @@
 #include <zmq_addon.hpp>
 
 #include <array>
+#include <cerrno>
 #include <iterator>
 #include <memory>
 #include <vector>
@@ -58,11 +59,17 @@ void ZapHandler::serve(void *raw) {
   try {
     while (!stop_) {
       zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLIN, 0};
-      if (zmq::poll(&item, 1, std::chrono::milliseconds(100)) == 0)
-        continue;
       std::vector<zmq::message_t> request;
-      if (!zmq::recv_multipart(socket, std::back_inserter(request), zmq::recv_flags::dontwait))
-        continue;
+      try {
+        if (zmq::poll(&item, 1, std::chrono::milliseconds(100)) == 0)
+          continue;
+        if (!zmq::recv_multipart(socket, std::back_inserter(request), zmq::recv_flags::dontwait))
+          continue;
+      } catch (const zmq::error_t &error) {
+        if (error.num() == EINTR) // a signal landed in this thread (a stop request): not the end
+          continue;               // (libzmq's ZAP requests are whole messages, queued together)
+        throw;
+      }
       // [version, request id, domain, address, routing id, mechanism, credentials...]
       const bool well_formed = request.size() >= 6 && text_of(request[0]) == "1.0";
       const std::string mechanism = well_formed ? text_of(request[5]) : "";
