@@ -8,6 +8,7 @@
 
 #include "fvCFD.H"
 #include "pimpleControl.H"
+#include "regionSplit.H"
 #include "singlePhaseTransportModel.H"
 #include "turbulentTransportModel.H"
 #include "wallDist.H"
@@ -161,6 +162,15 @@ private:
   /// fluxes never feel back (the coarse two-blade pump's gap cells ran away to 100 m/s across
   /// the disc). Otherwise fvc::grad(p).
   Foam::tmp<Foam::volVectorField> pressure_gradient() const;
+  /// body_normal: the free cells cut off from every open boundary (and from the pressure
+  /// reference) by penalized cells and walls: a pocket of water a blade tip traps against the
+  /// casing. Every face of such a pocket has a fixed flux (the body's normal flux, or a wall's
+  /// zero), whose sum is not zero cell by cell, and its pressure couples to nothing but the
+  /// 1e-9 of the interface faces: left in the pressure equation it takes the imbalance over
+  /// 1e-9 (the medium rag-in-pump precursor ran away in one such cell at t = 0.03275 s). Its
+  /// pressure is held, as the bodies' is. Empty without pockets.
+  Foam::labelList trapped_free_cells() const;
+  mutable long trappedSteps_ = 0; ///< steps with a pocket, for the log
   std::unique_ptr<Foam::scalarField> patchWallDistance_; ///< y from the mesh's walls alone
   std::vector<Foam::label> insideCells_;                 ///< cells inside immersed bodies
   void zero_turbulence_inside_bodies();
@@ -337,6 +347,42 @@ void OpenFoamFlow::extrapolate_pressure_into_bodies() {
   });
   forAll(p, c) if (count[c] > 0.0) p[c] = sum[c] / count[c];
   p_->correctBoundaryConditions();
+}
+
+Foam::labelList OpenFoamFlow::trapped_free_cells() const {
+  using namespace Foam;
+  const fvMesh &mesh = *mesh_;
+  const auto &rate = penalizationRate_->primitiveField();
+  // The free water split into connected regions, a face between a penalized cell and a free one
+  // a wall (regionSplit numbers the regions across the MPI ranks).
+  boolList blocked(mesh.nFaces(), false);
+  for_each_interface_face(mesh, rate, [&](label f, label, label, bool) { blocked[f] = true; });
+  for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label, bool) {
+    blocked[mesh.boundaryMesh()[patch].start() + i] = true;
+  });
+  const regionSplit regions(mesh, blocked);
+  // Open: a region with a face on a boundary whose pressure is fixed, or with the reference cell.
+  boolList open(regions.nRegions(), false);
+  const auto &p_boundary = p_->boundaryField();
+  forAll(p_boundary, patch) {
+    if (!p_boundary[patch].fixesValue())
+      continue;
+    for (const label c : p_boundary[patch].patch().faceCells())
+      if (rate[c] <= 0.0)
+        open[regions[c]] = true;
+  }
+  if (p_->needReference() && pRefCell_ >= 0 && pRefCell_ < mesh.nCells())
+    open[regions[pRefCell_]] = true;
+  Pstream::listCombineGather(open, orEqOp<bool>());
+  Pstream::listCombineScatter(open);
+  DynamicList<label> trapped;
+  forAll(rate, c) if (rate[c] <= 0.0 && !open[regions[c]]) trapped.append(c);
+  const label n_trapped = returnReduce(trapped.size(), sumOp<label>());
+  if (n_trapped > 0 && (++trappedSteps_ == 1 || trappedSteps_ % 1000 == 0))
+    Info << "fsi: t = " << runTime_->value() << " s: " << n_trapped
+         << " free cell(s) cut off by the bodies and walls (pressure held; " << trappedSteps_
+         << " step(s) so far)" << endl;
+  return labelList(std::move(trapped));
 }
 
 Foam::tmp<Foam::volVectorField> OpenFoamFlow::pressure_gradient() const {
@@ -576,6 +622,7 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
     solve(UEqn == -pressure_gradient());
 
   // pEqn.H of pimpleFoam (static mesh, no MRF).
+  const labelList trapped = interfaceVelocity_ && penalizationRate_ ? trapped_free_cells() : labelList();
   while (pimple.correct()) {
     volScalarField rAU(1.0 / UEqn.A());
     volVectorField HbyA(constrainHbyA(rAU * UEqn.H(), U, p));
@@ -644,6 +691,7 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
       });
       DynamicList<label> cells;
       forAll(rate, c) if (rate[c] > 0.0) cells.append(c);
+      cells.append(trapped);
       holes.transfer(cells);
       hole_values = scalarField(p.primitiveField(), holes);
     }
