@@ -68,7 +68,8 @@ struct OpenFoamConfig {
              "returns water through its faces (penalization.csv's transpiration). body_normal (not the "
              "paper's; any number of MPI ranks): the penalized cells are holes of the pressure equation and those faces carry the "
              "flux of the body velocity's component along the surface normal, so that only the true surface's "
-             "normal motion moves water through the staircase.");
+             "normal motion moves water through the staircase; water the bodies cut off from the open boundaries "
+             "keeps its pressure held (docs/model.md).");
     v.choice("body_indicator", body_indicator,
              {{"sharp", BodyIndicatorChoice::sharp}, {"inside_smoothed", BodyIndicatorChoice::inside_smoothed}},
              "Rigid bodies: chi of Eq. (10) at the cell centres. sharp (the paper's): 1 strictly inside the STL "
