@@ -13,6 +13,7 @@
 #include "turbulentTransportModel.H"
 #include "wallDist.H"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -371,10 +372,18 @@ Foam::labelList OpenFoamFlow::trapped_free_cells() const {
       if (rate[c] <= 0.0)
         open[regions[c]] = true;
   }
-  if (p_->needReference() && pRefCell_ >= 0 && pRefCell_ < mesh.nCells())
+  if (p_->needReference() && pRefCell_ >= 0 && pRefCell_ < mesh.nCells() && rate[pRefCell_] <= 0.0)
     open[regions[pRefCell_]] = true;
   Pstream::listCombineGather(open, orEqOp<bool>());
   Pstream::listCombineScatter(open);
+  if (!std::any_of(open.begin(), open.end(), [](bool o) { return o; })) {
+    // No fixed pressure and the reference cell inside a body: the largest free region is the water.
+    labelList size(regions.nRegions(), 0);
+    forAll(rate, c) if (rate[c] <= 0.0) ++size[regions[c]];
+    Pstream::listCombineGather(size, plusEqOp<label>());
+    Pstream::listCombineScatter(size);
+    open[findMax(size)] = true;
+  }
   DynamicList<label> trapped;
   forAll(rate, c) if (rate[c] <= 0.0 && !open[regions[c]]) trapped.append(c);
   const label n_trapped = returnReduce(trapped.size(), sumOp<label>());
