@@ -433,6 +433,40 @@ class Mechanics(unittest.TestCase):
         self.assertEqual(m["max_self_contacts"], 8)
         self.assertEqual(m["max_self_contacts_time_s"], DT)
 
+    def test_strain_clear_of_contact(self):
+        # frame 1: the fold of test_self_contacts_of_a_fold with its folded rows 3-4 stretched
+        # 10 % along s2: in contact (rows 0, 1, 3, 4 within the contact distance 1.5 d_c = 6 mm
+        # of a point that is not a grid neighbour). max_strain is the fold's edge from row 2 to
+        # row 3 at the rag's side (4 mm along s1, 2 mm up, 0.6 mm along s2); the clear strain
+        # sees only row 2's s2 edges (0 %). Frame 2: flat, one edge +5 %, clear
+        local, shape = grid()
+        rows = np.arange(len(local)) // shape[1]
+        folded = local.copy()
+        folded[:, 0] = 0.004 * np.where(rows <= 2, rows, 4 - rows)
+        folded[:, 2] = np.where(rows <= 2, 0.0, 0.002)
+        folded[rows >= 3, 1] *= 1.1
+        one_edge = local.copy()
+        one_edge[rows >= 3, 0] += 0.05 * 0.004
+        t = (1 + np.arange(3)) * DT  # at t = 0 the blade crosses IN_CHAMBER: every edge in contact
+        x = np.array([IN_CHAMBER + local, IN_CHAMBER + folded, IN_CHAMBER + one_edge])
+        m, series = rag_metrics.analyse(t, x, shape, geometry(), D_C)
+        self.assertAlmostEqual(m["max_strain"], math.sqrt(4.0**2 + 2.0**2 + 0.6**2) / 4.0 - 1, delta=1e-9)
+        self.assertEqual(m["max_strain_time_s"], t[1])
+        self.assertAlmostEqual(m["max_strain_clear"], 0.05, delta=1e-9)
+        self.assertEqual(m["max_strain_clear_time_s"], t[2])
+        self.assertAlmostEqual(m["strain_clear_over_limit_fraction"], 1 / 3, delta=1e-12)
+        np.testing.assert_allclose(series["strain_clear"], [0, 0, 0.05], atol=1e-9)
+        # a rag 3 mm under the hub, every edge stretched 10 %: no edge is clear of contact
+        t = np.arange(0, 5) * DT
+        held = np.array([-0.06, 0.03, 0.047]) + local * [1.1, 1.1, 1.0]
+        x = np.array([to_lab(np.array([-0.06, 0.03, 0.047]) + local, t[0])] +
+                     [to_lab(held, tk) for tk in t[1:]])
+        m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)
+        self.assertAlmostEqual(m["max_strain"], 0.10, delta=1e-9)
+        self.assertIsNone(m["max_strain_clear"])
+        self.assertIsNone(m["max_strain_clear_time_s"])
+        self.assertEqual(m["strain_clear_over_limit_fraction"], 0.0)
+
     def test_min_wall_distance(self):
         # a rag 3 mm under the hub, held in the impeller's frame away from the blade
         local, shape = grid()
