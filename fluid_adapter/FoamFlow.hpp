@@ -55,6 +55,10 @@ public:
   /// |u_free - u_rib|^2 (m^5/s^3: times rho, W). A staircase body whose velocity is not along
   /// its faces (a blade turning along itself) swallows and returns water all over its surface.
   virtual void immersed_transpiration(double &inflow_m3_per_s, double &power_per_density) const = 0;
+  /// After advance(): the free cells (over every rank) that the bodies and walls cut off from
+  /// every open boundary and from the pressure reference in that step, whose pressure was held
+  /// (InterfaceFlux::body_normal; 0 otherwise).
+  virtual long cut_off_cells() const = 0;
   /// True when the turbulence model uses the wall distance (Spalart-Allmaras RAS/DES/DDES).
   virtual bool uses_wall_distance() const = 0;
   /// Immersed rigid bodies as walls for the turbulence model (section 2.6): the wall distance

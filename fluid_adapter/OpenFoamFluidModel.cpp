@@ -394,6 +394,10 @@ void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid
   start = Clock::now();
   flow_.advance(dt_s);
   timings_.fluid_solve_s = seconds_since(start);
+  if (const long cut_off = flow_.cut_off_cells(); cut_off > 0 && (++cut_off_steps_ == 1 || cut_off_steps_ % 1000 == 0))
+    spdlog::info("t = {} s: {} free cell(s) cut off by the bodies and walls from every open boundary, their pressure "
+                 "held (docs/model.md, interface_flux: body_normal); {} step(s) so far",
+                 t_next, cut_off, cut_off_steps_);
   if (!bodies_.empty()) {
     double transpiration[2] = {0.0, 0.0};
     flow_.immersed_transpiration(transpiration[0], transpiration[1]);

@@ -93,6 +93,7 @@ public:
 private:
   FlowStepTimings timings_;
   PenalizationSwitching switching_;
+  long cut_off_steps_ = 0; ///< steps in which the bodies cut water off (FoamFlow::cut_off_cells), for the log
   enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5, spread_at = 6,
                        save_step = 7, restore_step = 8 };
   void broadcast(Command command, std::vector<double> &payload);

@@ -97,6 +97,7 @@ public:
   void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) override;
   void penalization_acceleration(PointArray &a) const override;
   void immersed_transpiration(double &inflow_m3_per_s, double &power_per_density) const override;
+  long cut_off_cells() const override { return nCutOff_; }
   void set_interface_velocity(const PointArray &u) override;
   bool uses_wall_distance() const override;
   void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) override;
@@ -171,7 +172,7 @@ private:
   /// 1e-9 (the medium rag-in-pump precursor ran away in one such cell at t = 0.03275 s). Its
   /// pressure is held, as the bodies' is. Empty without pockets.
   Foam::labelList trapped_free_cells() const;
-  mutable long trappedSteps_ = 0; ///< steps with a pocket, for the log
+  mutable long nCutOff_ = 0; ///< free cells cut off in the last step (every rank)
   std::unique_ptr<Foam::scalarField> patchWallDistance_; ///< y from the mesh's walls alone
   std::vector<Foam::label> insideCells_;                 ///< cells inside immersed bodies
   void zero_turbulence_inside_bodies();
@@ -386,11 +387,7 @@ Foam::labelList OpenFoamFlow::trapped_free_cells() const {
   }
   DynamicList<label> trapped;
   forAll(rate, c) if (rate[c] <= 0.0 && !open[regions[c]]) trapped.append(c);
-  const label n_trapped = returnReduce(trapped.size(), sumOp<label>());
-  if (n_trapped > 0 && (++trappedSteps_ == 1 || trappedSteps_ % 1000 == 0))
-    Info << "fsi: t = " << runTime_->value() << " s: " << n_trapped
-         << " free cell(s) cut off by the bodies and walls (pressure held; " << trappedSteps_
-         << " step(s) so far)" << endl;
+  nCutOff_ = returnReduce(trapped.size(), sumOp<label>());
   return labelList(std::move(trapped));
 }
 

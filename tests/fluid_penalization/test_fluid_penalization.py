@@ -275,7 +275,7 @@ class TrappedWater(PenalizationTest):
             f.write(text.replace("penalization_time_s:", "interface_flux: body_normal, penalization_time_s:"))
         self.run_case(case, out, timeout=150)
 
-        with open(os.path.join(out, "logs", "fluid.console"), errors="replace") as f:
+        with open(os.path.join(out, "fluid.log"), errors="replace") as f:  # the fluid's log, not its console
             log = f.read()
         cut_off = re.findall(r"t = (\S+) s: (\d+) free cell\(s\) cut off", log)
         last = latest_time_dir(os.path.join(out, "openfoam"))
