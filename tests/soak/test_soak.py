@@ -4,7 +4,7 @@ with the real executables (coupler, structure, prescribed flow: the rag in the s
 
 - Soak: 10^5 coupled steps. Every process's resident memory and open files are sampled twice a
   second, the step time comes from coupling.h5. After the first tenth (warm-up), the slopes
-  per 10^4 steps must be flat: memory under 1 MiB, step time under 5 % of its median; the
+  per 10^4 steps must be flat: memory under 1 MiB, step time (the 10th percentile of each block) under 5 % of its level; the
   fewest open files of each quarter of the run the same (a file open during one write is no leak). The figures are printed.
 - DiskFull: the output folder on a 3 MiB tmpfs fills up mid-run. The structure's error names
   the file and "No space left on device", the coupler stops the run at once (not after its
@@ -125,13 +125,17 @@ class Soak(unittest.TestCase):
             step_s = f["timings/step_wall_s"][()]
         self.assertEqual(len(step_s), self.STEPS)
         report = ["soak: %d steps in %.0f s" % (self.STEPS, wall)]
-        # Step time: medians of blocks of 10^4 steps, after the first block (warm-up).
+        # Step time: the 10th percentile of blocks of 10^4 steps, after the first block (warm-up).
+        # Other processes on the machine lengthen steps and never shorten them: the fast steps
+        # show the run's own cost, which a leak would raise with them (the block medians drifted
+        # by +5.5 % in two CI runs of an unchanged build, -1.2 % when run again at once).
         blocks = step_s[: self.STEPS // 10000 * 10000].reshape(-1, 10000)
-        medians = numpy.median(blocks, axis=1)[1:]
-        time_slope = slope_per(numpy.arange(len(medians)), medians, 1.0)
-        report.append("step time: median %.3f ms, slope %+.4f ms per 10^4 steps (%+.2f %%)"
-                      % (1e3 * numpy.median(medians), 1e3 * time_slope, 100 * time_slope / numpy.median(medians)))
-        self.assertLess(abs(time_slope), 0.05 * numpy.median(medians), report)
+        fast = numpy.percentile(blocks, 10, axis=1)[1:]
+        time_slope = slope_per(numpy.arange(len(fast)), fast, 1.0)
+        report.append("step time: 10th percentile %.3f ms (median %.3f ms), slope %+.4f ms per 10^4 steps (%+.2f %%)"
+                      % (1e3 * numpy.median(fast), 1e3 * numpy.median(blocks[1:]), 1e3 * time_slope,
+                         100 * time_slope / numpy.median(fast)))
+        self.assertLess(abs(time_slope), 0.05 * numpy.median(fast), report)
         failures = []
         for name, rows in sorted(samples.items()):
             t = numpy.array([r[0] for r in rows])
