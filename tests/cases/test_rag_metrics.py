@@ -143,6 +143,17 @@ def geometry(**kwargs):
 # Places a rag can sit without touching anything (lab frame): the suction pipe's centre, and
 # the chamber at radius 0.07 m mid-channel (the blade sides sweep past it: irrelevant here).
 IN_SUCTION = np.array([0.0, 0.0, -0.15])
+def folded_grid():
+    """grid() flat (local) and folded: rows 0-2 flat, rows 3-4 folded back 2 mm above, row 3 over
+    row 1 and row 4 over row 0. Returns (local, grid shape, row index per point, folded)."""
+    local, shape = grid()
+    rows = np.arange(len(local)) // shape[1]
+    folded = local.copy()
+    folded[:, 0] = 0.004 * np.where(rows <= 2, rows, 4 - rows)
+    folded[:, 2] = np.where(rows <= 2, 0.0, 0.002)
+    return local, shape, rows, folded
+
+
 IN_CHAMBER = np.array([0.07, 0.0, 0.025])
 
 
@@ -422,11 +433,7 @@ class Mechanics(unittest.TestCase):
     def test_self_contacts_of_a_fold(self):
         # rows 0-2 flat, rows 3-4 folded back 2 mm above: row 3 over row 1, row 4 over row 0:
         # 2 x 4 pairs 2 mm apart that are not grid neighbours (row 3 over row 2's neighbour is)
-        local, shape = grid()
-        rows = np.arange(len(local)) // shape[1]
-        folded = local.copy()
-        folded[:, 0] = 0.004 * np.where(rows <= 2, rows, 4 - rows)
-        folded[:, 2] = np.where(rows <= 2, 0.0, 0.002)
+        local, shape, rows, folded = folded_grid()
         t = np.array([0.0, DT])
         x = np.array([IN_CHAMBER + local, IN_CHAMBER + folded])
         m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)
@@ -439,11 +446,7 @@ class Mechanics(unittest.TestCase):
         # of a point that is not a grid neighbour). max_strain is the fold's edge from row 2 to
         # row 3 at the rag's side (4 mm along s1, 2 mm up, 0.6 mm along s2); the clear strain
         # sees only row 2's s2 edges (0 %). Frame 2: flat, one edge +5 %, clear
-        local, shape = grid()
-        rows = np.arange(len(local)) // shape[1]
-        folded = local.copy()
-        folded[:, 0] = 0.004 * np.where(rows <= 2, rows, 4 - rows)
-        folded[:, 2] = np.where(rows <= 2, 0.0, 0.002)
+        local, shape, rows, folded = folded_grid()
         folded[rows >= 3, 1] *= 1.1
         one_edge = local.copy()
         one_edge[rows >= 3, 0] += 0.05 * 0.004
