@@ -68,13 +68,19 @@ int CouplingRun::run() {
     receive_initial_state();
     check_stability();
     start_ = last_progress_ = Clock::now();
+    // From here a stop signal (Ctrl-C) ends the run at a step boundary, after its checkpoint.
+    participants_->allow_clean_stop(clean_stop_grace);
     long n_done = n_steps_;
     for (step = first_step_; step < n_steps_; ++step) {
       advance_one_step(step);
       record_step(step + 1);
-      // Every interval, and at the end: a later --restart with a later end time runs further.
-      if (checkpoint_every_ > 0 && ((step + 1) % checkpoint_every_ == 0 || step + 1 == n_steps_))
+      const bool stopping = participants_->stop_requested() != 0;
+      // Every interval, at the end (a later --restart with a later end time runs further), and
+      // when a signal stops the run.
+      if (checkpoint_every_ > 0 && ((step + 1) % checkpoint_every_ == 0 || step + 1 == n_steps_ || stopping))
         checkpoint(step + 1);
+      if (stopping)
+        return interrupted_at_boundary(step + 1);
       const bool past = structures_past_stop_plane();
       report_progress(step + 1, step + 1 == n_steps_ || past);
       if (past) {
@@ -91,7 +97,9 @@ int CouplingRun::run() {
     spdlog::info("completed: {} steps; timings and FSI force in {}", n_done, results_->path().string());
     return 0;
   } catch (const ParticipantFailed &e) {
-    if (stop_signal() != 0) // Ctrl-C reaches every process: a participant may stop first
+    // Ctrl-C reaches every process: a participant may stop first (one under mpirun, whose
+    // ranks mpirun ends at once)
+    if (participants_ && participants_->stop_requested() != 0)
       return interrupted(step);
     spdlog::error("{}", e.what());
     if (participants_)
@@ -115,8 +123,22 @@ int CouplingRun::run() {
   }
 }
 
+int CouplingRun::interrupted_at_boundary(long n) {
+  const int signal = participants_->stop_requested();
+  const std::string when = "after step " + std::to_string(n) + " (t = " + fmt::format("{:g}", static_cast<double>(n) * dt_) + " s)";
+  const std::string saved = checkpoint_every_ > 0 ? "; checkpoint written: ./fsi run --restart resumes from it"
+                                                  : "; no checkpoint (run.checkpoint_interval_s is 0)";
+  spdlog::warn("interrupted by signal {} at {} {}{}", signal, participants_->stop_requested_by(), when, saved);
+  participants_->shutdown_all("interrupted by signal " + std::to_string(signal) + " at " +
+                                  participants_->stop_requested_by() + " " + when + saved,
+                              false, static_cast<std::uint64_t>(n), true);
+  results_->set_status("interrupted");
+  return common::exit_code_interrupted;
+}
+
 int CouplingRun::interrupted(long step) {
-  spdlog::warn("interrupted by signal {} at step {}: telling the participants to stop", stop_signal().load(), step);
+  spdlog::warn("interrupted by signal {} at step {}, within the step: telling the participants to stop",
+               participants_ ? participants_->stop_requested() : stop_signal().load(), step);
   if (participants_)
     participants_->shutdown_all("interrupted (signal at the coupler)", false, step);
   if (results_)
@@ -301,7 +323,7 @@ void CouplingRun::receive_initial_state() {
     if (!(theirs.array() == x_now_.array()).all())
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " resumed from positions other than "
                                              "the coupler's checkpoint of step " + std::to_string(first_step_));
-    spdlog::info("restart: resumed from the checkpoint of step {} (t = {} s) in {}", first_step_,
+    spdlog::info("restart: resumed from the checkpoint of step {} (t = {:g} s) in {}", first_step_,
                  restart_set_->time_s, restart_set_->folder.string());
     return;
   }

@@ -50,6 +50,10 @@ private:
 
   // Helpers.
   int interrupted(long step);
+  /// A stop signal ended the run at the boundary after step n (its checkpoint written).
+  int interrupted_at_boundary(long n);
+  /// How long a stop signal lets the participants finish the step and its checkpoint.
+  static constexpr std::chrono::milliseconds clean_stop_grace{60000};
   bool accept_hello(const proto::Incoming &incoming);
   void refuse(const std::string &peer, const std::string &message);
   void welcome(const std::string &id, bool with_structures, const std::string &part);

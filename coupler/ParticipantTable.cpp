@@ -50,8 +50,16 @@ void ParticipantTable::send(const std::string &routing_id, proto::Message &messa
 proto::Incoming &ParticipantTable::next(Clock::time_point deadline, const std::string &waited_peer,
                                         const std::string &waiting_for, std::uint64_t step) {
   while (true) {
-    if (stop_signal_ && *stop_signal_ != 0)
-      throw StopRequested(*stop_signal_);
+    if (const int signal = stop_requested()) {
+      const auto now = Clock::now();
+      if (!clean_stop_grace_ || (stop_seen_ && now - *stop_seen_ > *clean_stop_grace_))
+        throw StopRequested(signal);
+      if (!stop_seen_) {
+        stop_seen_ = now;
+        spdlog::warn("signal {} at {}: the run ends at the end of this step (waiting at most {} s for it)", signal,
+                     stop_requested_by(), clean_stop_grace_->count() / 1000);
+      }
+    }
     send_heartbeats_if_due(step);
     if (!admission_open_) // heartbeats start with Welcome, sent when everyone has joined
       check_liveness(step);
@@ -94,8 +102,14 @@ bool ParticipantTable::absorb(const proto::Incoming &incoming, std::uint64_t ste
   const bool known = knows(owner);
   if (known)
     last_seen_[owner] = Clock::now();
-  if (envelope.has_heartbeat())
+  if (envelope.has_heartbeat()) {
+    if (known && envelope.heartbeat().stop_signal() != 0 && participant_stop_signal_ == 0) {
+      participant_stop_signal_ = envelope.heartbeat().stop_signal();
+      if (stop_by_.empty())
+        stop_by_ = "participant " + owner;
+    }
     return true;
+  }
   if (known && envelope.has_error())
     throw ParticipantFailed(owner, "participant " + owner + " reported an error at step " +
                                        std::to_string(envelope.step()) + ": " + envelope.error().message());
@@ -148,12 +162,25 @@ void ParticipantTable::answer_error(const std::string &peer, const std::string &
   }
 }
 
-void ParticipantTable::shutdown_all(const std::string &reason, bool success, std::uint64_t step) noexcept {
+void ParticipantTable::allow_clean_stop(std::chrono::milliseconds grace) { clean_stop_grace_ = grace; }
+
+int ParticipantTable::stop_requested() const {
+  if (stop_signal_ && *stop_signal_ != 0) {
+    if (stop_by_.empty())
+      stop_by_ = "the coupler";
+    return *stop_signal_;
+  }
+  return participant_stop_signal_;
+}
+
+void ParticipantTable::shutdown_all(const std::string &reason, bool success, std::uint64_t step,
+                                    bool interrupted) noexcept {
   for (const auto &id : ids_) {
     try {
       proto::Envelope shutdown = proto::make_envelope(proto::v2::ROLE_COUPLER, step);
       shutdown.mutable_shutdown()->set_reason(reason);
       shutdown.mutable_shutdown()->set_success(success);
+      shutdown.mutable_shutdown()->set_interrupted(interrupted);
       channel_.send(id, shutdown);
     } catch (...) {
       // A dead participant cannot be told.

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,14 +46,25 @@ public:
   /// participant silent for the liveness timeout, or `deadline` passing (naming
   /// `waiting_for`); HandshakeRefused for a would-be participant of another protocol version
   /// while admission is open;
-  /// StopRequested on a stop signal.
+  /// StopRequested on a stop signal, at once before allow_clean_stop(), else once the stop is
+  /// older than its grace.
   proto::Incoming &next(Clock::time_point deadline, const std::string &waited_peer, const std::string &waiting_for,
                         std::uint64_t step);
 
   /// Answers `peer` with an ErrorReport (best effort).
   void answer_error(const std::string &peer, const std::string &message, std::uint64_t step) noexcept;
-  /// Sends Shutdown to every participant that joined (best effort: never throws).
-  void shutdown_all(const std::string &reason, bool success, std::uint64_t step) noexcept;
+  /// Sends Shutdown to every participant that joined (best effort: never throws);
+  /// `interrupted`: ended by a stop signal, at a step boundary (Shutdown.interrupted).
+  void shutdown_all(const std::string &reason, bool success, std::uint64_t step, bool interrupted = false) noexcept;
+
+  /// From now on (the time loop) a stop signal, of the coupler or reported by a participant
+  /// (Heartbeat.stop_signal), lets the waits go on for `grace`, so that the run finishes its
+  /// step and checkpoints it; past that, next() throws StopRequested.
+  void allow_clean_stop(std::chrono::milliseconds grace);
+  /// The stop signal received by the coupler or reported by a participant (0: none).
+  int stop_requested() const;
+  /// Who asked to stop: "the coupler" or a participant's name.
+  const std::string &stop_requested_by() const { return stop_by_; }
 
   /// Wall time the coupler spent blocked in next() since the last call (waiting for peers).
   double take_wait_s();
@@ -71,6 +83,10 @@ private:
   proto::Incoming incoming_;
   double wait_s_ = 0.0;
   bool admission_open_ = true;
+  std::optional<std::chrono::milliseconds> clean_stop_grace_;
+  std::optional<Clock::time_point> stop_seen_;
+  int participant_stop_signal_ = 0;
+  mutable std::string stop_by_;
   /// Messages ignored (malformed, or from processes outside the run): logged in full up to
   /// ignored_logged_in_full, then counted, so that a flood cannot flood the log too.
   long ignored_ = 0;

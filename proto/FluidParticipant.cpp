@@ -64,7 +64,7 @@ int FluidParticipant::run() {
   } catch (const Interrupted &e) {
     spdlog::warn("{} at step {}", e.what(), steps_);
     model_.finish(false);
-    if (session_)
+    if (session_ && !e.by_coupler)
       session_->report_error("participant " + session_->routing_id() + " " + e.what(), steps_);
     return common::exit_code_interrupted;
   } catch (const RunStopped &e) {

@@ -2,6 +2,8 @@
 
 #include "TransportError.hpp"
 
+#include <spdlog/spdlog.h>
+
 namespace fsi::proto {
 
 namespace {
@@ -48,7 +50,7 @@ Message &ParticipantSession::wait_for_message(milliseconds timeout, const char *
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
     if (settings_.stop_signal && *settings_.stop_signal != 0)
-      throw Interrupted(*settings_.stop_signal);
+      on_stop_signal(*settings_.stop_signal);
     const auto left = std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0)
       throw CouplerLost("participant " + routing_id() + ": no message from the coupler at " +
@@ -62,9 +64,33 @@ Message &ParticipantSession::wait_for_message(milliseconds timeout, const char *
       return incoming_; // the caller decides whether it counts
     if (envelope.has_error())
       throw RunStopped(envelope.error().message());
-    if (envelope.has_shutdown() && !envelope.shutdown().success())
+    if (envelope.has_shutdown() && !envelope.shutdown().success()) {
+      if (envelope.shutdown().interrupted())
+        throw Interrupted(reported_signal_, envelope.shutdown().reason(), true);
       throw RunStopped(envelope.shutdown().reason());
+    }
     return incoming_;
+  }
+}
+
+void ParticipantSession::on_stop_signal(int signal) {
+  if (!heartbeat_.joinable()) // before Welcome: no run to end cleanly
+    throw Interrupted(signal);
+  const auto now = std::chrono::steady_clock::now();
+  if (reported_signal_ == 0) { // the coupler ends the run at the next step boundary
+    spdlog::warn("participant {}: signal {} received: the coupler is told, and ends the run at the next step "
+                 "boundary (with a checkpoint when run.checkpoint_interval_s > 0)",
+                 routing_id(), signal);
+    signal_seen_ = now;
+    {
+      std::lock_guard lock(heartbeat_mutex_);
+      reported_signal_ = signal;
+    }
+    heartbeat_wakeup_.notify_all(); // tell it now, not at the next beat
+  } else if (now - signal_seen_ > settings_.stop_grace) {
+    throw Interrupted(signal, "interrupted by signal " + std::to_string(signal) + "; the coupler had not ended the run " +
+                                  std::to_string(settings_.stop_grace.count() / 1000) + " s later",
+                      false);
   }
 }
 
@@ -121,16 +147,19 @@ void ParticipantSession::heartbeat_loop(milliseconds interval) {
     ParticipantChannel beat(settings_.coupler, settings_.role, settings_.name + std::string(heartbeat_suffix), options);
     const auto start = std::chrono::steady_clock::now();
     std::unique_lock lock(heartbeat_mutex_);
+    int reported = 0;
     while (!heartbeat_stop_) {
       Envelope envelope = make_envelope(settings_.role, 0);
       envelope.mutable_heartbeat()->set_wall_time_s(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      reported = reported_signal_;
+      envelope.mutable_heartbeat()->set_stop_signal(reported);
       try {
         beat.send(envelope);
       } catch (const TransportError &) {
         // Queue full: the coupler is not reading; the main thread's timeout handles it.
       }
-      heartbeat_wakeup_.wait_for(lock, interval, [this] { return heartbeat_stop_; });
+      heartbeat_wakeup_.wait_for(lock, interval, [&] { return heartbeat_stop_ || reported_signal_ != reported; });
     }
   } catch (const std::exception &) {
     // Could not even open the socket: without heartbeats the coupler reports this participant.

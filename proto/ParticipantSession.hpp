@@ -42,11 +42,18 @@ public:
   explicit RunStopped(const std::string &message) : std::runtime_error(message) {}
 };
 
-/// A stop signal (SIGINT, SIGTERM) arrived while waiting for the coupler.
+/// A stop signal (SIGINT, SIGTERM) ended the run: the coupler ended it at a step boundary
+/// (Shutdown.interrupted; `signal` 0 when this process received none), or this process
+/// received one before the run started or while the coupler did not end the run within
+/// SessionSettings::stop_grace.
 class Interrupted : public std::runtime_error {
 public:
   explicit Interrupted(int signal) : std::runtime_error("interrupted by signal " + std::to_string(signal)), signal(signal) {}
+  Interrupted(int signal, const std::string &message, bool by_coupler)
+      : std::runtime_error(message), signal(signal), by_coupler(by_coupler) {}
   int signal;
+  /// The coupler ended the run (Shutdown.interrupted): it needs no ErrorReport.
+  bool by_coupler = false;
 };
 
 struct SessionSettings {
@@ -56,8 +63,12 @@ struct SessionSettings {
   std::string case_fingerprint;
   ChannelOptions options;
   std::chrono::milliseconds handshake_timeout{120000};
-  /// Set by the process's signal handler; checked while waiting.
+  /// Set by the process's signal handler; checked while waiting. Before Welcome a signal stops
+  /// the participant at once; after it, the participant tells the coupler (Heartbeat.stop_signal)
+  /// and keeps answering, so that the run ends at a step boundary with a checkpoint, unless the
+  /// coupler has not ended it `stop_grace` after the signal.
   const std::atomic<int> *stop_signal = nullptr;
+  std::chrono::milliseconds stop_grace{60000};
 };
 
 class ParticipantSession {
@@ -76,7 +87,8 @@ public:
   /// The next request of the coupler (heartbeats are absorbed). A Shutdown with success is
   /// returned (the end of the run); a failed Shutdown or an ErrorReport throws RunStopped.
   /// Throws CouplerLost after welcome.timeout_s without any message from the coupler,
-  /// Interrupted on a stop signal.
+  /// Interrupted when the coupler ends the run because of a stop signal (Shutdown.interrupted),
+  /// or on a stop signal of this process before Welcome or stop_grace after it.
   Message &next_request();
 
   /// Sends a reply (stamped with this participant's role); its array frames go with it.
@@ -92,6 +104,8 @@ private:
   void start_heartbeat(std::chrono::milliseconds interval);
   void stop_heartbeat();
   void heartbeat_loop(std::chrono::milliseconds interval);
+  /// A stop signal of this process while waiting (see SessionSettings::stop_signal).
+  void on_stop_signal(int signal);
 
   SessionSettings settings_;
   ParticipantChannel channel_;
@@ -101,6 +115,9 @@ private:
   std::mutex heartbeat_mutex_;
   std::condition_variable heartbeat_wakeup_;
   bool heartbeat_stop_ = false;
+  /// The stop signal this process received, reported with every heartbeat from then on.
+  std::atomic<int> reported_signal_{0};
+  std::chrono::steady_clock::time_point signal_seen_{};
 };
 
 } // namespace fsi::proto

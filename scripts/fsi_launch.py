@@ -461,6 +461,10 @@ class CoupledRun:
             return coupler.code
 
         failed = sorted((c for c in self.children if c.code != 0), key=lambda c: c.exit_time)
+        if not self.interrupted and failed and all(c.code == EXIT_INTERRUPTED for c in failed):
+            # A signal at one process (a kill, a scheduler's): the coupler ended the run for all.
+            say("interrupted by a signal at one process; results so far are in %s" % self.plan.output_dir)
+            return EXIT_INTERRUPTED
         if self.interrupted:
             if not failed:
                 return EXIT_OK

@@ -151,10 +151,10 @@ int StructureParticipant::run() {
   } catch (const proto::Interrupted &e) {
     settle();
     run_.finish("interrupted", step);
-    if (session_)
+    if (session_ && !e.by_coupler)
       session_->report_error("participant " + session_->routing_id() + " " + e.what(),
                              static_cast<std::uint64_t>(step));
-    spdlog::warn("{} while waiting for the coupler at step {}", e.what(), step);
+    spdlog::warn("{} (the structure's state is that of step {})", e.what(), step);
     return common::exit_code_interrupted;
   } catch (const proto::RunStopped &e) {
     settle();

@@ -236,6 +236,8 @@ void StructureRun::start(Resume resume) {
                                                              config_.run.checkpoint_keep);
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  // Coupled: the coupler ends the run on a signal, at a step boundary (ParticipantSession).
+  stops_at_signal_ = resume != Resume::when_told;
   start_ = last_progress_ = std::chrono::steady_clock::now();
   last_good_x_.resize(scene_->structures().size());
   last_good_v_.resize(scene_->structures().size());
@@ -272,7 +274,7 @@ void StructureRun::resume_from(long step, const std::string &checksum) {
   }
   first_step_ = step;
   resume_results(step);
-  spdlog::info("restart: resumed from the checkpoint of step {} (t = {} s) in {}", step, scene_->time_s(),
+  spdlog::info("restart: resumed from the checkpoint of step {} (t = {:g} s) in {}", step, scene_->time_s(),
                folder.string());
 }
 
@@ -301,7 +303,7 @@ StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *lo
   // stop it; the stretch and speed guards judge the step the coupler accepts (accept_step).
   if (const auto divergence = find_divergence(step, !record))
     return diverged(*divergence, step);
-  if (received_stop_signal != 0) {
+  if (received_stop_signal != 0 && stops_at_signal_) {
     write_state(step);
     results_->set_status("interrupted");
     spdlog::warn("interrupted by signal {} at step {}; results so far are in {}", int(received_stop_signal), step,

@@ -122,6 +122,8 @@ private:
   std::chrono::steady_clock::time_point start_, last_progress_;
   long last_written_step_ = -1;
   long first_step_ = 0;
+  /// A run of its own stops within advance_step() on a signal; a coupled one leaves it to the coupler.
+  bool stops_at_signal_ = true;
   std::unique_ptr<checkpoint::CheckpointSet> checkpoints_;
 };
 

@@ -155,8 +155,11 @@ class CtrlC(TempDirTest):
         self.assertEqual(code, 130, read(os.path.join(self.tmp, "launcher.err"))[-2000:])
         self.assertEqual([p for p in children if alive(p)], [], "processes left running")
         self.assertEqual(status_of(os.path.join(out, "coupling.h5")), "interrupted")
+        # The coupler ended the run at a step boundary (Shutdown.interrupted): no process failed.
         status = status_of(os.path.join(out, "structure.h5"))
-        self.assertTrue(status == "interrupted" or status.startswith("stopped"), status)
+        self.assertEqual(status, "interrupted")
+        self.assertRegex(read(os.path.join(out, "coupler.log")),
+                         r"interrupted by signal 2 at (the coupler|participant \S+) after step \d+ .*no checkpoint")
         return status
 
     def test_ctrl_c_to_the_process_group(self):

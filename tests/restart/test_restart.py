@@ -360,6 +360,58 @@ class CoupledPrescribedFlow(unittest.TestCase):
             resumed += 1
         self.assertGreaterEqual(resumed, 2, "the kills fell outside the run: the test did not test")
 
+    def stop_by_signal(self, name, send):
+        """Starts the run, and at a seeded moment after its first complete set calls send(launcher,
+        out); returns (out, the launcher's exit code, the step the coupler says it stopped after)."""
+        out = os.path.join(self.tmp, name)
+        child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
+                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                 start_new_session=True)
+        first = os.path.join(out, "checkpoints", "step-000001250", "manifest.ckpt")
+        deadline = time.time() + 120
+        while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
+            time.sleep(0.02)
+        time.sleep(random.Random(name).uniform(0.05, 0.3) * self.full_wall_s)
+        send(child, out)
+        code = child.wait(timeout=90)
+        with open(os.path.join(out, "coupler.log")) as f:
+            stopped = re.findall(r"interrupted by signal \d+ at (the coupler|participant \S+) after step (\d+)", f.read())
+        self.stopped_by = stopped[0][0] if stopped else None
+        return out, code, int(stopped[0][1]) if stopped else None
+
+    def assert_checkpointed_at_the_stop_and_resumed(self, out, code, stopped):
+        self.assertEqual(code, 130)
+        self.assertIsNotNone(stopped, "the coupler did not end the run at a step boundary")
+        self.assertNotEqual(stopped % 1250, 0, "the stop fell on a periodic checkpoint: the test did not test")
+        self.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % stopped)
+        self.assertTrue(os.path.exists(os.path.join(newest_set(out), "manifest.ckpt")))
+        for name in ("coupling.h5", "structure.h5"):
+            with h5py.File(os.path.join(out, name), "r") as f:
+                self.assertEqual(f.attrs["status"].decode() if isinstance(f.attrs["status"], bytes)
+                                 else f.attrs["status"], "interrupted", name)
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step %d" % stopped, made.stdout)
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+
+    def test_ctrl_c_ends_a_coupled_run_at_a_step_boundary_with_its_checkpoint(self):
+        """Ctrl-C in a terminal (SIGINT to the launcher's whole process group): the coupler
+        finishes the step, checkpoints it, ends the run; every process exits 130; the restart
+        resumes from that very step and equals the uninterrupted run."""
+        out, code, stopped = self.stop_by_signal("ctrl-c", lambda child, _: os.killpg(child.pid, signal.SIGINT))
+        self.assert_checkpointed_at_the_stop_and_resumed(out, code, stopped)
+        print("Ctrl-C: stopped after step %d, checkpointed, resumed equal" % stopped)
+
+    def test_sigterm_to_one_participant_ends_the_run_the_same_way(self):
+        """SIGTERM to the structure alone (a user's kill, a scheduler's): it tells the coupler
+        (Heartbeat.stop_signal), which ends the run at the step boundary as for Ctrl-C."""
+        out, code, stopped = self.stop_by_signal(
+            "sigterm-structure",
+            lambda _, out: subprocess.run(["pkill", "-TERM", "-f", "fsi-structure .*-o %s" % out], check=True))
+        self.assertEqual(self.stopped_by, "participant structure:main")
+        self.assert_checkpointed_at_the_stop_and_resumed(out, code, stopped)
+        print("SIGTERM to the structure: stopped after step %d, checkpointed, resumed equal" % stopped)
+
 
 def make_openfoam_case(folder, mpi_ranks=1):
     """sheet-in-openfoam-channel (coupler, structure, OpenFOAM fluid), 0.02 s (400 steps of
@@ -518,6 +570,40 @@ class CoupledOpenFoam(unittest.TestCase):
         self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
         self.assertTrue(self.fields_equal(out))
 
+    def test_ctrl_c_ends_an_openfoam_run_at_a_step_boundary_with_its_checkpoint(self):
+        """Ctrl-C (SIGINT to the launcher's process group): OpenFOAM finishes the step with the
+        others, writes its fields into the set of that step; the restart equals the run."""
+        out, stopped = ctrl_c_and_restart(self, self.case, os.path.join(self.tmp, "ctrl-c"), 78)
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+        self.assertTrue(self.fields_equal(out))
+        print("Ctrl-C: the OpenFOAM run stopped after step %d, checkpointed, resumed equal" % stopped)
+
+
+def ctrl_c_and_restart(test, case, out, seed):
+    """Starts the run, sends SIGINT to the launcher's process group at a seeded moment after
+    the first checkpoint (step 100), checks that the run ended at a step boundary with that
+    step's set, and resumes it; returns (out, the step)."""
+    child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, case],
+                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=True)
+    first = os.path.join(out, "checkpoints", "step-000000100", "manifest.ckpt")
+    deadline = time.time() + 120
+    while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
+        time.sleep(0.02)
+    time.sleep(random.Random(seed).uniform(0.05, 0.5))
+    os.killpg(child.pid, signal.SIGINT)
+    test.assertEqual(child.wait(timeout=90), 130)
+    with open(os.path.join(out, "coupler.log")) as f:
+        stopped = re.findall(r"interrupted by signal 2 at \S+(?: \S+)? after step (\d+)", f.read())
+    test.assertTrue(stopped, "the coupler did not end the run at a step boundary")
+    step = int(stopped[0])
+    test.assertNotIn(step, (100, 200, 300, 400), "the stop fell on a periodic checkpoint: the test did not test")
+    test.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % step)
+    made = launch(case, out, "--restart")
+    test.assertEqual(made.returncode, 0, made.stdout[-3000:])
+    test.assertIn("restart: resumed from the checkpoint of step %d" % step, made.stdout)
+    return out, step
+
 
 class CoupledOpenFoamRanks(unittest.TestCase):
     """The OpenFOAM fluid on 2 MPI ranks: every rank writes its processor<k>/<time> folder at
@@ -554,6 +640,16 @@ class CoupledOpenFoamRanks(unittest.TestCase):
                 with open(os.path.join(self.full, "openfoam", rank, "0.02", field), "rb") as a, \
                         open(os.path.join(out, "openfoam", rank, "0.02", field), "rb") as b:
                     self.assertEqual(a.read(), b.read(), (rank, field))
+
+    def test_ctrl_c_ends_a_run_on_two_ranks_at_a_step_boundary_with_its_checkpoint(self):
+        out, stopped = ctrl_c_and_restart(self, self.case, os.path.join(self.tmp, "ctrl-c"), 79)
+        self.assertEqual(differences(self.full, out, COUPLED_FILES), [])
+        for rank in ("processor0", "processor1"):
+            for field in ("U", "p", "phi"):
+                with open(os.path.join(self.full, "openfoam", rank, "0.02", field), "rb") as a, \
+                        open(os.path.join(out, "openfoam", rank, "0.02", field), "rb") as b:
+                    self.assertEqual(a.read(), b.read(), (rank, field))
+        print("Ctrl-C: the run on 2 ranks stopped after step %d, checkpointed, resumed equal" % stopped)
 
     def test_a_restart_with_another_number_of_ranks_is_refused(self):
         # mpi_ranks is part of the case, so its checkpoints are another case's (fluid.ckpt also
