@@ -6,6 +6,7 @@
 // chosen by ImplicitCouplingConfig::acceleration; make_accelerator() is its one registry.
 
 #include "ImplicitCouplingConfig.hpp"
+#include "checkpoint/StateArchive.hpp"
 
 #include <Eigen/Core>
 
@@ -24,6 +25,11 @@ public:
   virtual void next(const Eigen::VectorXd &x, const Eigen::VectorXd &x_tilde, Eigen::VectorXd &out) = 0;
   /// The step was accepted at its last iterate.
   virtual void end_step() {}
+  /// What it carries from step to step, for the coupler's checkpoint part (entries under
+  /// "implicit/"); load_state() takes it back (`size`: the length of F), or starts afresh from
+  /// a part without it.
+  virtual void save_state(checkpoint::StateArchive & /*archive*/) const {}
+  virtual void load_state(const checkpoint::StateArchive & /*archive*/, long /*size*/) {}
 };
 
 std::unique_ptr<Accelerator> make_accelerator(const ImplicitCouplingConfig &config);

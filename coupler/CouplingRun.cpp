@@ -319,6 +319,8 @@ void CouplingRun::receive_initial_state() {
       guess_ = own.points("implicit/guess_n_per_measure", n);
       have_guess_ = true;
     }
+    if (implicit_)
+      accelerator_->load_state(own, 3 * n); // IQN-ILS: the columns of the last steps
     const PointArray theirs = message.points(reply.position_m(), n, "AdvanceReply.position_m");
     if (!(theirs.array() == x_now_.array()).all())
       throw ParticipantFailed(structure_id_, "participant " + structure_id_ + " resumed from positions other than "
@@ -618,6 +620,8 @@ void CouplingRun::checkpoint(long n) {
   law_->save_state(own);
   if (implicit_ && have_guess_)
     own.put_points("implicit/guess_n_per_measure", guess_);
+  if (implicit_)
+    accelerator_->save_state(own);
   parts.push_back({"coupler.ckpt", checkpoint::write_archive(folder / "coupler.ckpt", own)});
   results_->flush(); // coupling.h5 holds every step up to this one
   checkpoints_->complete(n, static_cast<double>(n) * dt_, parts);

@@ -14,6 +14,38 @@ void IqnIlsAccelerator::end_step() {
     steps_.clear();
 }
 
+namespace {
+const std::string prefix = "implicit/iqn_ils/";
+}
+
+void IqnIlsAccelerator::save_state(checkpoint::StateArchive &archive) const {
+  archive.put_integer(prefix + "n_steps", static_cast<std::int64_t>(steps_.size()));
+  for (std::size_t s = 0; s < steps_.size(); ++s) {
+    const std::string step = prefix + "steps/" + std::to_string(s) + "/";
+    archive.put_integer(step + "n_columns", static_cast<std::int64_t>(steps_[s].first.size()));
+    for (std::size_t i = 0; i < steps_[s].first.size(); ++i) {
+      archive.put_vector(step + "v/" + std::to_string(i), steps_[s].first[i]);
+      archive.put_vector(step + "w/" + std::to_string(i), steps_[s].second[i]);
+    }
+  }
+}
+
+void IqnIlsAccelerator::load_state(const checkpoint::StateArchive &archive, long size) {
+  steps_.clear();
+  if (!archive.has(prefix + "n_steps"))
+    return; // a part written without the columns: the history starts afresh
+  const auto n_steps = archive.integer(prefix + "n_steps");
+  for (std::int64_t s = 0; s < n_steps; ++s) {
+    const std::string step = prefix + "steps/" + std::to_string(s) + "/";
+    auto &columns = steps_.emplace_back();
+    const auto n = archive.integer(step + "n_columns");
+    for (std::int64_t i = 0; i < n; ++i) {
+      columns.first.push_back(archive.vector(step + "v/" + std::to_string(i), size));
+      columns.second.push_back(archive.vector(step + "w/" + std::to_string(i), size));
+    }
+  }
+}
+
 long IqnIlsAccelerator::n_columns() const {
   long n = 0;
   for (const auto &step : steps_)

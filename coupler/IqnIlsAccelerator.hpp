@@ -7,7 +7,8 @@
 // c = argmin |V c + r_k| (QR with column pivoting, which drops near-dependent columns) and
 //   F_{k+1} = F~_k + W c.
 // The first iteration of a step without columns relaxes with omega. Columns of the last
-// `reuse_steps` steps are kept (they carry the Jacobian from step to step; 0: none). On a linear
+// `reuse_steps` steps are kept (they carry the Jacobian from step to step, and are checkpointed;
+// 0: none). On a linear
 // H of dimension m it reaches the fixed point in at most m + 1 iterations (it is then GMRES).
 
 #include "Accelerator.hpp"
@@ -25,6 +26,9 @@ public:
   void begin_step() override;
   void next(const Eigen::VectorXd &x, const Eigen::VectorXd &x_tilde, Eigen::VectorXd &out) override;
   void end_step() override;
+  /// The columns of the last reuse_steps steps: a restart goes on with the same Jacobian model.
+  void save_state(checkpoint::StateArchive &archive) const override;
+  void load_state(const checkpoint::StateArchive &archive, long size) override;
   /// Columns in use (this step's and the reused ones).
   long n_columns() const;
 

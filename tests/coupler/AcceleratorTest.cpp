@@ -5,7 +5,8 @@
 // - Aitken: exact at the second update when J = lambda I (omega_1 = 1 / (1 - lambda));
 // - IQN-ILS: on a linear map of dimension m, at most m + 1 iterations (GMRES-like), even where
 //   plain iteration diverges (spectral radius > 1), and with columns reused from the previous
-//   step a new right-hand side converges in fewer.
+//   step a new right-hand side converges in fewer, also after the columns went through a
+//   checkpoint.
 
 #include "coupler/AitkenRelaxation.hpp"
 #include "coupler/ConstantRelaxation.hpp"
@@ -110,6 +111,35 @@ TEST(IqnIlsAccelerator, ColumnsReusedFromThePreviousStepsSpeedUpTheNextOne) {
   std::printf("IQN-ILS on the next step: %d iterations without reuse, %d with\n", without, with);
   EXPECT_LE(with, 3);
   EXPECT_GT(without, with);
+}
+
+TEST(IqnIlsAccelerator, ItsColumnsSavedAndLoadedContinueBitForBit) {
+  // A restart: the columns of the last steps go through the checkpoint archive; the next step
+  // then takes the same iterates as without the restart, and as few as with reuse.
+  const int m = 8;
+  std::srand(12);
+  Linear h{Eigen::MatrixXd::Random(m, m) * 2.0, Eigen::VectorXd::Random(m)};
+  IqnIlsAccelerator running(0.1, 4), resumed(0.1, 4), afresh(0.1, 4);
+  iterations_to_converge(running, h, Eigen::VectorXd::Zero(m), 1e-9);
+  checkpoint::StateArchive archive;
+  running.save_state(archive);
+  resumed.load_state(archive, m);
+  afresh.load_state(checkpoint::StateArchive(), m); // a part without columns
+  EXPECT_EQ(resumed.n_columns(), running.n_columns());
+  Linear next_step{h.J, Eigen::VectorXd::Random(m)};
+  const int n_running = iterations_to_converge(running, next_step, Eigen::VectorXd::Zero(m), 1e-9);
+  const int n_resumed = iterations_to_converge(resumed, next_step, Eigen::VectorXd::Zero(m), 1e-9);
+  const int n_afresh = iterations_to_converge(afresh, next_step, Eigen::VectorXd::Zero(m), 1e-9);
+  EXPECT_EQ(n_resumed, n_running);
+  EXPECT_GT(n_afresh, n_resumed);
+  Eigen::VectorXd a, b;
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(m), x_tilde = next_step.J * x + next_step.b;
+  running.begin_step();
+  resumed.begin_step();
+  running.next(x, x_tilde, a);
+  resumed.next(x, x_tilde, b);
+  EXPECT_TRUE((a.array() == b.array()).all());
+  EXPECT_THROW(IqnIlsAccelerator(0.1, 4).load_state(archive, m + 1), std::exception); // another size
 }
 
 } // namespace
