@@ -97,8 +97,8 @@ int CouplingRun::run() {
     spdlog::info("completed: {} steps; timings and FSI force in {}", n_done, results_->path().string());
     return 0;
   } catch (const ParticipantFailed &e) {
-    // Ctrl-C reaches every process: a participant may stop first (one under mpirun, whose
-    // ranks mpirun ends at once)
+    // A stop signal, and a participant stopped before the step boundary (signalled before
+    // Welcome, past its grace, or killed by the launcher after its own grace)
     if (participants_ && participants_->stop_requested() != 0)
       return interrupted(step);
     spdlog::error("{}", e.what());

@@ -23,7 +23,7 @@ Exit codes: 0 success, 1 run failed, 2 bad input (bad case, unknown option, miss
 130 interrupted. Python standard library only (Debian's /usr/bin/python3).
 
 Environment (mostly for tests): FSI_ENDPOINT_TIMEOUT_S (default 30), FSI_STOP_GRACE_S
-(default 15), FSI_KILL_GRACE_S (default 5).
+(default 15), FSI_INTERRUPT_GRACE_S (after Ctrl-C, default 65), FSI_KILL_GRACE_S (default 5).
 """
 
 import argparse
@@ -341,13 +341,18 @@ class CoupledRun:
         self.plan = plan
         self.children = []
         self.interrupted = None  # the signal received, if any
+        self.signals = 0         # how many: a second one stops every process at once
         self.endpoint_timed_out = False
         self.endpoint_timeout_s = env_seconds("FSI_ENDPOINT_TIMEOUT_S", 30.0)
         self.stop_grace_s = env_seconds("FSI_STOP_GRACE_S", 15.0)
         self.kill_grace_s = env_seconds("FSI_KILL_GRACE_S", 5.0)
+        # After Ctrl-C the coupler finishes the step and checkpoints it (at most 60 s).
+        self.interrupt_grace_s = env_seconds("FSI_INTERRUPT_GRACE_S", 65.0)
 
     def _on_signal(self, signum, _frame):
+        # No printing here: the main thread may hold PRINT_LOCK (_wait_all says it).
         self.interrupted = signum
+        self.signals += 1
         for child in self.children:
             child.signal(signum)
 
@@ -430,14 +435,27 @@ class CoupledRun:
 
     def _wait_all(self):
         grace_start = None
+        said = 0
         while any(c.running() for c in self.children):
+            if self.signals > said:
+                said = self.signals
+                if said == 1:
+                    say("interrupted: the run ends at the end of this step, with its checkpoint when the case "
+                        "checkpoints (Ctrl-C again to stop at once)")
+                else:
+                    say("interrupted again: stopping every process now")
+                    self._stop(self.children)
+                    break
             if grace_start is None:
                 ended = [c for c in self.children if not c.running()]
                 if self.interrupted or any(c.code != 0 or c.name == "coupler" for c in ended):
                     grace_start = time.monotonic()  # the others should now stop on their own
-            elif time.monotonic() - grace_start >= self.stop_grace_s:
+            elif time.monotonic() - grace_start >= (self.interrupt_grace_s if self.interrupted
+                                                    else self.stop_grace_s):
                 names = ", ".join(c.name for c in self.children if c.running())
-                say("still running %g s after the run ended: %s; stopping" % (self.stop_grace_s, names))
+                say("still running %g s after the %s: %s; stopping"
+                    % (self.interrupt_grace_s if self.interrupted else self.stop_grace_s,
+                       "interruption" if self.interrupted else "run ended", names))
                 self._stop(self.children)
                 break
             time.sleep(POLL_S)

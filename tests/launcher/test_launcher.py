@@ -64,6 +64,8 @@ def on_signal(signum, _frame):
     note(signal.Signals(signum).name)
     if signum == signal.SIGTERM and me.get("ignore_sigterm"):
         return
+    if signum == signal.SIGINT and me.get("finish_step_s") is not None:  # our processes: the step first
+        return
     sys.exit(130)
 
 signal.signal(signal.SIGINT, on_signal)
@@ -326,6 +328,31 @@ class LauncherTest(unittest.TestCase):
         for name in ("coupler", "structure", "fluid"):
             self.assertIn("SIGINT", self.events(name), name)
             self.assertFalse(self.alive(self.recorded(name)["pid"]), name)
+        self.assertNoTraceback(err.decode())
+
+    def test_ctrl_c_waits_for_the_step_and_a_second_one_stops_at_once(self):
+        # Our processes answer Ctrl-C by finishing the step and its checkpoint: the launcher
+        # waits for them (FSI_INTERRUPT_GRACE_S, 65 s) and says so; a second Ctrl-C stops them.
+        self.configure(coupler={"endpoint": ENDPOINT, "sleep": 30, "finish_step_s": 30},
+                       structure={"sleep": 30, "finish_step_s": 30}, fluid={"sleep": 30, "finish_step_s": 30})
+        p = self.start(self.case)
+        self.wait_started(["coupler", "structure", "fluid"])
+        time.sleep(0.2)
+        os.kill(p.pid, signal.SIGINT)
+        time.sleep(1.0)
+        for name in ("coupler", "structure", "fluid"):
+            self.assertIn("SIGINT", self.events(name), name)
+            self.assertTrue(self.alive(self.recorded(name)["pid"]), name)
+        self.assertIsNone(p.poll())
+        began = time.monotonic()
+        os.kill(p.pid, signal.SIGINT)
+        _, err = p.communicate(timeout=10)
+        self.assertEqual(p.returncode, 130, err.decode())
+        self.assertLess(time.monotonic() - began, 3)
+        self.assertIn("the run ends at the end of this step", err.decode())
+        self.assertIn("interrupted again: stopping every process now", err.decode())
+        for name in ("coupler", "structure", "fluid"):
+            self.assertIn("SIGTERM", self.events(name), name)
         self.assertNoTraceback(err.decode())
 
     def test_sigterm_to_the_launcher_stops_everything(self):
