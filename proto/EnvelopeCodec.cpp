@@ -3,6 +3,8 @@
 #include "TransportError.hpp"
 
 #include <google/protobuf/io/zero_copy_stream_impl_lite.h>
+#include <google/protobuf/stubs/logging.h>
+#include <spdlog/spdlog.h>
 
 #include <climits>
 #include <cstdint>
@@ -16,6 +18,18 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "protocol version 2 sen
 namespace {
 
 using Kind = MalformedMessage::Kind;
+
+/// Protobuf's own log lines (for one, "String field ... contains invalid UTF-8 data when parsing
+/// a protocol buffer") went to stderr beside spdlog, once for every such message, past the rate
+/// limit of the coupler's reports of malformed messages. The codec reports each message that
+/// does not parse itself, so Protobuf's lines go to spdlog's debug level (fatal ones: critical).
+void protobuf_log_to_spdlog(google::protobuf::LogLevel level, const char *file, int line, const std::string &text) {
+  if (level >= google::protobuf::LOGLEVEL_FATAL)
+    spdlog::critical("protobuf ({}:{}): {}", file, line, text);
+  else
+    spdlog::debug("protobuf ({}:{}): {}", file, line, text);
+}
+[[maybe_unused]] const bool protobuf_logs_routed = (google::protobuf::SetLogHandler(&protobuf_log_to_spdlog), true);
 
 bool has_unknown_fields(const Envelope &envelope) {
   return !envelope.GetReflection()->GetUnknownFields(envelope).empty();

@@ -336,6 +336,26 @@ TEST_P(TransportContract, GarbageGivesAMalformedIncomingAndTheChannelKeepsWorkin
   EXPECT_TRUE(same_bytes(incoming.message(), sample_messages().back()));
 }
 
+TEST_P(TransportContract, InvalidUtf8InAStringIsMalformedAndProtobufPrintsNothingOfItsOwn) {
+  // Protobuf refuses a string field that is not UTF-8 and logs a line of its own for it; that
+  // line goes to spdlog's debug level (EnvelopeCodec), not to stderr, once per bad message.
+  auto raw = raw_socket(zmq::socket_type::dealer);
+  raw.set(zmq::sockopt::routing_id, "raw:utf8");
+  raw.connect(coupler().endpoint().str());
+  Envelope envelope = make_envelope(v2::ROLE_FLUID, 3);
+  envelope.mutable_error()->set_message("@@@@");
+  std::string bytes = envelope.SerializeAsString();
+  bytes.replace(bytes.find("@@@@"), 4, "\xff\xfe\xff\xfe");
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();
+  raw.send(zmq::buffer(bytes));
+  Incoming incoming = receive_at_coupler();
+  const std::string printed = testing::internal::GetCapturedStderr() + testing::internal::GetCapturedStdout();
+  ASSERT_TRUE(incoming.is_malformed());
+  EXPECT_EQ(incoming.malformed().kind, Kind::not_an_envelope) << incoming.malformed().reason;
+  EXPECT_EQ(printed.find("UTF-8"), std::string::npos) << printed;
+}
+
 TEST_P(TransportContract, RandomBytesNeverCrashTheCoupler) {
   auto raw = raw_socket(zmq::socket_type::dealer);
   raw.connect(coupler().endpoint().str());
