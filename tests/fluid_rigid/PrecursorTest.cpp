@@ -11,6 +11,7 @@
 #include <fstream>
 #include <numeric>
 #include <random>
+#include <vector>
 #include <tuple>
 
 namespace fsi::fluid {
@@ -35,9 +36,21 @@ std::string tetrahedron_stl(double apex_m) {
   return stl + "endsolid body\n";
 }
 
+/// The test cases' folders, removed when the test program ends.
+struct TempFolders {
+  std::vector<std::filesystem::path> folders;
+  ~TempFolders() {
+    std::error_code ignored;
+    for (const auto &f : folders)
+      std::filesystem::remove_all(f, ignored);
+  }
+};
+
 Precursor precursor_of(const std::string &yaml, double apex_m = 0.1) {
   static std::mt19937_64 rng(std::random_device{}());
+  static TempFolders made;
   const auto dir = std::filesystem::temp_directory_path() / ("fsi-precursor-test-" + std::to_string(rng()));
+  made.folders.push_back(dir);
   std::filesystem::create_directories(dir / "geometry");
   std::ofstream(dir / "geometry" / "body.stl") << tetrahedron_stl(apex_m);
   std::ofstream(dir / "case.yaml") << yaml;

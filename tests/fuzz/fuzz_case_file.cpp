@@ -15,11 +15,18 @@
 #include <fstream>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
-  static const std::filesystem::path folder = [] {
+  // Never destroyed, so that the exit handler that removes the folder can still name it.
+  static const std::filesystem::path &folder = *[] {
     std::string pattern = (std::filesystem::temp_directory_path() / "fsi-fuzz-case-XXXXXX").string();
     if (!mkdtemp(pattern.data()))
       std::abort();
-    return std::filesystem::path(pattern);
+    auto *made = new std::filesystem::path(pattern);
+    static const std::filesystem::path *to_remove = made;
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(*to_remove, ignored);
+    });
+    return made;
   }();
   {
     std::ofstream out(folder / "case.yaml", std::ios::binary | std::ios::trunc);

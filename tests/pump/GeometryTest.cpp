@@ -38,8 +38,17 @@ std::string variant_name(Variant v) {
 
 void PrintTo(Variant v, std::ostream *os) { *os << variant_name(v); } // gtest's name of the parameter
 
+/// The generated pumps, each written once to a temporary folder removed when the program ends.
+struct BuiltCache : std::map<Variant, Built> {
+  ~BuiltCache() {
+    std::error_code ignored;
+    for (const auto &entry : *this)
+      std::filesystem::remove_all(entry.second.dir, ignored);
+  }
+};
+
 const Built &built(Variant variant) {
-  static std::map<Variant, Built> cache;
+  static BuiltCache cache;
   auto found = cache.find(variant);
   if (found == cache.end()) {
     Built b;
