@@ -5,13 +5,12 @@
 #include "case/CaseConfig.hpp"
 #include "case/ModuleSetups.hpp"
 #include "fluid_adapter/Precursor.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <numeric>
-#include <random>
-#include <vector>
 #include <tuple>
 
 namespace fsi::fluid {
@@ -36,21 +35,8 @@ std::string tetrahedron_stl(double apex_m) {
   return stl + "endsolid body\n";
 }
 
-/// The test cases' folders, removed when the test program ends.
-struct TempFolders {
-  std::vector<std::filesystem::path> folders;
-  ~TempFolders() {
-    std::error_code ignored;
-    for (const auto &f : folders)
-      std::filesystem::remove_all(f, ignored);
-  }
-};
-
 Precursor precursor_of(const std::string &yaml, double apex_m = 0.1) {
-  static std::mt19937_64 rng(std::random_device{}());
-  static TempFolders made;
-  const auto dir = std::filesystem::temp_directory_path() / ("fsi-precursor-test-" + std::to_string(rng()));
-  made.folders.push_back(dir);
+  const auto dir = fsi::test_support::temp_path("fsi-precursor-test-");
   std::filesystem::create_directories(dir / "geometry");
   std::ofstream(dir / "geometry" / "body.stl") << tetrahedron_stl(apex_m);
   std::ofstream(dir / "case.yaml") << yaml;

@@ -7,6 +7,7 @@
 #include "common/ConfigError.hpp"
 #include "motion/MotionFactory.hpp"
 #include "motion/PendulumHistory.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
 
 namespace fsi::motion {
 namespace {
@@ -51,9 +51,7 @@ TEST(AxisRotation, PoseAndVelocityMatchTheClosedForm) {
 std::filesystem::path write_table(const std::string &text) {
   // Unique per process and call: ctest runs the tests of this file in parallel processes
   // (an unseeded std::rand() gave them all the same name, and they overwrote each other).
-  static int calls = 0;
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("fsi-motion-" + std::to_string(::getpid()) + "-" + std::to_string(++calls) + ".csv");
+  const auto path = fsi::test_support::temp_path("fsi-motion-", ".csv");
   std::ofstream(path) << text;
   return path;
 }

@@ -4,6 +4,7 @@
 #include "common/ConfigError.hpp"
 #include "prescribed_flow/AnalyticFlows.hpp"
 #include "prescribed_flow/TabulatedFlow.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,10 +30,9 @@ TEST(AnalyticFlows, MatchTheirClosedForms) {
 }
 
 std::filesystem::path write(const std::string &text) {
-  // Not a fixed seed: ctest runs each test in its own process, two at a time, and equal names
-  // let one test overwrite the other's table (seen as a rare failure of the linear-field test).
-  static std::mt19937 rng(std::random_device{}());
-  const auto path = std::filesystem::temp_directory_path() / ("fsi-flow-" + std::to_string(rng()) + ".csv");
+  // A random name (ctest runs each test in its own process, two at a time, and equal names let
+  // one test overwrite the other's table), removed at the end.
+  const auto path = fsi::test_support::temp_path("fsi-flow-", ".csv");
   std::ofstream(path) << text;
   return path;
 }

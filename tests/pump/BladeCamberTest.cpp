@@ -3,13 +3,13 @@
 
 #include "pump/BladeCamber.hpp"
 #include "pump/PumpDesign.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 namespace fsi::pump {
 namespace {
@@ -60,8 +60,7 @@ TEST(BladeCamber, RefusesAWrapThatNeedsABladeAngleOutsideZeroToNinety) {
 }
 
 std::string load_error(const std::string &yaml) {
-  static std::mt19937_64 rng(std::random_device{}());
-  const auto path = std::filesystem::temp_directory_path() / ("fsi-pump-" + std::to_string(rng()) + ".yaml");
+  const auto path = fsi::test_support::temp_path("fsi-pump-", ".yaml");
   std::ofstream(path) << yaml;
   try {
     PumpDesign::load(path);

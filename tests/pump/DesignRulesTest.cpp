@@ -8,13 +8,13 @@
 #include "pump/PhysicalConstants.hpp"
 #include "pump/PumpDesign.hpp"
 #include "pump/VoluteSizing.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 namespace fsi::pump {
@@ -129,8 +129,7 @@ TEST(ThroatBand, ASmallerDutysRuleThroatIsInItsOwnBand) {
 }
 
 std::filesystem::path write_design(const std::string &yaml) {
-  static std::mt19937_64 rng(std::random_device{}());
-  const auto path = std::filesystem::temp_directory_path() / ("fsi-pump-" + std::to_string(rng()) + ".yaml");
+  const auto path = fsi::test_support::temp_path("fsi-pump-", ".yaml");
   std::ofstream(path) << yaml;
   return path;
 }

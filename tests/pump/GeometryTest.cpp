@@ -7,13 +7,13 @@
 #include "geometry/StlIo.hpp"
 #include "geometry/TriangleMeshSurface.hpp"
 #include "geometry/TriangleSoupChecks.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <random>
 
 namespace fsi::pump {
 namespace {
@@ -38,17 +38,8 @@ std::string variant_name(Variant v) {
 
 void PrintTo(Variant v, std::ostream *os) { *os << variant_name(v); } // gtest's name of the parameter
 
-/// The generated pumps, each written once to a temporary folder removed when the program ends.
-struct BuiltCache : std::map<Variant, Built> {
-  ~BuiltCache() {
-    std::error_code ignored;
-    for (const auto &entry : *this)
-      std::filesystem::remove_all(entry.second.dir, ignored);
-  }
-};
-
 const Built &built(Variant variant) {
-  static BuiltCache cache;
+  static std::map<Variant, Built> cache;
   auto found = cache.find(variant);
   if (found == cache.end()) {
     Built b;
@@ -58,9 +49,7 @@ const Built &built(Variant variant) {
       b.design.inlet.sump_height_m = 0.12;
     }
     b.geometry = PumpGeometry::build(b.design, GeometryOptions::coarse());
-    b.dir = std::filesystem::temp_directory_path() /
-            ("fsi-pump-geometry-" + std::to_string(std::random_device{}()) + "-" +
-             std::to_string(static_cast<int>(variant)));
+    b.dir = fsi::test_support::temp_path("fsi-pump-geometry-", "-" + std::to_string(static_cast<int>(variant)));
     b.geometry.write(b.dir, b.design);
     found = cache.emplace(variant, std::move(b)).first;
   }

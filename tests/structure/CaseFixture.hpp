@@ -7,20 +7,19 @@
 #include "case/ModuleSetups.hpp"
 #include "structure_solver/LagrangianSheet.hpp"
 #include "structure_solver/Scene.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 #include <sys/wait.h>
 
 namespace fsi::structure::testing {
 
 inline std::filesystem::path make_case_dir(const std::string &yaml) {
-  static std::mt19937_64 rng(std::random_device{}());
-  const auto dir = std::filesystem::temp_directory_path() / ("fsi-test-" + std::to_string(rng()));
+  const auto dir = fsi::test_support::temp_path("fsi-test-");
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "case.yaml") << yaml;
   return dir;
