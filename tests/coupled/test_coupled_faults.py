@@ -16,7 +16,7 @@ import subprocess
 import time
 import unittest
 
-from coupled_support import (LAUNCHER, BIN_DIR, PYTHON, COUPLER, TempDirTest, alive, case_dir,
+from coupled_support import (LAUNCHER, BIN_DIR, PYTHON, TempDirTest, alive, case_dir,
                              children_of, load_case, read, status_of, wait_exit, wait_for_text,
                              write_case)
 
