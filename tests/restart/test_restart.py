@@ -280,6 +280,27 @@ def launch(case, out, *extra):
                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
 
+def start_until_first_set(case, out, first_step, new_session=False):
+    """The launcher on `case`, running in the background, once the checkpoint set of
+    `first_step` is complete (or the run ended, or 120 s passed). new_session: in a process group
+    of its own, to which a test sends Ctrl-C."""
+    child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, case],
+                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=new_session)
+    first = os.path.join(out, "checkpoints", "step-%09d" % first_step, "manifest.ckpt")
+    deadline = time.time() + 120
+    while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
+        time.sleep(0.02)
+    return child
+
+
+def stop_at_boundary(out):
+    """(signal, who, step) of the coupler's "interrupted by signal ... after step N" line, or None."""
+    with open(os.path.join(out, "coupler.log")) as f:
+        found = re.search(r"interrupted by signal (\d+) at (the coupler|participant \S+) after step (\d+)", f.read())
+    return (int(found.group(1)), found.group(2), int(found.group(3))) if found else None
+
+
 def make_coupled_case(folder, law=None):
     """rag-in-prescribed-flow (coupler, structure, prescribed flow), 0.2 s (5000 steps of 4e-5 s),
     a checkpoint every 0.05 s (1250 steps); `law` replaces the penalty law's line."""
@@ -338,15 +359,10 @@ class CoupledPrescribedFlow(unittest.TestCase):
         resumed = 0
         for victim in ("fsi-coupler", "fsi-structure", "fsi-prescribed-flow"):
             out = os.path.join(self.tmp, "kill-" + victim)
-            child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
-                                     stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             # After the first complete set, at a seeded moment within the next 40 % of the run (a
             # fraction of the uninterrupted run's wall time alone could fall before the first set
             # on a loaded machine, and the restart then has nothing to resume from).
-            first = os.path.join(out, "checkpoints", "step-000001250", "manifest.ckpt")
-            deadline = time.time() + 120
-            while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
-                time.sleep(0.02)
+            child = start_until_first_set(self.case, out, 1250)
             time.sleep(draw.uniform(0.0, 0.4) * self.full_wall_s)
             subprocess.run(["pkill", "-9", "-f", "%s .*-o %s" % (victim, out)])
             code = child.wait(timeout=60)
@@ -364,20 +380,13 @@ class CoupledPrescribedFlow(unittest.TestCase):
         """Starts the run, and at a seeded moment after its first complete set calls send(launcher,
         out); returns (out, the launcher's exit code, the step the coupler says it stopped after)."""
         out = os.path.join(self.tmp, name)
-        child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
-                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                 start_new_session=True)
-        first = os.path.join(out, "checkpoints", "step-000001250", "manifest.ckpt")
-        deadline = time.time() + 120
-        while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
-            time.sleep(0.02)
+        child = start_until_first_set(self.case, out, 1250, new_session=True)
         time.sleep(random.Random(name).uniform(0.05, 0.3) * self.full_wall_s)
         send(child, out)
         code = child.wait(timeout=90)
-        with open(os.path.join(out, "coupler.log")) as f:
-            stopped = re.findall(r"interrupted by signal \d+ at (the coupler|participant \S+) after step (\d+)", f.read())
-        self.stopped_by = stopped[0][0] if stopped else None
-        return out, code, int(stopped[0][1]) if stopped else None
+        stopped = stop_at_boundary(out)
+        self.stopped_by = stopped[1] if stopped else None
+        return out, code, stopped[2] if stopped else None
 
     def assert_checkpointed_at_the_stop_and_resumed(self, out, code, stopped):
         self.assertEqual(code, 130)
@@ -557,14 +566,9 @@ class CoupledOpenFoam(unittest.TestCase):
     def test_an_openfoam_run_with_the_fluid_killed_resumes_from_its_last_complete_checkpoint(self):
         draw = random.Random(77)
         out = os.path.join(self.tmp, "kill-fluid")
-        child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, self.case],
-                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         # After its first checkpoint, at a seeded moment within the next tenth of the run (a
         # fraction of the uninterrupted run's wall time alone would miss on a loaded machine).
-        first = os.path.join(out, "checkpoints", "step-000000100", "manifest.ckpt")
-        deadline = time.time() + 120
-        while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
-            time.sleep(0.05)
+        child = start_until_first_set(self.case, out, 100)
         time.sleep(draw.uniform(0.0, 0.1) * self.full_wall_s)
         subprocess.run(["pkill", "-9", "-f", "fsi-openfoam-fluid .*-o %s" % out])
         self.assertNotEqual(child.wait(timeout=60), 0)
@@ -587,20 +591,14 @@ def ctrl_c_and_restart(test, case, out, seed):
     """Starts the run, sends SIGINT to the launcher's process group at a seeded moment after
     the first checkpoint (step 100), checks that the run ended at a step boundary with that
     step's set, and resumes it; returns (out, the step)."""
-    child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, case],
-                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             start_new_session=True)
-    first = os.path.join(out, "checkpoints", "step-000000100", "manifest.ckpt")
-    deadline = time.time() + 120
-    while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
-        time.sleep(0.02)
+    child = start_until_first_set(case, out, 100, new_session=True)
     time.sleep(random.Random(seed).uniform(0.05, 0.5))
     os.killpg(child.pid, signal.SIGINT)
     test.assertEqual(child.wait(timeout=90), 130)
-    with open(os.path.join(out, "coupler.log")) as f:
-        stopped = re.findall(r"interrupted by signal 2 at \S+(?: \S+)? after step (\d+)", f.read())
+    stopped = stop_at_boundary(out)
     test.assertTrue(stopped, "the coupler did not end the run at a step boundary")
-    step = int(stopped[0])
+    test.assertEqual(stopped[0], 2)
+    step = stopped[2]
     test.assertNotIn(step, (100, 200, 300, 400), "the stop fell on a periodic checkpoint: the test did not test")
     test.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % step)
     made = launch(case, out, "--restart")
