@@ -24,20 +24,27 @@
 #   ./fsi bench [structure|transport|coupling|fluid|pump|pump_rag|mpi_coupling]  run a benchmark (fluid, pump: vs stock pimpleFoam;
 #                             mpi_coupling: the Lagrangian side of a step on 1 and 2 MPI ranks against the points;
 #                             also mesh_surface, kernel_stencil, body_indicator: one module's kernels)
-#   ./fsi report [--quick] [--skip-speed]  speed-against-error report (report/REPORT.md,
-#                             error_vs_cost.png), with a speed section (the benches against their
-#                             references); --only-speed: that section alone (report/SPEED.md)
-#   ./fsi schema              print the case-file reference (Markdown)
+#   ./fsi report [--quick] [--skip-speed] [--skip-stability] [--only-speed]  speed-against-error
+#                             report (report/REPORT.md, error_vs_cost.png; about 30 min, 8 with
+#                             --quick), with a speed section (the benches against their references);
+#                             --only-speed: that section alone (report/SPEED.md)
+#   ./fsi schema              print the case-file reference (Markdown; docs/case-reference.md)
+#   ./fsi build               install and build everything (what ./fsi test does first)
 #   ./fsi pump-design FILE [--write DIR]  check a pump design file; the duty and volute its design
 #                             rules give; --write: generate the geometry (DIR/impeller.stl, casing.stl,
 #                             geometry.yaml, geometry.png; docs/pump-design.md)
-#   ./fsi pump-curve [--points 0.36,0.6,0.8,1.0,1.2] [--jobs N] [--resolution NAME] CASE_DIR
-#                             a pump case at several flow rates: pump_curve.csv and pump_curve.png
+#   ./fsi pump-curve [--points 0.36,0.6,0.8,1.0,1.2] [--method ibm|ami|both] [--jobs N]
+#                    [--resolution NAME] [--end-time S] [-o DIR] CASE_DIR
+#                             a pump case at several flow rates (fractions of its design flow), the
+#                             impeller penalized, body-fitted (AMI) or both: pump_curve.csv and .png
 #   ./fsi coupling-study [--only laws|implicit]  the coupling laws at equal cost and implicit coupling
 #                             against explicit on real runs (study/coupling/COUPLING.md; docs/coupling.md)
-#   ./fsi rag-ensemble [--runs 8] [--seed 1] [--flow-fraction 1.0] [--sizes LxW,...] [--jobs N] CASE_DIR
+#   ./fsi rag-ensemble [--runs 8] [--seed 1] [--flow-fraction 1.0] [--sizes LxW,...] [--jobs N]
+#                      [--resolution NAME] [--end-time S] [-o DIR] CASE_DIR
 #                             rag releases into a pump case (cases/rag-in-pump): P(hang-up) with its
 #                             interval, residence and wrap distributions (ensemble.csv, ensemble.png)
+#
+# The cases: cases/README.md. Their results: docs/results.md.
 #
 # Environment: FSI_BUILD_DIR (default build), FSI_JOBS (default: number of cores),
 # FSI_SANITIZE=0 skips the sanitizer pass of './fsi test', FSI_FUZZ_SECONDS=0 its fuzzing (default 20 s a target).
@@ -306,6 +313,6 @@ case "${1:-help}" in
   keys)
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
-  help|-h|--help) sed -n '2,41p' "$0" | sed 's/^# \{0,1\}//' ;;
+  help|-h|--help) sed -n '2,/^set -euo/p' "$0" | grep '^#' | sed 's/^# \{0,1\}//' ;;
   *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, coupling-study, build, help)" ;;
 esac
