@@ -53,7 +53,8 @@ std::vector<std::string> CaseConfig::presets(const std::filesystem::path &case_d
   return names;
 }
 
-CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::string &preset) {
+CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::string &preset,
+                            const std::vector<std::string> &assignments) {
   if (!std::filesystem::is_directory(case_dir))
     throw common::ConfigError(case_dir.string() + ": not a case folder (expected a folder holding case.yaml).");
   const auto overlay = case_dir / "presets" / (preset + ".yaml");
@@ -64,8 +65,9 @@ CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::st
         common::did_you_mean(preset, available) +
         (available.empty() ? " This case has no presets." : " Presets of this case: " + common::join(available) + "."));
   }
-  auto reader = preset.empty() ? common::ConfigReader::from_file(case_dir / "case.yaml")
-                               : common::ConfigReader::from_file_with_overlay(case_dir / "case.yaml", overlay);
+  auto reader = (preset.empty() ? common::ConfigReader::from_file(case_dir / "case.yaml")
+                                : common::ConfigReader::from_file_with_overlay(case_dir / "case.yaml", overlay))
+                    .with_assignments(assignments);
   CaseConfig config;
   config.visit(reader);
   reader.finish();

@@ -43,8 +43,10 @@ struct CaseConfig {
   }
 
   /// Reads and validates `case_dir/case.yaml`, with `case_dir/presets/<preset>.yaml` merged
-  /// over it when a preset is named (e.g. --resolution coarse); throws common::ConfigError.
-  static CaseConfig load(const std::filesystem::path &case_dir, const std::string &preset = "");
+  /// over it when a preset is named (e.g. --resolution coarse), then the assignments
+  /// ("a.b.c=VALUE", --set); throws common::ConfigError.
+  static CaseConfig load(const std::filesystem::path &case_dir, const std::string &preset = "",
+                         const std::vector<std::string> &assignments = {});
   /// The presets a case offers (file names in case_dir/presets without .yaml), sorted.
   static std::vector<std::string> presets(const std::filesystem::path &case_dir);
 

@@ -1,7 +1,7 @@
 #pragma once
 // The command-line options every process of a run takes to find its case (fsi-structure,
 // fsi-coupler, fsi-prescribed-flow, fsi-openfoam-fluid): the case folder, the results folder,
-// the preset, an earlier end time, and a restart. The launcher passes the same values to every process,
+// the preset, keys set on the command line, an earlier end time, and a restart. The launcher passes the same values to every process,
 // so all of them load the same configuration (and agree on its fingerprint). Header-only: only
 // the executables link CLI11.
 
@@ -13,11 +13,13 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace fsi::case_config {
 
 struct CaseOptions {
   std::string case_dir, output_dir, preset;
+  std::vector<std::string> assignments; ///< --set KEY=VALUE, in order, over the preset
   double end_time_s = 0.0; ///< 0: run.end_time_s of the case
   bool restart = false;    ///< resume from the newest complete checkpoint in the results folder
 
@@ -28,6 +30,10 @@ struct CaseOptions {
     app.add_option("-o,--output-dir", output_dir, "Results folder (default: run.output_directory of the case)");
     app.add_option("--resolution,--preset", preset,
                    "Preset of the case: presets/<NAME>.yaml merged over case.yaml (e.g. coarse, medium, fine)");
+    app.add_option("--set", assignments,
+                   "Set a key of the case over case.yaml and the preset, e.g. --set "
+                   "fluid.openfoam.operating_point.flow_rate_m3_per_s=0.0076 (repeatable; checked as in the file)")
+        ->allow_extra_args(false);
     app.add_option("--end-time", end_time_s,
                    "Stop at this simulated time (s) instead of run.end_time_s (a quick look, or a few steps in CI)")
         ->check(CLI::Validator(
@@ -45,7 +51,7 @@ struct CaseOptions {
 
   /// The case file with the preset merged over it and the end time applied.
   CaseConfig load() const {
-    CaseConfig config = CaseConfig::load(case_dir, preset);
+    CaseConfig config = CaseConfig::load(case_dir, preset, assignments);
     if (end_time_s > 0.0)
       config.run.end_time_s = end_time_s;
     return config;

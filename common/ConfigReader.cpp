@@ -2,6 +2,7 @@
 
 #include "DidYouMean.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -58,6 +59,41 @@ ConfigReader ConfigReader::from_file_with_overlay(const std::filesystem::path &f
   ConfigReader reader(merged(base.node_, top), file, "");
   reader.require_mapping();
   return reader;
+}
+
+ConfigReader ConfigReader::with_assignments(const std::vector<std::string> &assignments) const {
+  YAML::Node node = node_;
+  for (const auto &assignment : assignments) {
+    const auto equals = assignment.find('=');
+    const std::string key = assignment.substr(0, equals);
+    const auto bad = [&](const std::string &why) {
+      return ConfigError("--set '" + assignment + "': " + why +
+                         " (expected KEY=VALUE, the key a dotted path of case.yaml such as "
+                         "fluid.openfoam.operating_point.flow_rate_m3_per_s).");
+    };
+    if (equals == std::string::npos || equals + 1 == assignment.size())
+      throw bad("no value");
+    std::vector<std::string> path;
+    std::stringstream parts(key);
+    for (std::string part; std::getline(parts, part, '.');)
+      path.push_back(part);
+    if (key.empty() || key.back() == '.' ||
+        std::any_of(path.begin(), path.end(), [](const std::string &part) { return part.empty(); }))
+      throw bad("an empty key");
+    YAML::Node value;
+    try {
+      value = YAML::Load(assignment.substr(equals + 1));
+    } catch (const YAML::Exception &e) {
+      throw bad("the value is not valid YAML: " + e.msg);
+    }
+    for (auto part = path.rbegin(); part != path.rend(); ++part) {
+      YAML::Node level(YAML::NodeType::Map);
+      level[*part] = value;
+      value = level;
+    }
+    node = merged(node, value);
+  }
+  return ConfigReader(node, file_, path_);
 }
 
 void ConfigReader::require_mapping() const {

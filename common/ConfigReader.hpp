@@ -30,6 +30,10 @@ public:
   /// As from_file, with the overlay file (a preset) merged in first: mappings merge key by
   /// key, lists of mappings of the same length item by item, anything else is replaced.
   static ConfigReader from_file_with_overlay(const std::filesystem::path &file, const std::filesystem::path &overlay);
+  /// This reader's mapping with each assignment "a.b.c=VALUE" merged over it as a preset would
+  /// be (VALUE read as YAML: 0.0076, word, [1, 2, 3]; the key path through mappings only). Throws
+  /// ConfigError naming a malformed assignment. The keys are then checked as any other.
+  ConfigReader with_assignments(const std::vector<std::string> &assignments) const;
 
   void number(const std::string &key, double &value, const Range &range, const std::string &doc);
   void integer(const std::string &key, int &value, const Range &range, const std::string &doc);

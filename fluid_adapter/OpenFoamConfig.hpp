@@ -2,6 +2,7 @@
 // The case's `fluid.openfoam` section: the OpenFOAM fluid (Navier-Stokes, PIMPLE) with the
 // diffuse immersed-boundary forcing of Eqs. (6-8). Header-only data, no OpenFOAM header.
 
+#include "OperatingPoint.hpp"
 #include "common/ConfigReader.hpp"
 
 #include <filesystem>
@@ -25,6 +26,7 @@ struct OpenFoamConfig {
   InterfaceFlux interface_flux = InterfaceFlux::interpolated;
   BodyIndicatorChoice body_indicator = BodyIndicatorChoice::sharp;
   double body_indicator_depth_cells = 1.0;
+  std::optional<OperatingPoint> operating_point;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -82,6 +84,30 @@ struct OpenFoamConfig {
     v.number("precursor_time_step_s", precursor_time_step_s, common::Range::non_negative("s"),
              "Time step of the precursor run (no structure, so only the flow's Courant number limits it). 0: "
              "run.time_step_s.");
+    v.optional_section("operating_point", operating_point,
+                       "The inlet's volume flow rate, for an OpenFOAM case whose 0/U takes it from "
+                       "constant/operatingPoint (the pump cases): required there, refused elsewhere.");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      check_operating_point(v);
+  }
+
+private:
+  /// The template's inlet takes its flow rate from constant/operatingPoint exactly when the
+  /// case gives operating_point (a template not there yet, e.g. generated later: not checked).
+  void check_operating_point(const common::ConfigReader &v) const {
+    const auto foam_case = v.file().parent_path() / case_directory;
+    if (!std::filesystem::is_directory(foam_case / "0"))
+      return;
+    const bool required = OperatingPoint::required_by(foam_case);
+    if (required && !operating_point)
+      v.fail_value("operating_point", "is absent, but " + (foam_case / "0" / "U").string() +
+                                          " takes its inlet flow rate from constant/operatingPoint: give "
+                                          "operating_point: {flow_rate_m3_per_s: Q} (m^3/s, > 0).");
+    if (!required && operating_point)
+      v.fail_value("operating_point", "is given, but " + (foam_case / "0" / "U").string() +
+                                          " does not take its inlet flow rate from constant/operatingPoint "
+                                          "(flowRateInletVelocity with volumetricFlowRate $flowRate): it would "
+                                          "have no effect.");
   }
 };
 

@@ -1,8 +1,15 @@
-"""Helpers of the case generators (cases/*/make_case.py): OpenFOAM dictionary files and closed STL
-solids, written as text. Standard library only."""
+"""The one place that writes OpenFOAM dictionaries from Python: whole files for the case
+generators (cases/*/make_case.py) and the runs of stock OpenFOAM (scripts/pump_ami_run.py), and
+single entries read or set through OpenFOAM's own foamDictionary, never by pattern; plus closed
+STL solids, written as text. Standard library only."""
 
 import math
 import os
+import subprocess
+
+# Debian's OpenFOAM reads its etc/ through WM_PROJECT_DIR while its libraries load, before
+# main(): every OpenFOAM program (our fluid, foamDictionary, pimpleFoam) is started with it set.
+OPENFOAM_ENVIRONMENT = {"WM_PROJECT_DIR": "/usr/share/openfoam", "FOAM_ETC": "/usr/share/openfoam/etc"}
 
 FOAM_HEADER = """/*--------------------------------*- C++ -*----------------------------------*/
 FoamFile
@@ -22,6 +29,35 @@ def write_foam_file(case_dir, relative_path, cls, body):
     with open(path, "w") as f:
         f.write(FOAM_HEADER % {"cls": cls, "obj": os.path.basename(relative_path)} + body)
     return path
+
+
+def write_operating_point(case_dir, flow_rate_m3_per_s):
+    """constant/operatingPoint, as fsi-openfoam-fluid writes it from fluid.openfoam.operating_point:
+    the imposed volume flow rate at the inlet that 0/U includes ($flowRate, m^3/s)."""
+    return write_foam_file(case_dir, "constant/operatingPoint", "dictionary",
+                           "// The imposed volume flow rate at the inlet (m^3/s).\nflowRate        %r;\n"
+                           % float(flow_rate_m3_per_s))
+
+
+def foam_dictionary(path, *options):
+    """OpenFOAM's foamDictionary on the dictionary file `path` (a finished process)."""
+    return subprocess.run(["foamDictionary"] + list(options) + [path], stdin=subprocess.DEVNULL,
+                          capture_output=True, text=True, env=dict(OPENFOAM_ENVIRONMENT, **os.environ))
+
+
+def foam_entry(path, key):
+    """The value of `key` in the OpenFOAM dictionary file `path`, as text (foamDictionary -value)."""
+    done = foam_dictionary(path, "-entry", key, "-value")
+    if done.returncode != 0:
+        raise ValueError("%s: no entry %s (foamDictionary: %s)" % (path, key, done.stderr.strip()[-300:]))
+    return done.stdout.strip()
+
+
+def set_foam_entry(path, key, value):
+    """Sets `key` of the OpenFOAM dictionary file `path` to `value` (foamDictionary -set)."""
+    done = foam_dictionary(path, "-entry", key, "-set", str(value))
+    if done.returncode != 0:
+        raise ValueError("%s: cannot set %s (foamDictionary: %s)" % (path, key, done.stderr.strip()[-300:]))
 
 
 def cylinder_stl(radius, z0, z1, n, centre=(0.0, 0.0), name="cylinder"):

@@ -36,6 +36,8 @@ import sys
 import threading
 import time
 
+import foam_case  # scripts/: this script's own folder
+
 EXIT_OK, EXIT_RUN_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 POLL_S = 0.05
 SHOWN_LEVELS = {"warning", "warn", "error", "err", "critical"}
@@ -93,6 +95,9 @@ def parse_args(argv):
                         help="preset of the case (presets/NAME.yaml over case.yaml): coarse, medium, fine...")
     parser.add_argument("--end-time", metavar="SECONDS", type=float, dest="end_time",
                         help="stop at this simulated time instead of run.end_time_s (a quick look)")
+    parser.add_argument("--set", metavar="KEY=VALUE", dest="assignments", action="append", default=[],
+                        help="set a key of the case over case.yaml and the preset, in every process "
+                             "(e.g. fluid.openfoam.operating_point.flow_rate_m3_per_s=0.0076; repeatable)")
     parser.add_argument("--restart", action="store_true",
                         help="resume from the newest complete checkpoint in the results folder "
                              "(run.checkpoint_interval_s), appending to its results")
@@ -131,9 +136,12 @@ def executable_in(bin_dir, name):
 
 
 def output_args(args):
-    """Options every process gets: the output folder, the case preset and the end time, if given."""
+    """Options every process gets: the output folder, the case preset, the keys set and the end
+    time, if given."""
     extra = ["-o", args.output_dir] if args.output_dir else []
     extra += ["--resolution", args.resolution] if args.resolution else []
+    for assignment in getattr(args, "assignments", None) or []:
+        extra += ["--set", assignment]
     extra += ["--restart"] if getattr(args, "restart", False) else []
     return extra + (["--end-time", repr(args.end_time)] if args.end_time else [])
 
@@ -509,8 +517,9 @@ def exec_process(command):
 
 
 # Debian's OpenFOAM reads its etc/ through WM_PROJECT_DIR while its libraries load, before
-# main(): the fluid process must be started with it set.
-OPENFOAM_ENVIRONMENT = {"WM_PROJECT_DIR": "/usr/share/openfoam", "FOAM_ETC": "/usr/share/openfoam/etc"}
+# main(): the fluid process must be started with it set (foam_case.py, which starts OpenFOAM's
+# tools too, holds it).
+OPENFOAM_ENVIRONMENT = foam_case.OPENFOAM_ENVIRONMENT
 # The allocator settings our executables set for themselves (common/Allocator.hpp), for stock OpenFOAM
 # programs started by our scripts (the AMI reference, the benches' stock runs): freed blocks kept in the
 # heap instead of page-faulted in again every step (about 2x on a 296k-cell step of this machine). The

@@ -3,7 +3,7 @@
 the case folder that cases/centrifugal-pump/make_ami_case.py wrote (openfoam-ami-<resolution>),
 copied to OUT/openfoam with the flow rate set, meshed (blockMesh, snappyHexMesh, createBaffles,
 mergeOrSplitBaffles -split, checkMesh; or the same mesh from the cache, ~/.cache/fsi/meshes/<hash
-of the mesh inputs>, as fluid_adapter/OpenFoamCase.cpp does for the penalized runs), run to
+of the mesh inputs>, as apps/fsi-openfoam-fluid/OpenFoamCase.cpp does for the penalized runs), run to
 end_time with the logs in OUT/logs/, and the forces function object's output converted to
 OUT/forces.csv in the format of the penalized runs (time_s,body0.fx_n,...,body0.tz_n_m: the
 fluid's force and torque on the impeller, pressure + viscous, about the origin), so that
@@ -33,6 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import pump_head_budget  # noqa: E402
 import pump_point  # noqa: E402
+from foam_case import foam_entry, set_foam_entry, write_operating_point  # noqa: E402
 from fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
 for _name, _value in OPENFOAM_ENVIRONMENT.items():
@@ -164,16 +165,6 @@ def mesh(foam_case, logs):
     return cached
 
 
-def set_entry(path, key, value):
-    with open(path) as f:
-        text = f.read()
-    text, n = re.subn(r"^%s\s+[^;]+;" % key, "%-15s %s;" % (key, value), text, flags=re.M)
-    if n != 1:
-        raise SystemExit("pump-ami: %s has no `%s VALUE;` line" % (path, key))
-    with open(path, "w") as f:
-        f.write(text)
-
-
 def read_foam_vectors(path):
     """Rows of floats of a forces .dat file (`time (x y z) (x y z) ...`), comments skipped."""
     rows = []
@@ -271,9 +262,8 @@ def time_mesh_motion(foam_case, logs, steps=20):
         shutil.rmtree(copy)
     shutil.copytree(foam_case, copy, ignore=shutil.ignore_patterns("postProcessing", "[1-9]*", "0.[0-9]*"))
     control = os.path.join(copy, "system", "controlDict")
-    with open(control) as f:
-        dt = float(re.search(r"^deltaT\s+([^;]+);", f.read(), re.M).group(1))
-    set_entry(control, "endTime", repr(steps * dt))
+    dt = float(foam_entry(control, "deltaT"))
+    set_foam_entry(control, "endTime", repr(steps * dt))
     log = os.path.join(logs, "log.moveDynamicMesh")
     with open(log, "w") as f:
         code = subprocess.call(["moveDynamicMesh", "-case", copy, "-noFunctionObjects"], stdout=f,
@@ -345,15 +335,12 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
         shutil.rmtree(foam_case)
     os.makedirs(logs, exist_ok=True)
     shutil.copytree(source, foam_case, symlinks=False)          # the STL links resolved
-    operating = os.path.join(foam_case, "constant", "operatingPoint")
-    set_entry(operating, "flowRate", repr(float(flow_rate)))
+    write_operating_point(foam_case, flow_rate)
     control = os.path.join(foam_case, "system", "controlDict")
-    set_entry(control, "endTime", repr(float(end_time)))
-    with open(control) as f:
-        text = f.read()
-    dt = float(re.search(r"^deltaT\s+([^;]+);", text, re.M).group(1))
-    if float(re.search(r"^writeInterval\s+([^;]+);", text, re.M).group(1)) > end_time:
-        set_entry(control, "writeInterval", repr(float(end_time)))   # the end state, to continue from
+    set_foam_entry(control, "endTime", repr(float(end_time)))
+    dt = float(foam_entry(control, "deltaT"))
+    if float(foam_entry(control, "writeInterval")) > end_time:
+        set_foam_entry(control, "writeInterval", repr(float(end_time)))   # the end state, to continue from
     with open(os.path.join(foam_case, "constant", "dynamicMeshDict")) as f:
         text = f.read()
     omega = float(re.search(r"^omega\s+([^;]+);", text, re.M).group(1))

@@ -7,9 +7,9 @@ and T/T_BEP against Q/Q_BEP, as the paper's Figs. 10-11, the efficiency on a sec
     pump_curve.py --bin-dir BIN [--points 0.36,0.6,0.8,1.0,1.2] [--method ibm|ami|both] [--jobs N] [--resolution NAME]
                   [--end-time S] [-o DIR] CASE_DIR
 
-Each point is a copy of the case folder with its flow rate (constant/operatingPoint of the
-OpenFOAM case) set to the fraction of the design flow rate (pump.yaml), run by fsi_launch.py in
-DIR/q<fraction>/ (the run) and DIR/q<fraction>/case (the copy). Points run in parallel, up to
+Each point is a copy of the case folder run by fsi_launch.py at its flow rate, the fraction of
+the design flow rate (pump.yaml) given as --set fluid.openfoam.operating_point.flow_rate_m3_per_s,
+in DIR/q<fraction>/ (the run) and DIR/q<fraction>/case (the copy). Points run in parallel, up to
 --jobs at once (default: the cores, over the fluid's MPI ranks); the first one meshes and the
 others start once its mesh is in the mesh cache. Progress with ETA on stderr; a failed point is
 reported and the curve drawn with the others. A point already run with the same case files,
@@ -24,7 +24,6 @@ import argparse
 import concurrent.futures
 import csv
 import hashlib
-import math
 import os
 import re
 import shutil
@@ -38,7 +37,6 @@ import yaml
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import fsi_launch  # noqa: E402
-import pump_point  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
 AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
@@ -72,27 +70,20 @@ class Point:
         self.meshed = threading.Event()
 
 
-def copy_case(case_dir, point, template):
-    """The case folder without its results, with the flow rate of this point."""
+FLOW_RATE_KEY = "fluid.openfoam.operating_point.flow_rate_m3_per_s"
+
+
+def copy_case(case_dir, point):
+    """The case folder without its results (its flow rate is set on the command line)."""
     if os.path.exists(point.case):
         shutil.rmtree(point.case)
     shutil.copytree(case_dir, point.case, symlinks=True,
                     ignore=shutil.ignore_patterns("output", "__pycache__"))
-    # The fraction, for the case's make_case.py: the launcher's prepare hook rewrites the
-    # OpenFOAM files of the copy when it regenerates its geometry (the generator rebuilt since
-    # the source case was prepared), and the edit below would be lost: the point ran at the
-    # design flow rate.
-    with open(os.path.join(point.case, "pump_curve_point.yaml"), "w") as f:
-        f.write("# Written by ./fsi pump-curve: this copy's flow rate (make_case.py reads it).\n"
-                "fraction_of_design_flow_rate: %r\n" % point.fraction)
-    operating = os.path.join(point.case, template, "constant", "operatingPoint")
-    with open(operating) as f:
-        text = f.read()
-    text, n = re.subn(r"^flowRate\s+[^;]+;", "flowRate        %r;" % point.flow_rate, text, flags=re.M)
-    if n != 1:
-        raise SystemExit("pump-curve: %s has no `flowRate VALUE;` line" % operating)
-    with open(operating, "w") as f:
-        f.write("// Set by pump_curve.py: %.3g of the design flow rate.\n" % point.fraction + text)
+
+
+def flow_rate_assignment(flow_rate):
+    """The launcher's --set of a run at `flow_rate` (m^3/s)."""
+    return "%s=%r" % (FLOW_RATE_KEY, float(flow_rate))
 
 
 def case_fingerprint(case_dir):
@@ -130,10 +121,10 @@ def postprocess(args, point):
     point.state = "done"
 
 
-def launcher_command(args, out, case):
-    """fsi_launch.py on a copy of the case into `out`, with the run's preset and end time (also
-    ./fsi rag-ensemble's members)."""
-    command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", out]
+def launcher_command(args, out, case, flow_rate):
+    """fsi_launch.py on a copy of the case into `out` at `flow_rate` (m^3/s), with the run's
+    preset and end time (also ./fsi rag-ensemble's members)."""
+    command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", out, "--set", flow_rate_assignment(flow_rate)]
     if args.resolution:
         command += ["--resolution", args.resolution]
     if args.end_time:
@@ -152,7 +143,7 @@ def run_logged(command, log_path, on_line):
         return process.wait()
 
 
-def run_point(args, point, template):
+def run_point(args, point):
     stamp_file = os.path.join(point.folder, "run.complete")
     stamp = "%s q=%r resolution=%s end=%r\n" % (args.fingerprint, point.flow_rate, args.resolution, args.end_time)
     if os.path.exists(stamp_file) and open(stamp_file).read() == stamp and os.path.isdir(point.case):
@@ -168,8 +159,8 @@ def run_point(args, point, template):
     if os.path.exists(stamp_file):
         os.remove(stamp_file)
     if point.method == "ibm":
-        copy_case(args.case_dir, point, template)
-        command = launcher_command(args, point.folder, point.case)
+        copy_case(args.case_dir, point)
+        command = launcher_command(args, point.folder, point.case, point.flow_rate)
     else:  # the reference: scripts/pump_ami_run.py on the case's openfoam-ami-<resolution>
         os.makedirs(point.folder, exist_ok=True)
         point.case = args.case_dir
@@ -332,12 +323,10 @@ def main(argv):
         raise SystemExit("pump-curve: %s" % plan.stderr.decode().strip())
     with open(os.path.join(args.case_dir, "case.yaml")) as f:
         case = yaml.safe_load(f)
-    template = case["fluid"]["openfoam"]["case_directory"]
     ranks = int(case["fluid"]["openfoam"].get("mpi_ranks", 1))
     if args.resolution:
         with open(os.path.join(args.case_dir, "presets", args.resolution + ".yaml")) as f:
             preset = yaml.safe_load(f) or {}
-        template = ((preset.get("fluid") or {}).get("openfoam") or {}).get("case_directory", template)
         ranks = int(((preset.get("fluid") or {}).get("openfoam") or {}).get("mpi_ranks", ranks))
     out = os.path.abspath(args.output or os.path.join(args.case_dir, "output",
                                                       "pump-curve" + ("-" + args.resolution if args.resolution else "")))
@@ -356,9 +345,9 @@ def main(argv):
         futures = []
         for method in methods:  # the first point of each method meshes; the others reuse its mesh
             mine = [p for p in points if p.method == method]
-            futures.append(pool.submit(run_point, args, mine[0], template))
+            futures.append(pool.submit(run_point, args, mine[0]))
             mine[0].meshed.wait()
-            futures += [pool.submit(run_point, args, p, template) for p in mine[1:]]
+            futures += [pool.submit(run_point, args, p) for p in mine[1:]]
         for future in futures:
             future.result()
     stop.set()

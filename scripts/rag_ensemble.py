@@ -11,8 +11,8 @@ Each member is a copy of the case folder (DIR/run-NN/case) run by fsi_launch.py 
 run-00 is the case's own rag and release (without --sizes); every other member's rag is released at a random place
 of the sump's floor, turned by a random angle about the vertical, with one of the sizes (in
 turn); the seed makes the draw reproducible. The
-flow rate is --flow-fraction times the case's (flow_rate.yaml: Q_BEP), so 0.36 is the paper's
-part load. The precursor of the flow alone is the same for every member of one operating point:
+flow rate is --flow-fraction times the case's (fluid.openfoam.operating_point: Q_BEP), given to
+every member as --set, so 0.36 is the paper's part load. The precursor of the flow alone is the same for every member of one operating point:
 the first member runs it, the others start from a copy of it. Members run in parallel up to
 --jobs (default: half the cores, a coupled run keeps about two busy); a member already run with
 the same case files and options is reused. Progress with ETA on stderr; a failed member is
@@ -113,12 +113,11 @@ def draw_release(rng, size, rag, design, collision_m):
 
 
 class Member:
-    def __init__(self, index, out, fraction, flow_rate):
+    def __init__(self, index, out, flow_rate):
         self.index = index
         self.name = "run-%02d" % index
         self.folder = os.path.join(out, self.name)
         self.case = os.path.join(self.folder, "case")
-        self.fraction = fraction          # of the design flow rate (pump_curve.copy_case's field)
         self.flow_rate = flow_rate
         self.release = {}
         self.state = "waiting"
@@ -127,8 +126,8 @@ class Member:
         self.error = None
 
 
-def prepare_member(args, member, template, rag):
-    pump_curve.copy_case(args.case_dir, member, template)
+def prepare_member(args, member, rag):
+    pump_curve.copy_case(args.case_dir, member)
     case_file = os.path.join(member.case, "case.yaml")
     with open(case_file) as f:
         case = yaml.safe_load(f)
@@ -163,7 +162,7 @@ def run_member(args, member):
                 member.progress = int(match.group(1)) / int(match.group(2))
                 member.eta = match.group(3)
 
-        code = pump_curve.run_logged(pump_curve.launcher_command(args, member.folder, member.case),
+        code = pump_curve.run_logged(pump_curve.launcher_command(args, member.folder, member.case, member.flow_rate),
                                      os.path.join(member.folder, "rag_ensemble.log"), on_line)
         if code != 0:
             member.state = "failed"
@@ -290,7 +289,8 @@ def parse_args(argv):
     parser.add_argument("--runs", type=int, default=8, help="members of the ensemble (default 8)")
     parser.add_argument("--seed", type=int, default=1, help="seed of the releases' draw (default 1)")
     parser.add_argument("--flow-fraction", type=float, default=1.0,
-                        help="flow rate as a fraction of the case's (flow_rate.yaml: Q_BEP); 0.36: the paper's part load")
+                        help="flow rate as a fraction of the case's (fluid.openfoam.operating_point: Q_BEP); 0.36: the "
+                             "paper's part load")
     parser.add_argument("--sizes", default="", help="rag sizes LENGTHxWIDTH (m), comma-separated, used in turn "
                                                     "(default: the case's rag)")
     parser.add_argument("--jobs", type=int, default=0, help="members at once (default: half the cores, at least 1)")
@@ -312,17 +312,15 @@ class CaseInputs:
     flow rate, its rag, the collision distance and the OpenFOAM folder of the preset."""
 
     def __init__(self, args):
-        for name in ("case.yaml", "pump.yaml", "flow_rate.yaml"):
+        for name in ("case.yaml", "pump.yaml"):
             if not os.path.isfile(os.path.join(args.case_dir, name)):
-                raise SystemExit("rag-ensemble: %s not found: a rag-in-pump case holds case.yaml, pump.yaml and "
-                                 "flow_rate.yaml (cases/rag-in-pump)" % os.path.join(args.case_dir, name))
+                raise SystemExit("rag-ensemble: %s not found: a rag-in-pump case holds case.yaml and pump.yaml "
+                                 "(cases/rag-in-pump)" % os.path.join(args.case_dir, name))
         with open(os.path.join(args.case_dir, "pump.yaml")) as f:
             self.design = yaml.safe_load(f)
         if not float(self.design.get("inlet", {}).get("sump_diameter_m") or 0):
             raise SystemExit("rag-ensemble: %s has no inlet sump (inlet.sump_diameter_m): the rags are released in it"
                              % os.path.join(args.case_dir, "pump.yaml"))
-        with open(os.path.join(args.case_dir, "flow_rate.yaml")) as f:
-            self.case_fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
         with open(os.path.join(args.case_dir, "case.yaml")) as f:
             case = yaml.safe_load(f)
         rags = case.get("structures") or []
@@ -331,25 +329,25 @@ class CaseInputs:
         self.rag = rags[0]
         self.sizes = parse_sizes(args.sizes) if args.sizes else [tuple(float(v) for v in self.rag["size_m"])]
         self.collision_m = float((case.get("collisions") or {}).get("threshold_m", 0.004))
-        self.template = case["fluid"]["openfoam"]["case_directory"]
-        if args.resolution:
-            with open(os.path.join(args.case_dir, "presets", args.resolution + ".yaml")) as f:
-                preset = yaml.safe_load(f) or {}
-            self.template = ((preset.get("fluid") or {}).get("openfoam") or {}).get("case_directory", self.template)
+        point = ((case.get("fluid") or {}).get("openfoam") or {}).get("operating_point") or {}
+        if "flow_rate_m3_per_s" not in point:
+            raise SystemExit("rag-ensemble: %s/case.yaml: no fluid.openfoam.operating_point.flow_rate_m3_per_s (the "
+                             "flow rate the ensemble's --flow-fraction multiplies)" % args.case_dir)
+        self.case_flow_rate = float(point["flow_rate_m3_per_s"])
 
 
-def plan_members(args, inputs, out, fraction, flow_rate):
+def plan_members(args, inputs, out, flow_rate):
     """The members, their releases drawn from the seed, each in its own copy of the case."""
     rng = random.Random(args.seed)
     members = []
     for i in range(args.runs):
-        m = Member(i, out, fraction, flow_rate)
+        m = Member(i, out, flow_rate)
         member_rag, m.release = draw_release(rng, inputs.sizes[i % len(inputs.sizes)], inputs.rag, inputs.design,
                                              inputs.collision_m)
         if i == 0 and not args.sizes:  # the case's own rag as it is: the reference member
             member_rag, m.release = inputs.rag, {"case_release": True, "length_m": inputs.sizes[0][0],
                                                  "width_m": inputs.sizes[0][1]}
-        prepare_member(args, m, inputs.template, member_rag)
+        prepare_member(args, m, member_rag)
         members.append(m)
     return members
 
@@ -378,14 +376,13 @@ def main(argv):
         fsi_launch.prepare_case(args.case_dir, args.bin_dir)
     except fsi_launch.UserError as e:
         raise SystemExit("rag-ensemble: %s" % e)
-    fraction = inputs.case_fraction * args.flow_fraction
-    flow_rate = fraction * float(inputs.design["operation"]["design_flow_rate_m3_per_s"])
+    flow_rate = inputs.case_flow_rate * args.flow_fraction
     out = os.path.abspath(args.output or os.path.join(
         args.case_dir, "output", "ensemble-q%.2f-s%d%s" % (args.flow_fraction, args.seed,
                                                           "-" + args.resolution if args.resolution else "")))
     os.makedirs(out, exist_ok=True)
     args.fingerprint = pump_curve.case_fingerprint(args.case_dir)
-    members = plan_members(args, inputs, out, fraction, flow_rate)
+    members = plan_members(args, inputs, out, flow_rate)
     jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
     say("%d runs at Q = %.4g m^3/s (%.3g of the case's), %d at once, into %s"
         % (len(members), flow_rate, args.flow_fraction, jobs, out))

@@ -4,6 +4,7 @@
 // (Euler-Bernoulli EI). Stiff tension makes it nearly inextensible.
 
 #include "BoundaryConditions.hpp"
+#include "Frame.hpp"
 #include "ModelConfig.hpp"
 
 namespace fsi::structure {
@@ -52,8 +53,11 @@ public:
       validate(v);
   }
 
-  std::unique_ptr<StructureModel> build(const BuildContext &context) const override;
   std::pair<int, int> grid_shape() const override { return {n_points, 1}; }
+  /// The frame the filament is laid out in: e1 along `direction`, the normal e1 x e2 toward
+  /// bend_direction (any perpendicular for a straight filament). Throws std::invalid_argument
+  /// when the directions are degenerate (refused when the case is read).
+  Frame frame() const;
 
 private:
   void validate(common::ConfigReader &v) const;

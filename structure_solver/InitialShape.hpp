@@ -3,17 +3,11 @@
 // optionally pre-curved so that lines along s1 are circular arcs of curvature kappa bending
 // toward the normal e1 x e2 (arc length is preserved, so the shape is unstretched).
 
+#include "Frame.hpp"
 #include "LagrangianGrid.hpp"
 #include "common/Types.hpp"
 
 namespace fsi::structure {
-
-struct Frame {
-  Vec3 e1, e2, normal;
-};
-
-/// Orthonormal frame from two directions; throws std::invalid_argument when degenerate.
-Frame make_frame(const Vec3 &s1_direction, const Vec3 &s2_direction);
 
 PointArray initial_shape(const LagrangianGrid &grid, const Vec3 &origin_m, const Frame &frame,
                          double curvature_1_per_m);

@@ -1,6 +1,6 @@
 #include "LagrangianSheet.hpp"
 
-#include "TensionSchemeRegistry.hpp"
+#include "StepSystemFactory.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +19,7 @@ LagrangianSheet::LagrangianSheet(SheetSetup setup)
                           prescribed_,
                           setup_.linear_solver,
                           setup_.time_scheme};
-  system_ = TensionSchemeRegistry::builtin().make(setup_.tension_scheme, step);
+  system_ = StepSystemFactory::builtin().make(setup_.tension_scheme, step);
   x_ = prescribed_positions(0.0);
   const double dt = setup_.time_step_s;
   x_prev_ = x_ - dt * Eigen::VectorXd::Ones(x_.rows()) * setup_.initial_velocity_m_per_s.transpose();

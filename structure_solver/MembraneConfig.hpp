@@ -91,7 +91,6 @@ public:
       validate(v);
   }
 
-  std::unique_ptr<StructureModel> build(const BuildContext &context) const override;
   std::pair<int, int> grid_shape() const override { return {n_points[0], n_points[1]}; }
 
 private:

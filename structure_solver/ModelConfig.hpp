@@ -1,26 +1,24 @@
 #pragma once
 // Type-erased configuration of one structure model. Each model declares its keys in a
 // `template <class V> void visit_keys(V&)` and derives from ModelConfigBase<Self>, which
-// forwards the three configuration visitors (reader, emitter, documentation) to it.
+// forwards the three configuration visitors (reader, emitter, documentation) to it. The model
+// itself is built by the solver's ModelFactory under the model's registry name: a configuration
+// links no solver code.
 
-#include "StepSettings.hpp"
-#include "StructureModel.hpp"
+#include "SolverChoices.hpp"
 #include "TensionSchemeRegistry.hpp"
+#include "common/Types.hpp"
 #include "common/ConfigDocWriter.hpp"
 #include "common/ConfigEmitter.hpp"
 #include "common/ConfigReader.hpp"
 #include "motion/MotionConfig.hpp"
 
 #include <memory>
+#include <optional>
+#include <string>
+#include <utility>
 
 namespace fsi::structure {
-
-/// What a model needs from the case to build itself.
-struct BuildContext {
-  std::string name;
-  Vec3 gravity_m_per_s2 = Vec3::Zero();
-  double time_step_s = 1e-4;
-};
 
 class ModelConfig {
 public:
@@ -28,7 +26,6 @@ public:
   virtual void visit(common::ConfigReader &v) = 0;
   virtual void visit(common::ConfigEmitter &v) = 0;
   virtual void visit(common::ConfigDocWriter &v) = 0;
-  virtual std::unique_ptr<StructureModel> build(const BuildContext &context) const = 0;
   /// Grid shape (n1, n2) the model will have; n2 == 1 for filaments (probes check indices).
   virtual std::pair<int, int> grid_shape() const = 0;
 };
@@ -110,9 +107,5 @@ struct SharedSheetKeys {
     v.section("solver", solver, "Numerical settings.");
   }
 };
-
-struct SheetSetup;
-/// Copies the shared settings (initial state, solver, clamp motion, gravity, time step).
-void fill_shared_setup(SheetSetup &setup, const SharedSheetKeys &keys, const BuildContext &context);
 
 } // namespace fsi::structure

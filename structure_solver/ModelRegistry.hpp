@@ -1,6 +1,8 @@
 #pragma once
-// The one explicit registry of structure models. Adding a model means writing its config
-// class (keys + build) and adding one line to ModelRegistry::builtin().
+// The one explicit registry of structure models, as the configuration offers them. Adding a
+// model means writing its config class (its keys) and its StructureModel, then one line here
+// (ModelRegistry::builtin()) and one in the solver's ModelFactory::builtin(), which builds it
+// under the same name (a test checks the two agree).
 
 #include "ModelConfig.hpp"
 #include "common/Registry.hpp"

@@ -1,5 +1,7 @@
 #include "Scene.hpp"
 
+#include "ModelFactory.hpp"
+
 #include "geometry/BoxSurface.hpp"
 #include "geometry/CylinderSurface.hpp"
 #include "geometry/PlaneSurface.hpp"
@@ -30,7 +32,7 @@ std::unique_ptr<geometry::RigidSurface> make_surface(const geometry::SurfaceConf
 Scene::Scene(const StructureSetup &config) {
   for (const auto &entry : config.structures) {
     const BuildContext context{entry.name, config.gravity_m_per_s2, config.run.time_step_s};
-    structures_.push_back(entry.parameters->build(context));
+    structures_.push_back(ModelFactory::builtin().build(entry.model, *entry.parameters, context));
     spdlog::info("structure '{}': model {}, {} x {} points, spacing {:.4g} m", entry.name, entry.model,
                  structures_.back()->grid_shape().first, structures_.back()->grid_shape().second,
                  structures_.back()->lagrangian_spacing_m());

@@ -3,6 +3,7 @@
 // with, and one time step of the algorithm of section 2.3 without fluid:
 // solve Eq. (4) for every structure, then correct positions for collisions (Eq. 11).
 
+#include "StructureModel.hpp"
 #include "StructureSetup.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
 #include "structure_solver/collision/SelfCollision.hpp"

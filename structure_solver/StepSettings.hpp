@@ -4,13 +4,11 @@
 // the time scheme.
 
 #include "ElasticTerms.hpp"
+#include "SolverChoices.hpp"
 
 #include <vector>
 
 namespace fsi::structure {
-
-enum class LinearSolver { automatic, conjugate_gradient, direct };
-enum class TimeScheme { paper, energy_conserving };
 
 struct StepSettings {
   const ElasticTerms &terms;

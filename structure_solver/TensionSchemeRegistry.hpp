@@ -1,14 +1,11 @@
 #pragma once
 // The one explicit registry of tension schemes (solver.tension), the ways the tension enters the
-// step of Eq. (4). Adding a scheme means writing its StepSystem and adding one line to
-// TensionSchemeRegistry::builtin().
+// step of Eq. (4): their names, as the configuration offers them. Each is built by the solver's
+// StepSystemFactory under the same name. Adding a scheme means writing its StepSystem and adding
+// one line here and one line to StepSystemFactory::builtin() (a test checks the two agree).
 
-#include "StepSettings.hpp"
-#include "StepSystem.hpp"
 #include "common/Registry.hpp"
 
-#include <functional>
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,7 +16,6 @@ struct TensionSchemeEntry {
   std::string name;
   std::string summary;
   bool paper_time_scheme_only = false; ///< not combined with time_scheme: energy_conserving
-  std::function<std::unique_ptr<StepSystem>(const StepSettings &)> make;
 };
 
 class TensionSchemeRegistry : public common::Registry<TensionSchemeEntry> {
@@ -28,10 +24,6 @@ public:
   /// The schemes this build knows, registered explicitly.
   static const TensionSchemeRegistry &builtin();
 
-  /// The step system of scheme `name`; throws ConfigError listing the valid names.
-  std::unique_ptr<StepSystem> make(const std::string &name, const StepSettings &settings) const {
-    return entry(name).make(settings);
-  }
   /// (name, name) pairs, in registration order, for a configuration choice.
   std::vector<std::pair<std::string, std::string>> choices() const;
 };

@@ -268,7 +268,7 @@ def run_stock(template, run_dir, warmup, ranks=1, tunables=False):
     shutil.rmtree(run_dir, ignore_errors=True)
     shutil.copytree(template, run_dir)
     command = ["/usr/bin/pimpleFoam", "-case", run_dir]
-    if ranks > 1:  # the decomposition our fluid makes (fluid_adapter/OpenFoamCase.cpp)
+    if ranks > 1:  # the decomposition our fluid makes (apps/fsi-openfoam-fluid/OpenFoamCase.cpp)
         with open(os.path.join(run_dir, "system", "decomposeParDict"), "w") as f:
             f.write(HEADER % ("dictionary", "decomposeParDict") +
                     "numberOfSubdomains %d;\nmethod hierarchical;\ncoeffs { n (%d 1 1); order xyz; }\n" % (ranks, ranks))

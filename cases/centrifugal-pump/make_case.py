@@ -15,8 +15,9 @@ and snapped by snappyHexMesh to constant/triSurface/casing.stl (a link to geomet
 whose regions become the patches: inlet (the imposed volume flow rate, Dirichlet as in the
 paper), outlet (p = 0), and the walls (suction_wall, volute_wall, cut_water, discharge_wall:
 no slip, Spalding's wall law for the turbulence). The impeller is not meshed: it is penalized
-(Eqs. 9-10) and rotates (case.yaml, collisions.surfaces). The flow rate is
-constant/operatingPoint (`flowRate` in m^3/s): ./fsi pump-curve writes its own per point.
+(Eqs. 9-10) and rotates (case.yaml, collisions.surfaces). The inlet's flow rate is
+`$flowRate` of constant/operatingPoint, which the fluid writes from the case's
+fluid.openfoam.operating_point when it prepares the run (./fsi pump-curve sets it per point).
 The controlDict's function objects write the mass-flow-averaged total pressure (Pa) on the
 inlet and outlet patches at every step (postProcessing/), from which postprocess.py takes the
 head. The files are committed (to be read); prepare.py rewrites them when the geometry changes,
@@ -373,30 +374,6 @@ def link_surface(folder, source):
     os.symlink(os.path.relpath(source, os.path.dirname(link)), link)
 
 
-# In a pump-curve point's copy of the case (scripts/pump_curve.py writes it): the point's flow
-# rate as a fraction of the design flow rate, so that a regeneration of these files in the copy
-# (the generator rebuilt while the curve runs) keeps the point's flow rate.
-# cases/rag-in-pump keeps its operating point the same way, in flow_rate.yaml.
-POINT_FILE = "pump_curve_point.yaml"
-POINT_FILES = (POINT_FILE, "flow_rate.yaml")
-
-
-def operating_point(folder, design):
-    """constant/operatingPoint: the imposed volume flow rate at the inlet (m^3/s), the design
-    point of pump.yaml or, in a pump-curve point's copy (or a case with flow_rate.yaml), its
-    fraction of it."""
-    q = design["operation"]["design_flow_rate_m3_per_s"]
-    for name in POINT_FILES:
-        point = os.path.join(os.path.dirname(os.path.abspath(folder)), name)
-        if os.path.isfile(point):
-            with open(point) as f:
-                fraction = float(yaml.safe_load(f)["fraction_of_design_flow_rate"])
-            return ("// The imposed volume flow rate at the inlet (m^3/s): %.3g of the design flow rate (%s).\n"
-                    "flowRate        %r;\n" % (fraction, name, fraction * q))
-    return ("// The imposed volume flow rate at the inlet (m^3/s): the design point of pump.yaml.\n"
-            "flowRate        %r;\n" % q)
-
-
 def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     lo, hi = stl_bounds(casing)
     pad = 2.0 * h
@@ -426,7 +403,6 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
     write_foam_file(folder, "constant/transportProperties", "dictionary",
                     "transportModel  Newtonian;\nnu              %r;   // water\n" % NU)
     write_foam_file(folder, "constant/turbulenceProperties", "dictionary", TURBULENCE[turbulence])
-    write_foam_file(folder, "constant/operatingPoint", "dictionary", operating_point(folder, design))
     link_surface(folder, casing)
     if refine_gaps:
         link_surface(folder, os.path.join(os.path.dirname(casing), "impeller.stl"))

@@ -12,7 +12,6 @@ Usage: postprocess.py RESULTS_DIR CASE_DIR"""
 
 import math
 import os
-import re
 import sys
 
 import matplotlib
@@ -38,8 +37,10 @@ def rotation(case_dir):
 
 
 def flow_rate(out):
-    with open(os.path.join(out, "openfoam", "constant", "operatingPoint")) as f:
-        return float(re.search(r"^flowRate\s+([^;]+);", f.read(), re.M).group(1))
+    """The inlet's volume flow rate the run imposed (m^3/s): fluid.openfoam.operating_point of
+    its effective configuration."""
+    with open(os.path.join(out, "config.effective.yaml")) as f:
+        return float(yaml.safe_load(f)["fluid"]["openfoam"]["operating_point"]["flow_rate_m3_per_s"])
 
 
 def picture(out, omega, axis, point, path):

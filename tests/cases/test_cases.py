@@ -373,24 +373,40 @@ class RagInPump(CaseTest):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
 
 
-class PumpCurvePoint(CaseTest):
-    """A pump-curve point's copy of the pump case keeps its flow rate when the launcher's prepare
-    hook regenerates the copy's geometry and OpenFOAM files (the generator was rebuilt since the
-    source was prepared): the copy's pump_curve_point.yaml gives make_case.py the fraction of
-    the design flow rate. Before, the regeneration wrote the design flow rate back and the
-    point ran at Q_design in silence."""
+class PumpOperatingPoint(CaseTest):
+    """The pump's flow rate is fluid.openfoam.operating_point of case.yaml (a key of the schema),
+    set per run with --set (./fsi pump-curve, ./fsi rag-ensemble), never an edited OpenFOAM
+    file: the generator writes no constant/operatingPoint (so a regenerated copy cannot hold a
+    stale one), ./fsi check refuses an absent or negative flow rate naming the file, the key and
+    the allowed range, and accepts one set on the command line."""
 
-    def test_a_regenerated_point_keeps_its_flow_rate(self):
-        case = self.copy_case("centrifugal-pump")  # no geometry: the hook generates it and rewrites the files
-        with open(os.path.join(case, "pump_curve_point.yaml"), "w") as f:
-            f.write("fraction_of_design_flow_rate: 0.36\n")
-        fsi_launch.prepare_case(case, BIN_DIR)
-        with open(os.path.join(case, "pump.yaml")) as f:
-            q = yaml.safe_load(f)["operation"]["design_flow_rate_m3_per_s"]
+    def check(self, case, *extra):
+        result = subprocess.run([os.path.join(BIN_DIR, "fsi-structure"), "--check", case] + list(extra),
+                                stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=120)
+        return result.returncode, result.stdout.decode() + result.stderr.decode()
+
+    def test_the_flow_rate_is_a_checked_key_of_the_case(self):
+        case = self.copy_case("centrifugal-pump")
+        fsi_launch.prepare_case(case, BIN_DIR)  # the geometry and the OpenFOAM folders, generated anew
         for resolution in ("coarse", "medium", "coarse-rans", "ami-coarse"):
-            with open(os.path.join(case, "openfoam-" + resolution, "constant", "operatingPoint")) as f:
-                flow = float(re.search(r"^flowRate\s+([^;]+);", f.read(), re.M).group(1))
-            self.assertAlmostEqual(flow, 0.36 * q, delta=1e-12, msg=resolution)
+            folder = os.path.join(case, "openfoam-" + resolution)
+            self.assertFalse(os.path.exists(os.path.join(folder, "constant", "operatingPoint")), resolution)
+            with open(os.path.join(folder, "0", "U")) as f:
+                self.assertIn("constant/operatingPoint", f.read(), resolution)
+        key = "fluid.openfoam.operating_point.flow_rate_m3_per_s"
+        self.assertEqual(self.check(case)[0], 0)
+        code, text = self.check(case, "--set", key + "=0.0162")
+        self.assertEqual(code, 0, text)
+        code, text = self.check(case, "--set", key + "=-0.01")
+        self.assertEqual(code, 2, text)
+        self.assertIn("case.yaml", text)
+        self.assertIn(key, text)
+        self.assertIn("> 0", text)
+        self.edit(os.path.join(case, "case.yaml"), "    operating_point: {flow_rate_m3_per_s: 0.045}", "")
+        code, text = self.check(case)
+        self.assertEqual(code, 2, text)
+        self.assertIn("fluid.openfoam.operating_point is absent", text)
+        self.assertIn(os.path.join("openfoam-coarse", "0", "U"), text)
 
 
 class CentrifugalPumpTwoBlades(CaseTest):
@@ -405,12 +421,11 @@ class CentrifugalPumpTwoBlades(CaseTest):
         self.edit(os.path.join(case, "pump.yaml"), "  n_blades: 1\n", "  n_blades: 2\n")
         self.edit(os.path.join(case, "pump.yaml"), "  wrap_angle_deg: 360\n", "  wrap_angle_deg: 180\n")
         fsi_launch.prepare_case(case, BIN_DIR)  # the two-blade geometry and its OpenFOAM files
-        self.edit(os.path.join(case, "openfoam-coarse", "constant", "operatingPoint"), "flowRate        0.045;",
-                  "flowRate        0.0162;")
         os.environ["FSI_MESH_CACHE"] = os.path.join(self.tmp, "mesh-cache")
         try:
             out = os.path.join(self.tmp, "out")
-            result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, "--end-time", "0.08", case],
+            result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, "--end-time", "0.08", "--set",
+                                     "fluid.openfoam.operating_point.flow_rate_m3_per_s=0.0162", case],
                                     stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                     timeout=900)
         finally:
@@ -419,6 +434,8 @@ class CentrifugalPumpTwoBlades(CaseTest):
         data = np.loadtxt(os.path.join(out, "forces.csv"), delimiter=",", skiprows=1, ndmin=2)
         self.assertAlmostEqual(data[-1, 0], 0.08, delta=1e-9)
         self.assertTrue(np.all(np.isfinite(data)))
+        with open(os.path.join(out, "openfoam", "constant", "operatingPoint")) as f:  # what OpenFOAM ran with
+            self.assertIn("flowRate        0.0162;", f.read())
 
 
 class RagSettling(CaseTest):

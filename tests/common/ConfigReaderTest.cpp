@@ -59,6 +59,38 @@ TEST(ConfigReader, ReportsRangeAndTypeErrorsWithTheListIndex) {
   EXPECT_EQ(error_of("count: 2\ninner: {length_m: 0.5}\nitems: [{length_m: 3}]\n"), "");
 }
 
+Outer read_with(const std::string &yaml, const std::vector<std::string> &assignments) {
+  ConfigReader reader = ConfigReader(YAML::Load(yaml), "case.yaml").with_assignments(assignments);
+  Outer config;
+  config.visit(reader);
+  reader.finish();
+  return config;
+}
+
+std::string assignment_error(const std::vector<std::string> &assignments) {
+  try {
+    (void)read_with("count: 2\ninner: {length_m: 0.5}\n", assignments);
+  } catch (const ConfigError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ConfigReader, AssignmentsOnTheCommandLineGoOverTheFileAndAreCheckedAsItsKeys) {
+  const Outer config = read_with("count: 2\ninner: {length_m: 0.5}\n", {"inner.length_m=0.0076", "count=5"});
+  EXPECT_EQ(config.inner.length_m, 0.0076);
+  EXPECT_EQ(config.count, 5);
+  EXPECT_EQ(read_with("count: 2\n", {"inner.length_m=3"}).inner.length_m, 3.0); // a section the file lacks
+  EXPECT_EQ(read_with("count: 2\n", {"count=4", "count=7"}).count, 7);          // the last one wins
+  EXPECT_NE(assignment_error({"inner.length_m=-0.01"}).find("inner.length_m = -0.01 is out of range: allowed > 0 m"),
+            std::string::npos);
+  EXPECT_NE(assignment_error({"inner.lenght_m=1"}).find("unknown key 'inner.lenght_m'. Did you mean 'length_m'?"),
+            std::string::npos);
+  for (const char *malformed : {"inner.length_m", "inner.length_m=", "=3", "inner..length_m=3", "inner.=3"})
+    EXPECT_NE(assignment_error({malformed}).find(std::string("--set '") + malformed + "'"), std::string::npos)
+        << malformed;
+}
+
 struct Indices {
   std::vector<int> index;
   template <class V> void visit(V &v) {

@@ -11,12 +11,14 @@ import shutil
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "coupled"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 
 # Re-exported for the tests: EPS, StructureResults, TempDirTest, write_case.
 from coupled_support import (BIN_DIR, EPS, StructureResults, TempDirTest, case_dir,  # noqa: E402,F401
                              load_case, np, reference, write_case)
 
 import h5py  # noqa: E402  (coupled_support has checked that it is installed)
+from foam_case import set_foam_entry  # noqa: E402
 
 OPENFOAM_FLUID = os.path.join(BIN_DIR, "fsi-openfoam-fluid")
 
@@ -38,13 +40,7 @@ def copy_case(name, target, write_format="ascii"):
     shutil.copy(os.path.join(source, "case.yaml"), target)
     foam = load_case(source)["fluid"]["openfoam"]["case_directory"]
     shutil.copytree(os.path.join(source, foam), os.path.join(target, foam))
-    control = os.path.join(target, foam, "system", "controlDict")
-    with open(control) as f:
-        text = f.read()
-    text, count = re.subn(r"(?m)^(\s*writeFormat\s+)\w+;", r"\g<1>%s;" % write_format, text)
-    assert count == 1, "no writeFormat entry in " + control
-    with open(control, "w") as f:
-        f.write(text)
+    set_foam_entry(os.path.join(target, foam, "system", "controlDict"), "writeFormat", write_format)
     return target
 
 

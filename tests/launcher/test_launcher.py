@@ -209,6 +209,15 @@ class LauncherTest(unittest.TestCase):
         self.assertEqual(code, 0)
         self.assertEqual(self.recorded("structure")["argv"], [self.case, "--end-time", "0.25"])
 
+    def test_keys_set_on_the_command_line_reach_every_process_in_order(self):
+        """--set (./fsi pump-curve's flow rate per point) goes to every process, as the preset
+        does, so that all of them read the same case and agree on its fingerprint."""
+        self.configure(processes=[["structure", "fsi-structure"]], structure={})
+        code, _, _, _ = self.launch("--set", "a.b=1", "--resolution", "coarse", "--set", "c=[1, 2]", self.case)
+        self.assertEqual(code, 0)
+        self.assertEqual(self.recorded("structure")["argv"],
+                         [self.case, "--resolution", "coarse", "--set", "a.b=1", "--set", "c=[1, 2]"])
+
     # coupled -----------------------------------------------------------------------------
     def coupled_with_precursor(self, **fluid):
         with open(os.path.join(self.out, "coupler.endpoint"), "w") as f:

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""scripts/check_layering.py: the tree's includes all point down the layering, and the check
-names the offending line when one does not (a deliberately added upward include in a copy of
-the tree, and a sideways include between two physics modules)."""
+"""scripts/check_layering.py: the tree's includes and CMake links all point down the layering,
+with no file exempt, and the check names the offending line when one does not (in a copy of the
+tree: an upward include, a sideways include between two physics modules, a main.cpp in a module,
+one executable's file included by another, an upward link)."""
 
 import glob
 import os
@@ -14,7 +15,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 CHECK = os.path.join(ROOT, "scripts", "check_layering.py")
-MODULES = ["case", "structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump", "proto", "geometry", "hdf5",
+MODULES = ["apps", "case", "structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump", "proto", "geometry", "hdf5",
            "checkpoint", "motion", "common"]
 
 
@@ -29,6 +30,15 @@ def append_line(path, line):
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return len(lines)
+
+
+CASES = ["copy-up", "copy-side", "copy-main", "copy-apps", "copy-link"]  # the copies the tests make, one each
+
+
+def copy_of(tmp, name):
+    tree = os.path.join(tmp, name)
+    shutil.copytree(tmp, tree, ignore=shutil.ignore_patterns(*CASES))
+    return tree
 
 
 DOCUMENTED_FOLDERS = set(MODULES) | {"tests", "bench", "scripts", "cases", "docs", "cmake"}
@@ -82,13 +92,28 @@ class QuotedReferences(unittest.TestCase):
         self.assertEqual(missing, [], "values of reference.yaml the docs do not quote:\n" + "\n".join(missing))
 
 
+class SolverLinks(unittest.TestCase):
+    def test_only_the_structure_process_links_the_structure_solver(self):
+        """The case reads the structures' configuration (fsi_structure_config) and builds no
+        model: the case, the coupler and the fluids do not link the solver (fsi_structure)."""
+        import importlib.util
+        spec = importlib.util.spec_from_file_location("check_layering", CHECK)
+        layering = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(layering)
+        for target in ["fsi_case", "fsi-coupler", "fsi-prescribed-flow", "fsi-openfoam-fluid"]:
+            closure = layering.link_closure(ROOT, target)
+            self.assertIn("fsi_structure_config", closure, target)
+            self.assertNotIn("fsi_structure", closure, target)
+        self.assertIn("fsi_structure", layering.link_closure(ROOT, "fsi-structure"))
+
+
 class Layering(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="fsi-layering-")
         for module in MODULES:
             shutil.copytree(os.path.join(ROOT, module), os.path.join(cls.tmp, module),
-                            ignore=shutil.ignore_patterns("*.txt", "*.md", "*.proto"))
+                            ignore=shutil.ignore_patterns("*.md", "*.proto", "*.py", "*.yaml", "designs"))
 
     @classmethod
     def tearDownClass(cls):
@@ -100,8 +125,7 @@ class Layering(unittest.TestCase):
         self.assertEqual(result.stdout, "")
 
     def test_an_upward_include_is_refused_with_its_file_and_line(self):
-        tree = os.path.join(self.tmp, "up")
-        shutil.copytree(self.tmp, tree, ignore=shutil.ignore_patterns("up", "side"))
+        tree = copy_of(self.tmp, "copy-up")
         line = append_line(os.path.join(tree, "common", "Types.hpp"), '#include "structure_solver/Scene.hpp"')
         result = check(tree)
         self.assertEqual(result.returncode, 1)
@@ -109,8 +133,7 @@ class Layering(unittest.TestCase):
         self.assertEqual(len(result.stdout.splitlines()), 1, result.stdout)
 
     def test_a_sideways_include_between_physics_modules_is_refused(self):
-        tree = os.path.join(self.tmp, "side")
-        shutil.copytree(self.tmp, tree, ignore=shutil.ignore_patterns("up", "side"))
+        tree = copy_of(self.tmp, "copy-side")
         line = append_line(os.path.join(tree, "coupler", "CouplingRun.cpp"), '#include "case/CaseConfig.hpp"')
         line2 = append_line(os.path.join(tree, "fluid_adapter", "Precursor.cpp"), '#include "coupler/CouplingRun.hpp"')
         result = check(tree)
@@ -118,6 +141,41 @@ class Layering(unittest.TestCase):
         self.assertIn(f"coupler/CouplingRun.cpp:{line}:", result.stdout)
         self.assertIn(f"fluid_adapter/Precursor.cpp:{line2}:", result.stdout)
         self.assertIn("may not include physics module coupler", result.stdout)
+
+    def test_a_main_in_a_module_is_not_exempt(self):
+        """The mains live in apps/: one put back in a module is checked like any of its files."""
+        tree = copy_of(self.tmp, "copy-main")
+        with open(os.path.join(tree, "coupler", "main.cpp"), "w") as f:
+            f.write('#include "CouplingRun.hpp"\n#include "case/CaseOptions.hpp"\nint main() { return 0; }\n')
+        result = check(tree)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('coupler/main.cpp:2: #include "case/CaseOptions.hpp": the physics module coupler may not '
+                      'include case', result.stdout)
+        self.assertEqual(len(result.stdout.splitlines()), 1, result.stdout)
+
+    def test_an_executable_does_not_include_another_executables_files(self):
+        tree = copy_of(self.tmp, "copy-apps")
+        line = append_line(os.path.join(tree, "apps", "fsi-coupler", "main.cpp"),
+                           '#include "apps/fsi-openfoam-fluid/SelfLaunch.hpp"')
+        result = check(tree)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"apps/fsi-coupler/main.cpp:{line}: #include \"apps/fsi-openfoam-fluid/SelfLaunch.hpp\": the "
+                      "executable apps/fsi-coupler may not include executable apps/fsi-openfoam-fluid", result.stdout)
+
+    def test_an_upward_link_is_refused_with_its_file_and_line(self):
+        """The CMake link lines are read too: a foundation linking a physics module's library is
+        refused as its include would be, and so is a physics module linking the case."""
+        tree = copy_of(self.tmp, "copy-link")
+        line = append_line(os.path.join(tree, "hdf5", "CMakeLists.txt"), "target_link_libraries(fsi_hdf5 PUBLIC fsi_structure)")
+        line2 = append_line(os.path.join(tree, "coupler", "CMakeLists.txt"),
+                            "target_link_libraries(fsi_coupler PRIVATE\n  fsi_case)")
+        result = check(tree)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"hdf5/CMakeLists.txt:{line}: fsi_hdf5 links fsi_structure: the foundation hdf5 may not link "
+                      "physics module structure_solver", result.stdout)
+        self.assertIn(f"coupler/CMakeLists.txt:{line2}: fsi_coupler links fsi_case: the physics module coupler "
+                      "may not link case", result.stdout)
+        self.assertEqual(len(result.stdout.splitlines()), 2, result.stdout)
 
 
 if __name__ == "__main__":

@@ -4,6 +4,8 @@
 
 #include "CaseFixture.hpp"
 #include "motion/PendulumHistory.hpp"
+#include "structure_solver/ModelFactory.hpp"
+#include "structure_solver/ModelRegistry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -33,6 +35,17 @@ structures:
 
 // Distance of x to the pole (radius 8 mm, axis along y through (0.05, *, 0)) and to the floor.
 double pole_distance(const Eigen::RowVector3d &x) { return std::hypot(x(0) - 0.05, x(2)) - 0.008; }
+
+TEST(ModelRegistry, EveryModelTheConfigurationOffersIsBuiltByTheSolverAndNoOther) {
+  // The configuration's names (linked by the case alone) and the solver's builders are two
+  // lists: a model added to one only would be refused at run time, or never offered.
+  EXPECT_EQ(ModelFactory::builtin().names(), ModelRegistry::builtin().names());
+  for (const auto &name : ModelRegistry::builtin().names()) {
+    const auto config = ModelRegistry::builtin().make_config(name);
+    const auto model = ModelFactory::builtin().build(name, *config, {name, Vec3(0.0, 0.0, -9.81), 1e-4});
+    EXPECT_EQ(model->grid_shape(), config->grid_shape()) << name;
+  }
+}
 
 TEST(Scene, CollisionsKeepAFallingRagOffThePoleAndAboveTheFloor) {
   Scene scene(testing::load_case(rag_over_pole));

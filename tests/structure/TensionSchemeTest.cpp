@@ -5,6 +5,7 @@
 
 #include "TensionSwing.hpp"
 #include "common/ConfigError.hpp"
+#include "structure_solver/StepSystemFactory.hpp"
 #include "structure_solver/TensionSchemeRegistry.hpp"
 
 #include <gtest/gtest.h>
@@ -115,6 +116,12 @@ TEST(TensionSchemeRegistry, NamesEverySchemeAndRefusesAnUnknownNameListingThem) 
     EXPECT_NE(message.find("unknown tension scheme 'implicit'"), std::string::npos) << message;
     EXPECT_NE(message.find("frozen, stabilized, linearized"), std::string::npos) << message;
   }
+}
+
+TEST(TensionSchemeRegistry, EverySchemeTheConfigurationOffersHasAStepSystemAndNoOther) {
+  // The configuration's names (linked by the case alone) and the solver's step systems are two
+  // lists: a scheme added to one only would be refused at run time, or never offered.
+  EXPECT_EQ(StepSystemFactory::builtin().names(), TensionSchemeRegistry::builtin().names());
 }
 
 TEST(TensionSchemeRegistry, ACaseWithAnUnknownSchemeIsRefusedWithTheValidNames) {

@@ -14,12 +14,12 @@
 // Exit codes: 0 success, 1 the run stopped (coupler lost, another participant failed, OpenFOAM
 // failed), 2 bad input, 130 interrupted.
 
-#include "FoamCheckpoint.hpp"
+#include "fluid_adapter/FoamCheckpoint.hpp"
 #include "FlowAloneRun.hpp"
-#include "FoamFlow.hpp"
+#include "fluid_adapter/FoamFlow.hpp"
 #include "OpenFoamCase.hpp"
-#include "OpenFoamFluidModel.hpp"
-#include "Precursor.hpp"
+#include "fluid_adapter/OpenFoamFluidModel.hpp"
+#include "fluid_adapter/Precursor.hpp"
 #include "RigidBodies.hpp"
 #include "SelfLaunch.hpp"
 #include "case/CaseOptions.hpp"
@@ -27,6 +27,7 @@
 #include "case/ParticipantSettings.hpp"
 #include "checkpoint/CheckpointError.hpp"
 #include "common/Allocator.hpp"
+#include "common/ConfigEmitter.hpp"
 #include "common/ExitCodes.hpp"
 #include "common/GuardedMain.hpp"
 #include "common/Logging.hpp"
@@ -38,6 +39,7 @@
 #include <spdlog/spdlog.h>
 
 #include <csignal>
+#include <fstream>
 #include <cstdlib>
 #include <iostream>
 
@@ -93,10 +95,10 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     }
     restart_step = found->step;
     if (foam.mpi_ranks > 1) // the same decomposition, its processor folders restored: no decomposePar
-      fsi::fluid::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
+      fsi::apps::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
     return foam_case;
   }
-  const fs::path foam_case = fsi::fluid::prepare_openfoam_case(case_dir, foam.case_directory, base);
+  const fs::path foam_case = fsi::apps::prepare_openfoam_case(case_dir, foam, base);
   // A warm start: the fields of another run mapped onto this mesh. With a precursor they start the
   // precursor (a finer mesh then spins up from a coarser run's developed flow, not from rest),
   // whose last fields start the coupled run.
@@ -106,24 +108,24 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     if (source.is_relative())
       source = fs::path(case_dir) / source;
     spdlog::info("warm start: the fields of t = {} s of {} mapped onto this mesh (log: {})",
-                 fsi::fluid::map_initial_fields(foam_case, source), source.string(),
+                 fsi::apps::map_initial_fields(foam_case, source), source.string(),
                  (foam_case / "log.mapFields").string());
   }
   if (process.role == Role::coupled && precursor.wanted() && !precursor.is_current()) {
     spdlog::info("precursor: running the flow alone for {} s first (fsi-openfoam-fluid --precursor)",
                  precursor.end_time_s());
-    const int code = fsi::fluid::run_self(process.argc, process.argv, {"--precursor"});
+    const int code = fsi::apps::run_self(process.argc, process.argv, {"--precursor"});
     if (code != 0 || !precursor.is_current())
       throw std::runtime_error("the precursor run failed (exit code " + std::to_string(code) + "; see " +
                                (precursor.folder() / "fluid.log").string() + ")");
   }
   if (foam.mpi_ranks > 1)
-    fsi::fluid::decompose(foam_case, foam.mpi_ranks);
+    fsi::apps::decompose(foam_case, foam.mpi_ranks);
   if (process.role == Role::coupled && precursor.wanted())
     spdlog::info("precursor: {} fields of t = {} s installed as the initial fields",
                  precursor.install_fields(foam_case, foam.mpi_ranks), precursor.end_time_s());
   if (foam.mpi_ranks > 1)
-    fsi::fluid::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
+    fsi::apps::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
   return foam_case;
 }
 
@@ -136,7 +138,7 @@ int run_precursor(const Process &process, fsi::fluid::OpenFoamFluidModel &model,
     fsi::common::add_log_file(precursor.folder() / "fluid.log");
   spdlog::info("precursor: {} to t = {} s, dt = {} s (the last {} steps at the coupled run's {} s)", flow.describe(),
                precursor.end_time_s(), precursor.time_step_s(), Precursor::handover_steps, coupled_time_step_s);
-  const int code = fsi::fluid::run_flow_alone(model, flow, {"precursor", precursor.folder(), precursor.step_sizes()});
+  const int code = fsi::apps::run_flow_alone(model, flow, {"precursor", precursor.folder(), precursor.step_sizes()});
   if (code == 0 && flow.rank() == 0) {
     precursor.mark_complete();
     spdlog::info("precursor: fields of t = {} s written in {}", flow.time_s(), precursor.foam_case().string());
@@ -153,8 +155,12 @@ int run_alone(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi
     fsi::common::add_log_file(out / "fluid.log");
   spdlog::info("flow alone (no structure): {} to t = {} s, dt = {} s", flow.describe(), config.run.end_time_s,
                config.run.time_step_s);
-  return fsi::fluid::run_flow_alone(
-      model, flow, {"flow", out, fsi::fluid::uniform_steps(config.run.time_step_s, config.run.end_time_s)});
+  // What this run ran with (the structure saves it in a coupled run): its postprocessing reads
+  // the operating point from here.
+  if (flow.rank() == 0)
+    std::ofstream(out / "config.effective.yaml") << fsi::common::to_yaml(const_cast<CaseConfig &>(config)) << "\n";
+  return fsi::apps::run_flow_alone(
+      model, flow, {"flow", out, fsi::apps::uniform_steps(config.run.time_step_s, config.run.end_time_s)});
 }
 
 /// The coupled participant: rank 0 talks to the coupler, the other ranks follow it.
@@ -175,7 +181,7 @@ int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, f
 /// The bodies to penalize; in the coupled run the coupler moves them (section 2.3), in the
 /// precursor (no coupler) they follow their declared motions.
 std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> bodies_for(Role role, const CaseConfig &config) {
-  auto bodies = fsi::fluid::rigid_bodies(config.collisions ? config.collisions->surfaces
+  auto bodies = fsi::apps::rigid_bodies(config.collisions ? config.collisions->surfaces
                                                            : std::vector<fsi::geometry::SurfaceConfig>{},
                                          config.gravity_m_per_s2.norm());
   if (role == Role::coupled)

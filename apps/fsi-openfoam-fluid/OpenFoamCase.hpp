@@ -3,20 +3,23 @@
 // the output folder and meshed when it has no mesh (blockMesh; then snappyHexMesh when the
 // case has a system/snappyHexMeshDict, e.g. a pump casing); decomposed for MPI.
 
+#include "fluid_adapter/OpenFoamConfig.hpp"
+
 #include <filesystem>
 #include <string>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
-/// Copies case_dir/template_dir to out/openfoam (replacing an earlier copy) and meshes it when
-/// it has no constant/polyMesh: blockMesh, then (with system/snappyHexMeshDict)
+/// Copies case_dir/foam.case_directory to out/openfoam (replacing an earlier copy), writes its
+/// operating point (constant/operatingPoint) when the case gives one, and meshes it when it has
+/// no constant/polyMesh: blockMesh, then (with system/snappyHexMeshDict)
 /// surfaceFeatureExtract when the case has its dictionary, snappyHexMesh -overwrite and
 /// checkMesh. A snappyHexMesh mesh is kept in the mesh cache ($FSI_MESH_CACHE, default
 /// ~/.cache/fsi/meshes) under a hash of the files it is made from (system/ dictionaries of the
 /// meshing tools, constant/triSurface): the next run with the same inputs reuses it. Returns the
 /// copy. Throws common::ConfigError for a folder that is not an OpenFOAM case,
 /// std::runtime_error when a meshing tool fails (naming its log).
-std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const std::string &template_dir,
+std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const fluid::OpenFoamConfig &foam,
                                             const std::filesystem::path &out);
 
 /// A warm start: maps the latest fields of the OpenFOAM case `source` onto foam_case's mesh as
@@ -29,4 +32,4 @@ double map_initial_fields(const std::filesystem::path &foam_case, const std::fil
 /// decomposePar into n subdomains, cut along x (Debian's scotch is a stub).
 void decompose(const std::filesystem::path &foam_case, int n);
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

@@ -16,7 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
 namespace {
 
@@ -129,15 +129,20 @@ void snappy_mesh(const fs::path &foam_case) {
 
 } // namespace
 
-std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const std::string &template_dir,
+std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_dir, const fluid::OpenFoamConfig &foam,
                                             const std::filesystem::path &out) {
-  const fs::path source = case_dir / template_dir, target = out / "openfoam";
+  const fs::path source = case_dir / foam.case_directory, target = out / "openfoam";
   if (!fs::is_directory(source / "system") || !fs::is_directory(source / "constant"))
     throw common::ConfigError((source).string() + ": fluid.openfoam.case_directory must be an OpenFOAM case "
                                                   "(folders system/, constant/ and 0/).");
   fs::remove_all(target);
   fs::create_directories(target);
   fs::copy(source, target, fs::copy_options::recursive);
+  if (foam.operating_point) {
+    foam.operating_point->write(target);
+    spdlog::info("operating point: inlet flow rate {} m^3/s ({})", foam.operating_point->flow_rate_m3_per_s,
+                 (target / fluid::OperatingPoint::file_name).string());
+  }
   if (!fs::exists(target / "constant" / "polyMesh" / "owner")) {
     if (!fs::exists(target / "system" / "blockMeshDict"))
       throw common::ConfigError(source.string() + ": no mesh (constant/polyMesh) and no system/blockMeshDict.");
@@ -188,4 +193,4 @@ void decompose(const std::filesystem::path &foam_case, int n) {
     throw std::runtime_error("decomposePar failed: see " + (foam_case / "log.decomposePar").string());
 }
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

@@ -3,14 +3,14 @@
 // rank: the precursor of a coupled run (section 3.2, at Precursor::step_sizes), and a case
 // without structures (a pump's single-phase performance, at run.time_step_s).
 
-#include "FoamFlow.hpp"
-#include "OpenFoamFluidModel.hpp"
+#include "fluid_adapter/FoamFlow.hpp"
+#include "fluid_adapter/OpenFoamFluidModel.hpp"
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
 struct FlowAloneSchedule {
   std::string label;                ///< what the log calls it ("precursor", "flow")
@@ -23,9 +23,9 @@ struct FlowAloneSchedule {
 /// and the split of each step's wall time (folder/timings.csv, s: penalization, fluid solve,
 /// loads; the master's) from the master, a line per step; writes the fields at the end. Returns the exit code
 /// (common::exit_code_interrupted when stopped by a signal).
-int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSchedule &schedule);
+int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, const FlowAloneSchedule &schedule);
 
 /// n steps of dt to end_time_s (the last one shortened to land on it).
 std::vector<double> uniform_steps(double time_step_s, double end_time_s);
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
 int run_self(int argc, char **argv, const std::vector<std::string> &extra) {
   std::vector<std::string> args = {std::filesystem::read_symlink("/proc/self/exe").string()};
@@ -66,4 +66,4 @@ int run_self(int argc, char **argv, const std::vector<std::string> &extra) {
                            " (install the Debian package openmpi-bin)");
 }
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <fstream>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
 std::vector<double> uniform_steps(double time_step_s, double end_time_s) {
   std::vector<double> steps;
@@ -37,7 +37,7 @@ void write_header(std::ofstream &forces, std::size_t n_bodies) {
 
 } // namespace
 
-int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSchedule &schedule) {
+int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, const FlowAloneSchedule &schedule) {
   using Clock = std::chrono::steady_clock;
   const auto &steps = schedule.step_sizes_s;
   const auto n_steps = static_cast<long>(steps.size());
@@ -54,7 +54,7 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
       flow.write_now();
       return common::exit_code_interrupted;
     }
-    std::vector<rigid::BodyLoad> loads;
+    std::vector<fluid::rigid::BodyLoad> loads;
     try {
       loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
     } catch (const std::exception &) {
@@ -108,4 +108,4 @@ int run_flow_alone(OpenFoamFluidModel &model, FoamFlow &flow, const FlowAloneSch
   return 0;
 }
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

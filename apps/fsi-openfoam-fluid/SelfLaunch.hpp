@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
 /// Runs this program again with its arguments and `extra`, and waits for it; a stop signal
 /// received meanwhile (proto::FluidParticipant::stop_signal) is passed on. Returns its exit code.
@@ -16,4 +16,4 @@ int run_self(int argc, char **argv, const std::vector<std::string> &extra);
 /// prepared case. Throws std::runtime_error when mpirun cannot start.
 [[noreturn]] void exec_mpirun(int n, int argc, char **argv);
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

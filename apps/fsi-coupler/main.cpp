@@ -6,7 +6,7 @@
 //   fsi-coupler --plan CASE_DIR          print the output folder and the processes the scene needs
 // Exit codes: 0 success, 1 a participant failed, 2 bad input or refused participant, 130 interrupted.
 
-#include "CouplingRun.hpp"
+#include "coupler/CouplingRun.hpp"
 #include "common/Allocator.hpp"
 #include "common/ConfigError.hpp"
 #include "common/Logging.hpp"

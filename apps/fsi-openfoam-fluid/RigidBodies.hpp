@@ -9,11 +9,11 @@
 #include <memory>
 #include <vector>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
 /// Boxes and planes are left to the OpenFOAM mesh's walls (logged); analytic surfaces and
 /// meshes holding the fluid are skipped with a warning.
-std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies(const std::vector<geometry::SurfaceConfig> &surfaces,
+std::vector<std::unique_ptr<fluid::rigid::RigidBody>> rigid_bodies(const std::vector<geometry::SurfaceConfig> &surfaces,
                                                             double gravity_m_per_s2);
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

@@ -4,11 +4,11 @@
 
 #include <spdlog/spdlog.h>
 
-namespace fsi::fluid {
+namespace fsi::apps {
 
-std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies(const std::vector<geometry::SurfaceConfig> &surfaces,
+std::vector<std::unique_ptr<fluid::rigid::RigidBody>> rigid_bodies(const std::vector<geometry::SurfaceConfig> &surfaces,
                                                             double gravity_m_per_s2) {
-  std::vector<std::unique_ptr<rigid::RigidBody>> bodies;
+  std::vector<std::unique_ptr<fluid::rigid::RigidBody>> bodies;
   for (std::size_t i = 0; i < surfaces.size(); ++i) {
     const auto &surface = surfaces[i];
     const std::string name = "surface" + std::to_string(i);
@@ -29,9 +29,9 @@ std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies(const std::vector<ge
     }
     auto motion = surface.motion ? motion::make_motion(*surface.motion, gravity_m_per_s2)
                                  : std::make_shared<const motion::StaticPose>();
-    bodies.push_back(rigid::RigidBody::from_stl(name, surface.mesh->file.string(), std::move(motion)));
+    bodies.push_back(fluid::rigid::RigidBody::from_stl(name, surface.mesh->file.string(), std::move(motion)));
   }
   return bodies;
 }
 
-} // namespace fsi::fluid
+} // namespace fsi::apps

@@ -5,8 +5,8 @@
 // Exit codes: 0 success, 1 the run stopped (coupler lost or another participant failed),
 // 2 bad input, 130 interrupted.
 
-#include "FlowFactory.hpp"
-#include "PrescribedFlowModel.hpp"
+#include "prescribed_flow/FlowFactory.hpp"
+#include "prescribed_flow/PrescribedFlowModel.hpp"
 #include "proto/FluidParticipant.hpp"
 #include "case/ParticipantSettings.hpp"
 #include "common/Allocator.hpp"
