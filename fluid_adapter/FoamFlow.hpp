@@ -1,6 +1,6 @@
 #pragma once
 // The OpenFOAM flow solver as the rest of the code sees it: no OpenFOAM header here. The
-// implementation (solver/OpenFoamFlow.C) is the only translation unit that includes OpenFOAM:
+// implementation (solver/, OpenFoamFlow.H) is the only code that includes OpenFOAM:
 // a PIMPLE step of pimpleFoam (v1912) with an extra momentum source, the FSI acceleration.
 
 #include "common/Types.hpp"

@@ -11,7 +11,7 @@ constexpr char part_name[] = "fluid.ckpt";
 }
 
 PrescribedFlowModel::PrescribedFlowModel(std::unique_ptr<FlowField> flow, std::filesystem::path checkpoints)
-    : flow_(std::move(flow)), checkpoints_(std::move(checkpoints)) {}
+    : checkpoints_(std::move(checkpoints)), flow_(std::move(flow)) {}
 
 std::pair<std::string, std::string> PrescribedFlowModel::write_checkpoint(long n_completed) {
   const auto folder = checkpoint::CheckpointSet::folder_of(checkpoints_, n_completed);

@@ -180,8 +180,7 @@ void check_inside_and_gap(GeometryCheckReport &report, const Part &impeller,
                          1e3 * limits.min_clearance_m));
 }
 
-void measure_throat(GeometryCheckReport &report, const Part &casing, const PumpGeometryFrame &frame,
-                    const GeometryCheckLimits &limits) {
+void measure_throat(GeometryCheckReport &report, const Part &casing, const PumpGeometryFrame &frame) {
   const Vec3 radial(std::cos(frame.cut_water_angle_rad), std::sin(frame.cut_water_angle_rad), 0.0);
   const geometry::PlaneSection section =
       geometry::plane_section(casing.mesh.soup, {Vec3::Zero(), Vec3::UnitZ().cross(radial)},
@@ -316,7 +315,7 @@ GeometryCheckReport GeometryChecks::run(const RegionSoup &impeller_mesh, const s
     return report;
   }
   check_inside_and_gap(report, impeller, *impeller_surface, casing, *casing_surface, limits_);
-  measure_throat(report, casing, frame_, limits_);
+  measure_throat(report, casing, frame_);
   measure_free_passage(report, impeller, *impeller_surface, frame_, limits_);
   return report;
 }

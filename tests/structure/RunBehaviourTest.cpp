@@ -51,7 +51,7 @@ void expect_bad_input(const std::string &yaml, const std::string &expected_messa
 // before the output folder exists, not by std::bad_alloc. 100000 x 100000 points need ~37 TiB.
 TEST(RunBehaviour, AGridThatCannotFitInMemoryIsRefusedBeforeAnyOutput) {
   const auto dir = testing::make_case_dir(with("n_points: [11, 6]", "n_points: [100000, 100000]"));
-  for (const std::string arguments : {"--check " + dir.string(), dir.string()}) {
+  for (const std::string &arguments : {"--check " + dir.string(), dir.string()}) {
     const Outcome out = run_solver(arguments);
     EXPECT_EQ(out.exit_code, 2) << out.output;
     EXPECT_NE(out.output.find("its grid of 100000 x 100000 points (10000000000 points in all) needs about 37.3 TiB"),

@@ -1,0 +1,177 @@
+#include "StepExchange.hpp"
+
+#include "CouplingErrors.hpp"
+#include "proto/BodyPose.hpp"
+#include "proto/TransportError.hpp"
+
+#include <chrono>
+
+namespace fsi::coupler {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+using proto::v2::Envelope;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
+
+void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v2::RigidBodyPose &out) {
+  proto::BodyPose pose;
+  pose.name = name;
+  pose.pose = motion.pose_at(t);
+  // Rigid velocity field v(x) = v_o + omega x (x - o): recovered from three points.
+  const Vec3 o = pose.pose.translation();
+  pose.origin_velocity_m_per_s = motion.velocity_at(o, t);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = pose.pose.linear().col(k);
+    // (v(o + e) - v_o) = omega x e; sum over an orthonormal basis: omega = 1/2 sum e x (omega x e).
+    pose.angular_velocity_rad_per_s += 0.5 * e.cross(motion.velocity_at(o + e, t) - pose.origin_velocity_m_per_s);
+  }
+  proto::write_body_pose(pose, out);
+}
+
+/// What a rejected array says, with the likely cause when a value is not finite.
+std::string rejected(const proto::MalformedMessageError &e) {
+  const std::string what = e.what();
+  return what.find("not finite") == std::string::npos ? what
+                                                      : what + " (its solver has most likely diverged; see its log)";
+}
+} // namespace
+
+StepExchange::StepExchange(ParticipantTable &participants, const Roster &roster, CouplingLaw &law,
+                           MovingBodies moving_bodies, double time_step_s, double step_timeout_s)
+    : participants_(participants), roster_(roster), law_(law), moving_bodies_(std::move(moving_bodies)),
+      dt_(time_step_s), step_timeout_s_(step_timeout_s) {}
+
+void StepExchange::interpolate_fluid_velocity(long n, double t, const PointArray &points) {
+  // Section 2.3, first bullet: rigid surfaces move before the fluid forces are computed.
+  auto *request = request_.envelope().mutable_interpolate_request();
+  request->set_time_s(t);
+  request->mutable_rigid_bodies()->Clear();
+  for (const auto &[name, motion] : moving_bodies_)
+    write_pose(name, *motion, t, *request->add_rigid_bodies());
+  // U_ib^n at the immersed-boundary points X_ib^n: the structure points X^n for the penalty
+  // and feedback laws (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5), the law's own
+  // advected points for two_point_sets.
+  request_.add_points(*request->mutable_position_m(), points);
+  participants_.send(roster_.fluid_id, request_, static_cast<std::uint64_t>(n));
+  const proto::Message &message = await(roster_.fluid_id, Envelope::kInterpolateReply, n, "InterpolateReply");
+  const auto &reply = message.envelope().interpolate_reply();
+  try {
+    state_.u_ib_m_per_s =
+        message.finite_points(reply.velocity_m_per_s(), state_.x_now_m.rows(), "InterpolateReply.velocity_m_per_s");
+  } catch (const proto::MalformedMessageError &e) {
+    throw ParticipantFailed(roster_.fluid_id, "participant " + roster_.fluid_id + " sent a bad InterpolateReply at step " +
+                                                  std::to_string(n) + ": " + rejected(e));
+  }
+  timings_.interpolation_s += reply.solve_wall_s();
+}
+
+void StepExchange::apply_coupling_law(CouplingOutputs &out) {
+  const auto start = Clock::now();
+  law_.compute({&state_.x_now_m, &state_.x_prev_m, &state_.u_ib_m_per_s, dt_}, out);
+  if (!out.force_density_n_per_measure.allFinite()) {
+    Eigen::Index worst = 0;
+    (out.force_density_n_per_measure.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
+    throw ParticipantFailed(roster_.fluid_id, "the FSI force is not finite at Lagrangian point " + std::to_string(worst) +
+                                                  ": the fluid velocity there is " +
+                                                  std::to_string(state_.u_ib_m_per_s.row(worst).norm()) + " m/s (NaN?)");
+  }
+  timings_.coupling_law_s += seconds_since(start);
+}
+
+void StepExchange::advance_fluid_and_structure(long n, bool repeat) {
+  send_advances(n, repeat);
+  // Collect both replies, in whichever order they come.
+  bool fluid_done = false, structure_done = false;
+  const auto deadline = Clock::now() + to_ms(step_timeout_s_);
+  while (!fluid_done || !structure_done) {
+    const std::string &waited = structure_done ? roster_.fluid_id : roster_.structure_id;
+    auto &incoming = participants_.next(deadline, waited, "AdvanceReply", static_cast<std::uint64_t>(n));
+    const auto &envelope = incoming.envelope();
+    const bool from_fluid = incoming.peer() == roster_.fluid_id;
+    bool &done = from_fluid ? fluid_done : structure_done;
+    if (!envelope.has_advance_reply() || envelope.step() != static_cast<std::uint64_t>(n) || done) {
+      participants_.answer_error(incoming.peer(),
+                                 "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
+                                     std::to_string(envelope.step()) +
+                                     "; the coupler waits for the AdvanceReply of step " + std::to_string(n),
+                                 n);
+      continue;
+    }
+    done = true;
+    if (from_fluid) {
+      timings_.fluid_solve_s += envelope.advance_reply().solve_wall_s();
+      fluid_loads_ = envelope.advance_reply().rigid_body_loads(); // recorded once the step is accepted
+      continue;
+    }
+    take_structure_reply(incoming, n);
+  }
+}
+
+void StepExchange::send_advances(long n, bool repeat) {
+  const double t = static_cast<double>(n) * dt_;
+  // Eq. (8) spreads at X^n. The fluid has the points of this step's InterpolateRequest; when
+  // those are the law's own IB points (X_ib^n != X^n), or when the step is repeated (implicit
+  // coupling: the last interpolation was at X^{n+1}), X^n goes with the force (a message of its
+  // own: a message's array frames are kept from send to send).
+  const bool spread_elsewhere = &law_.interpolation_points(state_.x_now_m) != &state_.x_now_m || repeat;
+  proto::Message &fluid_message = spread_elsewhere ? fluid_advance_spread_ : fluid_advance_;
+  auto *fluid = fluid_message.envelope().mutable_fluid_advance();
+  fluid->set_time_s(t);
+  fluid->set_dt_s(dt_);
+  const PointArray &force = coupled_.force_density_n_per_measure;
+  fluid_message.add_points(*fluid->mutable_force_density_n_per_measure(), force);
+  if (spread_elsewhere)
+    fluid_message.add_points(*fluid->mutable_spread_position_m(), state_.x_now_m);
+  fluid->set_repeat(repeat);
+  auto *structure = structure_advance_.envelope().mutable_structure_advance();
+  structure->set_repeat(repeat);
+  structure->set_time_s(t);
+  structure->set_dt_s(dt_);
+  // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
+  // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
+  structure_advance_.add_points(*structure->mutable_load_density_n_per_measure(), force.rows()) = -force;
+  // Section 2.3: the rigid surfaces move; both participants use them at the end of the step.
+  fluid->mutable_rigid_bodies()->Clear();
+  structure->mutable_rigid_bodies()->Clear();
+  for (const auto &[name, motion] : moving_bodies_) {
+    write_pose(name, *motion, t + dt_, *fluid->add_rigid_bodies());
+    *structure->add_rigid_bodies() = fluid->rigid_bodies(fluid->rigid_bodies_size() - 1);
+  }
+  participants_.send(roster_.structure_id, structure_advance_, static_cast<std::uint64_t>(n));
+  participants_.send(roster_.fluid_id, fluid_message, static_cast<std::uint64_t>(n));
+}
+
+void StepExchange::take_structure_reply(const proto::Incoming &incoming, long n) {
+  const auto &reply = incoming.envelope().advance_reply();
+  timings_.structure_solve_s += reply.solve_wall_s();
+  try { // checked before anything changes: a rejected reply leaves X^n and X^{n-1} as they were
+    x_next_ = incoming.message().finite_points(reply.position_m(), state_.x_now_m.rows(), "AdvanceReply.position_m");
+  } catch (const proto::MalformedMessageError &e) {
+    throw ParticipantFailed(roster_.structure_id, "participant " + roster_.structure_id +
+                                                      " sent a bad AdvanceReply at step " + std::to_string(n) + ": " +
+                                                      rejected(e));
+  }
+  state_.x_prev_m.swap(state_.x_now_m);
+  state_.x_now_m.swap(x_next_);
+}
+
+proto::Message &StepExchange::await(const std::string &peer, Envelope::BodyCase body, long step,
+                                    const std::string &what) {
+  const auto deadline = Clock::now() + to_ms(step_timeout_s_);
+  while (true) {
+    auto &incoming = participants_.next(deadline, peer, what, static_cast<std::uint64_t>(step));
+    auto &envelope = incoming.envelope();
+    if (incoming.peer() == peer && envelope.body_case() == body && envelope.step() == static_cast<std::uint64_t>(step))
+      return incoming.message();
+    participants_.answer_error(incoming.peer(),
+                               "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
+                                   std::to_string(envelope.step()) + " at step " + std::to_string(step) +
+                                   "; the coupler waits for " + what + " from " + peer,
+                               static_cast<std::uint64_t>(step));
+  }
+}
+
+} // namespace fsi::coupler

@@ -1,0 +1,122 @@
+// The OpenFOAM fluid's step with its last good state (put back when the step diverges or
+// OpenFOAM fails), the divergence check, and the step start saved and restored for implicit
+// coupling (OpenFoamFlow.H).
+
+#include "OpenFoamFlow.H"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace fsi::fluid {
+
+void OpenFoamFlow::advance(double dt_s) {
+  // The last good state, to put back on disk if this step diverges (three field copies: a few
+  // ms on 300k cells, against about a second for the step).
+  const Foam::volVectorField U_good("U_good", *U_);
+  const Foam::volScalarField p_good("p_good", *p_);
+  const Foam::surfaceScalarField phi_good("phi_good", *phi_);
+  const Foam::scalar t_good = runTime_->value();
+  const Foam::label index_good = runTime_->timeIndex();
+  const auto restore_good_state = [&] {
+    *U_ = U_good;
+    *p_ = p_good;
+    *phi_ = phi_good;
+    runTime_->setTime(t_good, index_good);
+  };
+  const std::string kept = "; the last good state (t = " + std::to_string(t_good) + " s) is written when the run stops";
+  try {
+    step(dt_s);
+  } catch (const Foam::error &e) {
+    // OpenFOAM's own failures mid-step (a NaN read back as a token, a solver that breaks down)
+    // leave fields half-updated: the last good ones go back, as for a divergence.
+    const std::string when = std::to_string(runTime_->value());
+    restore_good_state();
+    throw std::runtime_error("OpenFOAM failed at t = " + when + " s: " + std::string(e.message()) + kept);
+  }
+  if (const std::string problem = find_divergence(dt_s); !problem.empty()) {
+    restore_good_state();
+    throw std::runtime_error(problem + kept);
+  }
+  runTime_->write();
+  runTime_->functionObjects().execute();
+}
+
+template <class FieldType> void OpenFoamFlow::SavedFields<FieldType>::save(Foam::fvMesh &mesh) {
+  // Every registered field of this type but the old-time ones ("U_0"): a copy not registered
+  // (it must not be found here the next time). Saved and restored in name order on every rank.
+  fields.clear();
+  const auto table = mesh.thisDb().lookupClass<FieldType>();
+  for (const Foam::word &name : table.sortedToc()) {
+    if (name.endsWith("_0"))
+      continue;
+    FieldType &field = const_cast<FieldType &>(*table[name]);
+    Foam::IOobject io(name + "_stepStart", mesh.time().timeName(), mesh, Foam::IOobject::NO_READ,
+                      Foam::IOobject::NO_WRITE, false);
+    auto copy = std::make_unique<FieldType>(io, field);
+    fields.emplace_back(&field, std::move(copy));
+  }
+}
+
+template <class FieldType> void OpenFoamFlow::SavedFields<FieldType>::restore() {
+  for (auto &[field, copy] : fields) {
+    // Values only, at the step's end time index: no old-time shift is triggered (see FoamFlow).
+    field->primitiveFieldRef() = copy->primitiveField();
+    field->boundaryFieldRef() == copy->boundaryField();
+  }
+}
+
+void OpenFoamFlow::save_step_start() {
+  savedScalars_.save(*mesh_);
+  savedVectors_.save(*mesh_);
+  savedSymmTensors_.save(*mesh_);
+  savedFluxes_.save(*mesh_);
+  stepStartTime_ = runTime_->value();
+  stepStartIndex_ = runTime_->timeIndex();
+}
+
+void OpenFoamFlow::restore_step_start() {
+  if (stepStartIndex_ < 0)
+    throw std::logic_error("OpenFoamFlow: restore_step_start() before save_step_start()");
+  // Values first, while the time index is still the step's end (the fields' own): then the
+  // time goes back, and the repeated ++time comes to the same index without shifting old times.
+  savedScalars_.restore();
+  savedVectors_.restore();
+  savedSymmTensors_.restore();
+  savedFluxes_.restore();
+  runTime_->setTime(stepStartTime_, stepStartIndex_);
+}
+
+std::string OpenFoamFlow::find_divergence(double dt_s) const {
+  // Never leave NaNs running: a non-finite or runaway velocity stops the run, naming the cell,
+  // where it is, and the Courant number there (the likely cause).
+  const auto &u = U_->primitiveField();
+  Foam::label worst = -1;
+  Foam::scalar worst_speed = 0.0;
+  forAll(u, c) {
+    const Foam::scalar speed = Foam::mag(u[c]);
+    if (!std::isfinite(speed)) {
+      worst = c;
+      worst_speed = speed;
+      break;
+    }
+    if (speed > worst_speed) {
+      worst = c;
+      worst_speed = speed;
+    }
+  }
+  if (worst < 0 || (std::isfinite(worst_speed) && worst_speed <= speed_limit_))
+    return "";
+  const Foam::vector &x = mesh_->C()[worst];
+  const double h = std::cbrt(mesh_->V()[worst]);
+  std::ostringstream text;
+  text << "the fluid diverged at t = " << runTime_->value() << " s: cell " << worst << " at (" << x.x() << ", " << x.y()
+       << ", " << x.z() << ") m has |U| = " << worst_speed << " m/s (limit " << speed_limit_
+       << " m/s, 100 times the largest speed at the start); its Courant number |U| dt / h would be "
+       << (std::isfinite(worst_speed) ? worst_speed * dt_s / h : worst_speed)
+       << ". Likely cause: the time step is too large for the flow (keep the Courant number below 1) or for a "
+          "stiff coupling (penalty constant K, penalization time)";
+  return text.str();
+}
+
+} // namespace fsi::fluid
