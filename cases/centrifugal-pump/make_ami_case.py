@@ -27,7 +27,6 @@ cells are the penalized mesh's h (the impeller surface one level finer, IMPELLER
 import argparse
 import math
 import os
-import re
 import sys
 
 import yaml
@@ -240,7 +239,21 @@ def rotor_cylinder(design, impeller):
 
 
 def write_ami_case(folder, design, case, h, casing, impeller, dt):
-    box = make_case.write_case(folder, design, h, "ddes", casing)
+    blade = make_case.stl_regions(impeller)
+    # controlDict: pimpleFoam, the time step, the penalized case's function objects + forces.
+    control = {"comment": "// make_ami_case.py: deltaT of case.yaml (scaled with h), endTime set by pump_ami_run.py.",
+               "application": "pimpleFoam", "delta_t": repr(dt), "end_time": repr(case["run"]["end_time_s"]),
+               "more_functions": FUNCTIONS_MORE % {"patches": " ".join(blade), "rho": make_case.RHO}}
+    # fvSolution: the penalized case's + pcorr and the moving-mesh PIMPLE controls. The
+    # body-fitted mesh has no holes in its pressure equation: GAMG alone, as it was measured.
+    # The rotor's cells at the gaps are 2 mm: the mesh moves up to 2 cells per step there
+    # (Courant number ~2 relative to the mesh), where LUST's implicit part is no longer
+    # diagonally dominant and Gauss-Seidel diverges (U to 1e268 in the first step). A Krylov
+    # solver takes the same equations to the same tolerance.
+    solution = {"p": "{ solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.01; }",
+                "more_solvers": "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n", "u": make_case.U_KRYLOV,
+                "more_pimple": MOVING}
+    box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution)
     link(folder, "impeller.stl", impeller)
     r, z0, z1 = rotor_cylinder(design, impeller)
     gap = max(0, int(round(math.log2(h / GAP_CELL))))
@@ -256,41 +269,6 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt):
     write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
         "o": " ".join("%r" % float(v) for v in rot["axis_point_m"]),
         "a": " ".join("%r" % float(v) for v in rot["axis_direction"]), "w": float(rot["rate_rad_per_s"])})
-    # controlDict: pimpleFoam, the time step, the penalized case's function objects + forces.
-    blade = make_case.stl_regions(impeller)
-    path = os.path.join(folder, "system", "controlDict")
-    with open(path) as f:
-        text = f.read()
-    text = text.replace("application     fsi-openfoam-fluid;", "application     pimpleFoam;")
-    text = re.sub(r"^deltaT\s+[^;]+;", "deltaT          %r;" % dt, text, flags=re.M)
-    text = re.sub(r"^endTime\s+[^;]+;", "endTime         %r;" % case["run"]["end_time_s"], text, flags=re.M)
-    text = text.replace("// deltaT and endTime are set by the run (case.yaml run.time_step_s and run.end_time_s).",
-                        "// make_ami_case.py: deltaT of case.yaml (scaled with h), endTime set by pump_ami_run.py.")
-    text = add_before_last_brace(text, FUNCTIONS_MORE % {"patches": " ".join(blade), "rho": make_case.RHO})
-    with open(path, "w") as f:
-        f.write(text)
-    # fvSolution: the penalized case's + pcorr and the moving-mesh PIMPLE controls.
-    path = os.path.join(folder, "system", "fvSolution")
-    with open(path) as f:
-        text = f.read()
-    # The body-fitted mesh has no holes in its pressure equation: GAMG alone, as it was measured.
-    p_line = make_case.SOLUTION.splitlines()[2] + "\n"
-    assert p_line.startswith("    p      {"), "make_case.SOLUTION changed: its p line is not found"
-    text = text.replace(p_line, "    p      { solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.01; }\n")
-    pfinal = "    pFinal { $p; tolerance 1e-5; relTol 0; }\n"
-    assert pfinal in text, "make_case.SOLUTION changed: its pFinal line is not found"
-    text = text.replace(pfinal, pfinal + "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n")
-    # The rotor's cells at the gaps are 2 mm: the mesh moves up to 2 cells per step there
-    # (Courant number ~2 relative to the mesh), where LUST's implicit part is no longer
-    # diagonally dominant and Gauss-Seidel diverges (U to 1e268 in the first step). A Krylov
-    # solver takes the same equations to the same tolerance.
-    text, n = re.subn(r'^    "\(U\|nuTilda\|k\|omega\)\(\|Final\)" \{[^}]*\}',
-                      '    "(U|nuTilda|k|omega)(|Final)" { solver PBiCGStab; preconditioner DILU; tolerance 1e-8; relTol 0; }',
-                      text, flags=re.M)
-    assert n == 1, "make_case.SOLUTION changed: its U solver line is not found"
-    text = add_before_last_brace(text, MOVING)
-    with open(path, "w") as f:
-        f.write(text)
     # 0/: the same fields, the AMI pair in each, and the impeller walls moving for U.
     for name in os.listdir(os.path.join(folder, "0")):
         path = os.path.join(folder, "0", name)

@@ -152,13 +152,13 @@ castellatedMeshControls
 }
 """ + SNAPPY_CONTROLS
 
-CONTROL = """// deltaT and endTime are set by the run (case.yaml run.time_step_s and run.end_time_s).
-application     fsi-openfoam-fluid;
+CONTROL = """%(comment)s
+application     %(application)s;
 startFrom       startTime;
 startTime       0;
 stopAt          endTime;
-endTime         1;
-deltaT          1e-4;
+endTime         %(end_time)s;
+deltaT          %(delta_t)s;
 writeControl    adjustableRunTime;
 writeInterval   %(write)g;
 purgeWrite      2;
@@ -217,8 +217,11 @@ functions
         writeControl    timeStep;
         writeInterval   1;
     }
-}
+%(more_functions)s}
 """
+# What the penalized runs' controlDict holds; make_ami_case.py gives the AMI reference's.
+CONTROL_RUN = {"comment": "// deltaT and endTime are set by the run (case.yaml run.time_step_s and run.end_time_s).",
+               "application": "fsi-openfoam-fluid", "end_time": "1", "delta_t": "1e-4", "more_functions": ""}
 
 TURBULENCE = {
     "ddes": """simulationType  LES;
@@ -270,9 +273,9 @@ wallDist        { method meshWave; }
 # what it changes in head and torque). The AMI reference keeps GAMG (make_ami_case.py).
 SOLUTION = """solvers
 {
-    p      { solver PCG; preconditioner { preconditioner GAMG; smoother GaussSeidel; } tolerance 1e-6; relTol 0.01; }
+    p      %(p)s
     pFinal { $p; tolerance 1e-5; relTol 0; }
-    "(U|nuTilda|k|omega)(|Final)" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0; }
+%(more_solvers)s    "(U|nuTilda|k|omega)(|Final)" %(u)s
 }
 PIMPLE
 {
@@ -280,8 +283,14 @@ PIMPLE
     nCorrectors      2;
     nNonOrthogonalCorrectors 0;
     momentumPredictor yes;
-}
+%(more_pimple)s}
 """
+P_PCG_GAMG = "{ solver PCG; preconditioner { preconditioner GAMG; smoother GaussSeidel; } tolerance 1e-6; relTol 0.01; }"
+U_SMOOTH = "{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0; }"
+# With 2 mm gap cells the impeller moves two cells per step: the smoother diverges there (as in
+# the AMI reference); PBiCGStab does not.
+U_KRYLOV = "{ solver PBiCGStab; preconditioner DILU; tolerance 1e-8; relTol 0; }"
+SOLUTION_RUN = {"p": P_PCG_GAMG, "u": U_SMOOTH, "more_solvers": "", "more_pimple": ""}
 
 WALL_PATCHES = "    wall   { type %s; }"
 
@@ -374,7 +383,10 @@ def link_surface(folder, source):
     os.symlink(os.path.relpath(source, os.path.dirname(link)), link)
 
 
-def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
+def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control=None, solution=None):
+    """An OpenFOAM case folder of the pump at cell size h. control, solution: entries of the
+    CONTROL and SOLUTION templates over the penalized runs' (CONTROL_RUN, SOLUTION_RUN), for
+    make_ami_case.py's stock pimpleFoam runs."""
     lo, hi = stl_bounds(casing)
     pad = 2.0 * h
     box = {}
@@ -392,14 +404,10 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False):
                               "refinement": GAP_REFINEMENT if refine_gaps else ""})
     omega = design["operation"]["rotation_rate_rad_per_s"]
     write_foam_file(folder, "system/controlDict", "dictionary",
-                    CONTROL % {"write": round(10 * 2 * math.pi / omega, 6), "rho": RHO})
+                    CONTROL % dict(CONTROL_RUN, **(control or {}), write=round(10 * 2 * math.pi / omega, 6), rho=RHO))
     write_foam_file(folder, "system/fvSchemes", "dictionary", SCHEMES)
-    # With 2 mm gap cells the impeller moves two cells per step: the smoother diverges there (as in
-    # the AMI reference); PBiCGStab does not.
-    solution = SOLUTION if not refine_gaps else SOLUTION.replace(
-        '"(U|nuTilda|k|omega)(|Final)" { solver smoothSolver; smoother symGaussSeidel;',
-        '"(U|nuTilda|k|omega)(|Final)" { solver PBiCGStab; preconditioner DILU;')
-    write_foam_file(folder, "system/fvSolution", "dictionary", solution)
+    entries = dict(SOLUTION_RUN, **({"u": U_KRYLOV} if refine_gaps else {}), **(solution or {}))
+    write_foam_file(folder, "system/fvSolution", "dictionary", SOLUTION % entries)
     write_foam_file(folder, "constant/transportProperties", "dictionary",
                     "transportModel  Newtonian;\nnu              %r;   // water\n" % NU)
     write_foam_file(folder, "constant/turbulenceProperties", "dictionary", TURBULENCE[turbulence])
