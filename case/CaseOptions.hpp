@@ -1,7 +1,8 @@
 #pragma once
 // The command-line options every process of a run takes to find its case (fsi-structure,
 // fsi-coupler, fsi-prescribed-flow, fsi-openfoam-fluid): the case folder, the results folder,
-// the preset, keys set on the command line, an earlier end time, and a restart. The launcher passes the same values to every process,
+// the preset, keys set on the command line, an earlier end time, a restart, the coupler's
+// endpoint and debug logging. The launcher passes the same values to every process,
 // so all of them load the same configuration (and agree on its fingerprint). Header-only: only
 // the executables link CLI11.
 
@@ -22,8 +23,13 @@ struct CaseOptions {
   std::vector<std::string> assignments; ///< --set KEY=VALUE, in order, over the preset
   double end_time_s = 0.0; ///< 0: run.end_time_s of the case
   bool restart = false;    ///< resume from the newest complete checkpoint in the results folder
+  std::string endpoint;    ///< --endpoint: "" for coupling.endpoint of the case
+  bool verbose = false;    ///< -v: debug logging
 
-  void add_to(CLI::App &app, bool case_required = true) {
+  /// endpoint_help: what --endpoint means for this process (the coupler binds it, a participant
+  /// connects to it).
+  void add_to(CLI::App &app, bool case_required = true,
+              const std::string &endpoint_help = "Coupler endpoint (default: coupling.endpoint of the case)") {
     auto *option = app.add_option("case_dir", case_dir, "Case folder holding case.yaml");
     if (case_required)
       option->required();
@@ -47,6 +53,8 @@ struct CaseOptions {
     app.add_flag("--restart", restart,
                  "Resume from the newest complete checkpoint in the results folder (run.checkpoint_interval_s), "
                  "appending to its results");
+    app.add_option("--endpoint", endpoint, endpoint_help);
+    app.add_flag("-v,--verbose", verbose, "Debug logging");
   }
 
   /// The case file with the preset merged over it and the end time applied.

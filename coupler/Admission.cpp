@@ -1,6 +1,7 @@
 #include "Admission.hpp"
 
 #include "CouplingErrors.hpp"
+#include "Durations.hpp"
 #include "checkpoint/CheckpointError.hpp"
 
 #include <spdlog/spdlog.h>
@@ -8,10 +9,6 @@
 #include <chrono>
 
 namespace fsi::coupler {
-
-namespace {
-std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
-} // namespace
 
 Admission::Admission(ParticipantTable &participants, const proto::CouplerChannel &channel, const CouplingSetup &setup)
     : participants_(participants), channel_(channel), setup_(setup) {}

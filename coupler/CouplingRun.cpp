@@ -2,6 +2,7 @@
 
 #include "Admission.hpp"
 #include "CouplingErrors.hpp"
+#include "Durations.hpp"
 #include "ExplicitStep.hpp"
 #include "ImplicitStep.hpp"
 #include "common/ExitCodes.hpp"
@@ -18,14 +19,7 @@
 
 namespace fsi::coupler {
 
-namespace {
-using Clock = std::chrono::steady_clock;
 using proto::v2::Envelope;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
-} // namespace
 
 std::atomic<int> &CouplingRun::stop_signal() {
   static std::atomic<int> signal{0};

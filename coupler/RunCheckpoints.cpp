@@ -1,6 +1,7 @@
 #include "RunCheckpoints.hpp"
 
 #include "CouplingErrors.hpp"
+#include "Durations.hpp"
 #include "checkpoint/ArchiveFile.hpp"
 
 #include <spdlog/spdlog.h>
@@ -52,8 +53,7 @@ std::vector<checkpoint::CheckpointPart> RunCheckpoints::collect_parts(long n, Pa
   }
   std::vector<checkpoint::CheckpointPart> parts;
   std::string structure_part, fluid_part;
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long long>(step_timeout_s_ * 1e3));
+  const auto deadline = Clock::now() + to_ms(step_timeout_s_);
   while (structure_part.empty() || fluid_part.empty()) {
     const std::string &waited = structure_part.empty() ? roster.structure_id : roster.fluid_id;
     auto &incoming = participants.next(deadline, waited, "CheckpointDone", static_cast<std::uint64_t>(n));

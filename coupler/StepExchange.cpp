@@ -1,6 +1,7 @@
 #include "StepExchange.hpp"
 
 #include "CouplingErrors.hpp"
+#include "Durations.hpp"
 #include "proto/BodyPose.hpp"
 #include "proto/TransportError.hpp"
 
@@ -8,14 +9,9 @@
 
 namespace fsi::coupler {
 
-namespace {
-using Clock = std::chrono::steady_clock;
 using proto::v2::Envelope;
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-std::chrono::milliseconds to_ms(double s) { return std::chrono::milliseconds(static_cast<long long>(s * 1e3)); }
-
+namespace {
 void write_pose(const std::string &name, const motion::RigidMotion &motion, double t, proto::v2::RigidBodyPose &out) {
   proto::BodyPose pose;
   pose.name = name;

@@ -74,17 +74,14 @@ int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-coupler: the coupling daemon of a fluid-structure run"};
   fsi::case_config::CaseOptions options;
-  std::string endpoint;
-  bool plan = false, verbose = false, keys = false, force = false;
-  options.add_to(app);
-  app.add_option("--endpoint", endpoint, "Listen here instead of coupling.endpoint");
+  bool plan = false, keys = false, force = false;
+  options.add_to(app, true, "Listen here instead of coupling.endpoint");
   app.add_flag("--plan", plan, "Print the output folder and the processes this case needs, then exit");
   app.add_flag("--make-keys", keys, "Make the CURVE keys of coupling.keys_dir (kept when present), then exit");
   app.add_flag("--force", force, "With --make-keys: replace existing keys");
-  app.add_flag("-v,--verbose", verbose, "Debug logging");
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
-  fsi::common::setup_logging("coupler", verbose);
+  fsi::common::setup_logging("coupler", options.verbose);
   fsi::common::keep_freed_memory(); // before the solver allocates (common/Allocator.hpp)
   return fsi::common::guarded_main("coupler", [&] {
     auto config = options.load();
@@ -110,7 +107,7 @@ int main(int argc, char **argv) {
     std::signal(SIGTERM, on_stop_signal);
     auto setup = fsi::case_config::coupling_setup(std::move(config), case_dir);
     setup.restart = options.restart;
-    fsi::coupler::CouplingRun run(std::move(setup), out, endpoint);
+    fsi::coupler::CouplingRun run(std::move(setup), out, options.endpoint);
     return run.run();
   });
 }

@@ -197,11 +197,8 @@ int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-openfoam-fluid: OpenFOAM fluid participant with the diffuse immersed boundary"};
   fsi::case_config::CaseOptions options;
-  std::string endpoint;
-  bool verbose = false, mpi_rank = false, precursor_only = false;
+  bool mpi_rank = false, precursor_only = false;
   options.add_to(app);
-  app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
-  app.add_flag("-v,--verbose", verbose, "Debug logging");
   app.add_flag("--mpi-rank", mpi_rank, "Internal: this process is one rank under mpirun (the case is prepared)")
       ->group("");
   app.add_flag("--precursor", precursor_only,
@@ -209,7 +206,7 @@ int main(int argc, char **argv) {
                "structure, no coupler) in <output>/precursor, unless it is up to date");
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
-  fsi::common::setup_logging("fluid", verbose);
+  fsi::common::setup_logging("fluid", options.verbose);
   fsi::common::keep_freed_memory(); // OpenFOAM's per-step fields: 2x faster here (common/Allocator.hpp)
   // Debian's OpenFOAM finds its etc/ through WM_PROJECT_DIR, read while its libraries load
   // (before main): the launcher sets it; blockMesh, started from here, needs it as well.
@@ -273,6 +270,6 @@ int main(int argc, char **argv) {
     if (process.role == Role::alone)
       return run_alone(process, model, *flow, config, out);
     return precursor_run ? run_precursor(process, model, *flow, precursor, config.run.time_step_s)
-                         : run_coupled(process, model, *flow, config, case_dir, out, endpoint);
+                         : run_coupled(process, model, *flow, config, case_dir, out, options.endpoint);
   }));
 }

@@ -33,14 +33,10 @@ int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-prescribed-flow: fluid participant with a prescribed velocity field (one-way coupling)"};
   fsi::case_config::CaseOptions options;
-  std::string endpoint;
-  bool verbose = false;
   options.add_to(app);
-  app.add_option("--endpoint", endpoint, "Coupler endpoint (default: coupling.endpoint of the case)");
-  app.add_flag("-v,--verbose", verbose, "Debug logging");
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
-  fsi::common::setup_logging("fluid", verbose);
+  fsi::common::setup_logging("fluid", options.verbose);
   fsi::common::keep_freed_memory(); // before the solver allocates (common/Allocator.hpp)
   return fsi::common::guarded_main("prescribed flow", [&] {
     const auto config = options.load();
@@ -52,7 +48,7 @@ int main(int argc, char **argv) {
     const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     fsi::common::add_log_file(out / "fluid.log");
-    auto settings = fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_FLUID);
+    auto settings = fsi::case_config::participant_settings(config, options.endpoint, case_dir, fsi::proto::v2::ROLE_FLUID);
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed),

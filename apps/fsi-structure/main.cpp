@@ -63,14 +63,11 @@ int main(int argc, char **argv) {
   const fsi::proto::ZmqContextCloser zmq_closer; // outlives every channel: last messages get out
   CLI::App app{"fsi-structure: membrane and filament solver with collisions (standalone, no fluid)"};
   fsi::case_config::CaseOptions options;
-  std::string endpoint;
-  bool check = false, schema = false, verbose = false, coupled = false;
-  options.add_to(app, false);
+  bool check = false, schema = false, coupled = false;
+  options.add_to(app, false, "Coupler endpoint (with --coupled; default: coupling.endpoint)");
   app.add_flag("--check", check, "Validate the case without running it");
   app.add_flag("--schema", schema, "Print the case-file reference as Markdown");
   app.add_flag("--coupled", coupled, "Take part in a coupled run (the case must have a fluid section)");
-  app.add_option("--endpoint", endpoint, "Coupler endpoint (with --coupled; default: coupling.endpoint)");
-  app.add_flag("-v,--verbose", verbose, "Debug logging");
   if (const int code = fsi::case_config::parse_command_line(app, argc, argv); code >= 0)
     return code;
   if (schema) {
@@ -82,7 +79,7 @@ int main(int argc, char **argv) {
     std::cerr << "fsi-structure: missing CASE_DIR (a folder holding case.yaml); see --help\n";
     return fsi::common::exit_code_bad_input;
   }
-  fsi::common::setup_logging("structure", verbose);
+  fsi::common::setup_logging("structure", options.verbose);
   fsi::common::keep_freed_memory(); // before the solver allocates (common/Allocator.hpp)
   return fsi::common::guarded_main("run", [&] {
     if (check)
@@ -109,7 +106,7 @@ int main(int argc, char **argv) {
       spdlog::error("--coupled: case {} has no `fluid` section, so there is nothing to couple to", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    auto settings = fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_STRUCTURE);
+    auto settings = fsi::case_config::participant_settings(config, options.endpoint, case_dir, fsi::proto::v2::ROLE_STRUCTURE);
     auto setup = fsi::case_config::structure_setup(std::move(config));
     setup.rigid_motions_from_coupler = true; // the coupler evaluates the prescribed motions
     fsi::structure::StructureRun run(std::move(setup), case_dir, out);

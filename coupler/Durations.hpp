@@ -1,0 +1,19 @@
+#pragma once
+// The coupler's clock: the configuration's durations (s, double) as the transport's
+// milliseconds, and the wall time since a point, for the timings of coupling.h5.
+
+#include <chrono>
+
+namespace fsi::coupler {
+
+using Clock = std::chrono::steady_clock;
+
+/// A duration of the configuration (s) as whole milliseconds (a deadline, a heartbeat).
+inline std::chrono::milliseconds to_ms(double s) {
+  return std::chrono::milliseconds(static_cast<long long>(s * 1e3));
+}
+
+/// Wall time since t, s.
+inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+} // namespace fsi::coupler
