@@ -41,9 +41,7 @@ int CouplingRun::run() {
     admit();
     receive_initial_state();
     check_stability();
-    int code = 0;
-    const long n_done = run_steps(step, code);
-    return n_done < 0 ? code : completed(n_done);
+    return run_steps(step);
   } catch (const ParticipantFailed &e) {
     // A stop signal, and a participant stopped before the step boundary (signalled before
     // Welcome, past its grace, or killed by the launcher after its own grace)
@@ -57,7 +55,7 @@ int CouplingRun::run() {
   }
 }
 
-long CouplingRun::run_steps(long &step, int &code) {
+int CouplingRun::run_steps(long &step) {
   report_->start();
   // From here a stop signal (Ctrl-C) ends the run at a step boundary, after its checkpoint.
   participants_->allow_clean_stop(clean_stop_grace);
@@ -68,19 +66,17 @@ long CouplingRun::run_steps(long &step, int &code) {
     const bool stopping = participants_->stop_requested() != 0;
     if (checkpoints_->due(step + 1, n_steps_, stopping))
       checkpoint(step + 1);
-    if (stopping) {
-      code = interrupted_at_boundary(step + 1);
-      return -1;
-    }
+    if (stopping)
+      return interrupted_at_boundary(step + 1);
     const bool past = structures_past_stop_plane();
     report_->progress(step + 1, step + 1 == n_steps_ || past, *scheme_);
     if (past) {
       spdlog::info("every structure point is past run.stop_when_past at t = {} s (step {} of {}): the run ends here",
                    static_cast<double>(step + 1) * dt_, step + 1, n_steps_);
-      return step + 1;
+      return completed(step + 1);
     }
   }
-  return n_steps_;
+  return completed(n_steps_);
 }
 
 int CouplingRun::completed(long n_done) {

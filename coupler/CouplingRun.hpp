@@ -41,9 +41,9 @@ private:
   void open();
   void admit();
   void receive_initial_state();
-  /// The steps from the first to the end (or run.stop_when_past); returns the steps done, or
-  /// -1 when a stop signal ended the run at a step boundary (its exit code in `code`).
-  long run_steps(long &step, int &code);
+  /// The steps from the first to the end (or run.stop_when_past, or a stop signal at a step
+  /// boundary); `step` follows the loop (the failure handlers name it). Returns the exit code.
+  int run_steps(long &step);
   /// Section 2.3, one step: the scheme advances both participants, then the rigid-body loads.
   void advance_one_step(long n);
 

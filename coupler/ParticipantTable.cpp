@@ -162,6 +162,19 @@ void ParticipantTable::answer_error(const std::string &peer, const std::string &
   }
 }
 
+void ParticipantTable::answer_unexpected(const proto::Incoming &incoming, std::uint64_t step,
+                                         const std::string &expectation) noexcept {
+  try {
+    const auto &envelope = incoming.envelope();
+    answer_error(incoming.peer(),
+                 "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
+                     std::to_string(envelope.step()) + expectation,
+                 step);
+  } catch (...) {
+    // Nothing to answer with (out of memory): the wait goes on.
+  }
+}
+
 void ParticipantTable::allow_clean_stop(std::chrono::milliseconds grace) { clean_stop_grace_ = grace; }
 
 int ParticipantTable::stop_requested() const {

@@ -53,6 +53,9 @@ public:
 
   /// Answers `peer` with an ErrorReport (best effort).
   void answer_error(const std::string &peer, const std::string &message, std::uint64_t step) noexcept;
+  /// Answers a message that is not the one awaited: "unexpected <body> for step <its step>"
+  /// followed by `expectation` (what the coupler waits for), as an ErrorReport of `step`.
+  void answer_unexpected(const proto::Incoming &incoming, std::uint64_t step, const std::string &expectation) noexcept;
   /// Sends Shutdown to every participant that joined (best effort: never throws);
   /// `interrupted`: ended by a stop signal, at a step boundary (Shutdown.interrupted).
   void shutdown_all(const std::string &reason, bool success, std::uint64_t step, bool interrupted = false) noexcept;

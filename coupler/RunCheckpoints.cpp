@@ -61,11 +61,8 @@ std::vector<checkpoint::CheckpointPart> RunCheckpoints::collect_parts(long n, Pa
     std::string &slot = incoming.peer() == roster.fluid_id ? fluid_part : structure_part;
     if (!envelope.has_checkpoint_done() || envelope.step() != static_cast<std::uint64_t>(n) || !slot.empty() ||
         envelope.checkpoint_done().part().empty()) {
-      participants.answer_error(incoming.peer(),
-                                "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
-                                    std::to_string(envelope.step()) +
-                                    "; the coupler waits for the CheckpointDone of step " + std::to_string(n),
-                                n);
+      participants.answer_unexpected(incoming, n, "; the coupler waits for the CheckpointDone of step " +
+                                                      std::to_string(n));
       continue;
     }
     slot = envelope.checkpoint_done().part();

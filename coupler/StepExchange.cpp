@@ -89,11 +89,8 @@ void StepExchange::advance_fluid_and_structure(long n, bool repeat) {
     const bool from_fluid = incoming.peer() == roster_.fluid_id;
     bool &done = from_fluid ? fluid_done : structure_done;
     if (!envelope.has_advance_reply() || envelope.step() != static_cast<std::uint64_t>(n) || done) {
-      participants_.answer_error(incoming.peer(),
-                                 "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
-                                     std::to_string(envelope.step()) +
-                                     "; the coupler waits for the AdvanceReply of step " + std::to_string(n),
-                                 n);
+      participants_.answer_unexpected(incoming, n, "; the coupler waits for the AdvanceReply of step " +
+                                                       std::to_string(n));
       continue;
     }
     done = true;
@@ -162,11 +159,9 @@ proto::Message &StepExchange::await(const std::string &peer, Envelope::BodyCase 
     auto &envelope = incoming.envelope();
     if (incoming.peer() == peer && envelope.body_case() == body && envelope.step() == static_cast<std::uint64_t>(step))
       return incoming.message();
-    participants_.answer_error(incoming.peer(),
-                               "unexpected " + std::string(proto::body_name(envelope)) + " for step " +
-                                   std::to_string(envelope.step()) + " at step " + std::to_string(step) +
-                                   "; the coupler waits for " + what + " from " + peer,
-                               static_cast<std::uint64_t>(step));
+    participants_.answer_unexpected(incoming, static_cast<std::uint64_t>(step),
+                                    " at step " + std::to_string(step) + "; the coupler waits for " + what + " from " +
+                                        peer);
   }
 }
 

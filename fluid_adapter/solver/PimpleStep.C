@@ -94,7 +94,7 @@ void OpenFoamFlow::correct_pressure(Foam::fvVectorMatrix &UEqn, const Foam::labe
 Foam::tmp<Foam::volVectorField> OpenFoamFlow::pressure_gradient() const {
   using namespace Foam;
   const volScalarField &p = *p_;
-  if (!(interfaceVelocity_ && penalizationRate_))
+  if (!body_normal())
     return fvc::grad(p);
   surfaceScalarField pf(fvc::interpolate(p));
   for_each_interface_face(*mesh_, penalizationRate_->primitiveField(),
