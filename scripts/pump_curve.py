@@ -115,8 +115,8 @@ def postprocess(args, point):
         point.result = yaml.safe_load(f)
     ran_at = point.result.get("flow_rate_m3_per_s")
     if ran_at is None or abs(ran_at - point.flow_rate) > 1e-9 * point.flow_rate:
-        point.state, point.error = "failed", ("ran at Q = %s m^3/s instead of this point's %r m^3/s (its OpenFOAM case "
-                                              "files were rewritten after its flow rate was set)" % (ran_at, point.flow_rate))
+        point.state, point.error = "failed", ("ran at Q = %s m^3/s instead of this point's %r m^3/s (the flow rate of its "
+                                              "config.effective.yaml is not the one --set gave)" % (ran_at, point.flow_rate))
         return
     point.state = "done"
 

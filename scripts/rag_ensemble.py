@@ -10,9 +10,9 @@ summed over the runs (ensemble.csv, ensemble.yaml, ensemble.png).
 Each member is a copy of the case folder (DIR/run-NN/case) run by fsi_launch.py into DIR/run-NN.
 run-00 is the case's own rag and release (without --sizes); every other member's rag is released at a random place
 of the sump's floor, turned by a random angle about the vertical, with one of the sizes (in
-turn); the seed makes the draw reproducible. The
-flow rate is --flow-fraction times the case's (fluid.openfoam.operating_point: Q_BEP), given to
-every member as --set, so 0.36 is the paper's part load. The precursor of the flow alone is the same for every member of one operating point:
+turn); the seed makes the draw reproducible. The flow rate is --flow-fraction times the case's
+(fluid.openfoam.operating_point: Q_BEP), given to every member as --set, so 0.36 is the paper's
+part load. The precursor of the flow alone is the same for every member of one operating point:
 the first member runs it, the others start from a copy of it. Members run in parallel up to
 --jobs (default: half the cores, a coupled run keeps about two busy); a member already run with
 the same case files and options is reused. Progress with ETA on stderr; a failed member is
@@ -309,7 +309,7 @@ def parse_args(argv):
 
 class CaseInputs:
     """What the ensemble takes from the case folder: the pump's design (with its sump), the case's
-    flow rate, its rag, the collision distance and the OpenFOAM folder of the preset."""
+    flow rate, its rag and the collision distance."""
 
     def __init__(self, args):
         for name in ("case.yaml", "pump.yaml"):
