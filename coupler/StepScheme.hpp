@@ -15,8 +15,6 @@ namespace fsi::coupler {
 class StepScheme {
 public:
   virtual ~StepScheme() = default;
-  /// The first step's start (a run or a restart): X^n and X^{n-1} are in exchange.state().
-  virtual void start(StepExchange & /*exchange*/) {}
   /// Advances step n: both participants from t^n to t^{n+1} under exchange.coupled(), X^{n+1}
   /// into exchange.state(), the law's state to step n + 1.
   virtual void advance(long n, StepExchange &exchange) = 0;
