@@ -2,7 +2,7 @@
 // number of Lagrangian points, N = 10^2 .. 10^5, over TCP loopback (./fsi bench coupling).
 //
 // Coupling: the real coupler (coupler::CouplingRun, endpoint tcp://127.0.0.1:0, coupling.h5
-// and all) runs in one thread; two minimal participants built on proto::ParticipantSession run
+// and all) runs in one thread; two minimal participants built on participant::ParticipantSession run
 // in two others, with trivial solves: the structure answers every StructureAdvance with its
 // unchanged positions, the fluid answers InterpolateRequest with zero velocities and
 // FluidAdvance with an empty AdvanceReply. A step then costs only the coupling: messages,
@@ -32,7 +32,7 @@
 #include "coupler/CouplingRun.hpp"
 #include "proto/Endpoint.hpp"
 #include "proto/PackedPoints.hpp"
-#include "proto/ParticipantSession.hpp"
+#include "participant/ParticipantSession.hpp"
 #include "proto/ZmqContext.hpp"
 #include "case/CaseConfig.hpp"
 #include "case/ModuleSetups.hpp"
@@ -140,8 +140,9 @@ std::string wait_for_endpoint(const fs::path &file, const std::atomic<bool> &cou
   throw std::runtime_error("the coupler wrote no " + file.string());
 }
 
-proto::SessionSettings settings_for(const std::string &endpoint, proto::Role role, const std::string &fingerprint) {
-  proto::SessionSettings s;
+participant::SessionSettings settings_for(const std::string &endpoint, proto::Role role,
+                                          const std::string &fingerprint) {
+  participant::SessionSettings s;
   s.coupler = proto::Endpoint::parse(endpoint);
   s.role = role;
   s.name = "bench";
@@ -152,7 +153,7 @@ proto::SessionSettings settings_for(const std::string &endpoint, proto::Role rol
 
 /// Structure participant: its positions never change (the trivial solve).
 void run_structure(const std::string &endpoint, const std::string &fingerprint, const Size &size) {
-  proto::ParticipantSession session(settings_for(endpoint, proto::v2::ROLE_STRUCTURE, fingerprint));
+  participant::ParticipantSession session(settings_for(endpoint, proto::v2::ROLE_STRUCTURE, fingerprint));
   const long n = size.points();
   const PointArray x = sheet_positions(size);
   proto::v2::StructureTopology topology;
@@ -190,7 +191,7 @@ void run_structure(const std::string &endpoint, const std::string &fingerprint, 
 /// Fluid participant: zero velocity everywhere; notes when each InterpolateRequest arrived.
 void run_fluid(const std::string &endpoint, const std::string &fingerprint, long n,
                std::vector<Clock::time_point> &arrivals) {
-  proto::ParticipantSession session(settings_for(endpoint, proto::v2::ROLE_FLUID, fingerprint));
+  participant::ParticipantSession session(settings_for(endpoint, proto::v2::ROLE_FLUID, fingerprint));
   session.handshake();
   const PointArray zero = PointArray::Zero(n, 3);
   proto::Message interpolated, advanced;
@@ -240,9 +241,9 @@ double h5_mean(const fs::path &file, const char *dataset, long from) {
 }
 
 struct CoupledResult {
-  double period_s;        ///< per step, as the fluid saw it
-  double coupler_wall_s;  ///< the coupler's step_wall_s (coupling.h5)
-  double law_s;           ///< the coupler's coupling_law_s
+  double period_s;       ///< per step, as the fluid saw it
+  double coupler_wall_s; ///< the coupler's step_wall_s (coupling.h5)
+  double law_s;          ///< the coupler's coupling_law_s
 };
 
 CoupledResult run_coupled(const fs::path &dir, const Size &size) {
@@ -259,7 +260,8 @@ CoupledResult run_coupled(const fs::path &dir, const Size &size) {
   int exit_code = -1;
   std::thread coupler([&] {
     try {
-      coupler::CouplingRun run(case_config::coupling_setup(case_config::CaseConfig::load(dir), dir), output, "tcp://127.0.0.1:0");
+      coupler::CouplingRun run(case_config::coupling_setup(case_config::CaseConfig::load(dir), dir), output,
+                               "tcp://127.0.0.1:0");
       exit_code = run.run();
     } catch (const std::exception &e) {
       std::cerr << "bench coupler: " << e.what() << "\n";
@@ -551,7 +553,8 @@ Options parse(int argc, char **argv) {
     else if (a == "--no-raw")
       o.raw = false;
     else if (a == "-h" || a == "--help") {
-      std::cout << "usage: bench_coupling [--rounds R] [--scale S] [--min-points N] [--max-points N] [--no-raw] [--keep]\n";
+      std::cout
+          << "usage: bench_coupling [--rounds R] [--scale S] [--min-points N] [--max-points N] [--no-raw] [--keep]\n";
       std::exit(0);
     } else
       throw std::runtime_error("unknown option " + a + " (see --help)");
@@ -563,15 +566,16 @@ Options parse(int argc, char **argv) {
 
 int main(int argc, char **argv) try {
   const Options options = parse(argc, argv);
-  const std::vector<Size> sizes = {{10, 10, 5000, 500}, {40, 25, 3000, 300}, {100, 100, 1000, 100}, {400, 250, 100, 10}};
+  const std::vector<Size> sizes = {
+      {10, 10, 5000, 500}, {40, 25, 3000, 300}, {100, 100, 1000, 100}, {400, 250, 100, 10}};
   const fs::path root = fs::temp_directory_path() / ("fsi-bench-coupling-" + std::to_string(::getpid()));
   std::printf("coupling overhead per step over TCP loopback: real coupler + 2 trivial participants (3 threads "
               "on %u hardware threads), %d round(s); medians\n",
               std::thread::hardware_concurrency(), options.rounds);
   std::printf("%8s %10s %7s | %9s %9s %8s | %9s %9s | %8s %8s\n", "points", "bytes/step", "steps", "coupling",
               "coupler", "law", "raw tcp", "raw zmq", "coupling", "coupling");
-  std::printf("%8s %10s %7s | %9s %9s %8s | %9s %9s | %8s %8s\n", "", "", "", "ms/step", "wall ms", "ms",
-              "ms/step", "ms/step", "/tcp", "/zmq");
+  std::printf("%8s %10s %7s | %9s %9s %8s | %9s %9s | %8s %8s\n", "", "", "", "ms/step", "wall ms", "ms", "ms/step",
+              "ms/step", "/tcp", "/zmq");
   bool goal_time = true, goal_ratio = true;
   double at_1e4 = -1.0, spread_1e4[2] = {0.0, 0.0};
   for (const Size &base : sizes) {
@@ -596,9 +600,9 @@ int main(int argc, char **argv) try {
       ratio_zmq.push_back(c.period_s / z);
     }
     const double ms = 1e3;
-    std::printf("%8ld %10ld %7ld | %9.4f %9.4f %8.4f | %9.4f %9.4f | %8.2f %8.2f\n", size.points(),
-                120 * size.points(), size.steps, ms * median(period), ms * median(wall), ms * median(law),
-                ms * median(tcp), ms * median(zmq_raw), median(ratio_tcp), median(ratio_zmq));
+    std::printf("%8ld %10ld %7ld | %9.4f %9.4f %8.4f | %9.4f %9.4f | %8.2f %8.2f\n", size.points(), 120 * size.points(),
+                size.steps, ms * median(period), ms * median(wall), ms * median(law), ms * median(tcp),
+                ms * median(zmq_raw), median(ratio_tcp), median(ratio_zmq));
     std::fflush(stdout);
     if (size.points() >= 1000 && median(ratio_tcp) > 2.0)
       goal_ratio = false;

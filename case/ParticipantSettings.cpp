@@ -8,9 +8,9 @@
 
 namespace fsi::case_config {
 
-proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override,
-                                            const std::filesystem::path &case_dir, proto::Role role) {
-  proto::SessionSettings settings;
+participant::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override,
+                                                  const std::filesystem::path &case_dir, proto::Role role) {
+  participant::SessionSettings settings;
   settings.role = role;
   settings.options = channel_options(config, case_dir, role == proto::v2::ROLE_FLUID ? "fluid" : "structure");
   settings.coupler = proto::Endpoint::parse(endpoint_override.empty() ? config.coupling->endpoint : endpoint_override);

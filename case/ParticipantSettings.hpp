@@ -2,7 +2,7 @@
 // How a participant process (structure, fluid) of a case joins its coupler.
 
 #include "CaseConfig.hpp"
-#include "proto/ParticipantSession.hpp"
+#include "participant/SessionSettings.hpp"
 
 #include <filesystem>
 #include <string>
@@ -13,7 +13,7 @@ namespace fsi::case_config {
 /// handshake timeout and the channel options (ChannelSettings.hpp) of participant `role` of a
 /// coupled case. Throws proto::TransportError for an endpoint that cannot be connected to (for
 /// one from the case file the message says what to do about port 0), or a missing key.
-proto::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override,
-                                            const std::filesystem::path &case_dir, proto::Role role);
+participant::SessionSettings participant_settings(const CaseConfig &config, const std::string &endpoint_override,
+                                                  const std::filesystem::path &case_dir, proto::Role role);
 
 } // namespace fsi::case_config

@@ -68,7 +68,7 @@ void OpenFoamFluidModel::set_checkpoints(std::filesystem::path root, long restar
   restart_step_ = restart_step;
 }
 
-std::pair<std::string, std::string> OpenFoamFluidModel::write_checkpoint(long n_completed) {
+checkpoint::CheckpointPart OpenFoamFluidModel::write_checkpoint(long n_completed) {
   if (checkpoints_root_.empty())
     throw std::logic_error("OpenFoamFluidModel::write_checkpoint before set_checkpoints");
   // Every rank writes its fields (processor<k>/<time> with several ranks: writeNow is collective),
@@ -80,7 +80,7 @@ std::pair<std::string, std::string> OpenFoamFluidModel::write_checkpoint(long n_
   std::filesystem::create_directories(folder);
   const auto part =
       FoamCheckpoint::write(flow_.case_directory(), flow_.time_name(), flow_.n_ranks(), folder, n_completed);
-  return {part.name, part.checksum};
+  return part;
 }
 
 void OpenFoamFluidModel::write_fields_on_every_rank() {
@@ -103,17 +103,16 @@ void OpenFoamFluidModel::resume(long step, const std::string &checksum) {
                              ", the coupler's checkpoint says " + checksum);
 }
 
-void OpenFoamFluidModel::start(const proto::v2::Welcome &welcome) {
-  message_.clear();
-  for (const auto &s : welcome.structures())
-    message_.insert(message_.end(), s.point_measure().begin(), s.point_measure().end());
+void OpenFoamFluidModel::start(const participant::RunPlan &plan) {
+  const Eigen::VectorXd measures = plan.point_measures();
+  message_.assign(measures.data(), measures.data() + measures.size());
   broadcast(Command::start, message_);
   do_start(message_);
   spdlog::info("{}", describe());
 }
 
-void OpenFoamFluidModel::interpolate(const proto::v2::InterpolateRequest &, proto::PointsView x_m,
-                                     proto::MutablePointsView u_m_per_s) {
+void OpenFoamFluidModel::interpolate(double /*time_s: the flow's own*/, participant::PointsView x_m,
+                                     participant::MutablePointsView u_m_per_s) {
   message_.assign(x_m.data(), x_m.data() + x_m.size());
   broadcast(Command::interpolate, message_);
   positions_ = x_m;
@@ -122,7 +121,7 @@ void OpenFoamFluidModel::interpolate(const proto::v2::InterpolateRequest &, prot
   u_m_per_s = u;
 }
 
-void OpenFoamFluidModel::spread_at(proto::PointsView x_m) {
+void OpenFoamFluidModel::spread_at(participant::PointsView x_m) {
   message_.assign(x_m.data(), x_m.data() + x_m.size());
   broadcast(Command::spread_at, message_);
   positions_ = x_m;
@@ -141,39 +140,36 @@ void OpenFoamFluidModel::restore_step_start() {
   flow_.restore_step_start();
 }
 
-void OpenFoamFluidModel::advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
-                                 proto::v2::AdvanceReply &reply) {
+void OpenFoamFluidModel::advance(const participant::FluidStep &step,
+                                 participant::PointsView force_density_n_per_measure,
+                                 std::vector<participant::BodyLoad> &loads_out) {
   // Payload for the other ranks: t, dt, the moving bodies' poses at t + dt, then F_fsi^n.
-  message_.assign({request.time_s(), request.dt_s()});
-  pack_rigid_poses(request, message_);
+  message_.assign({step.time_s, step.dt_s});
+  pack_rigid_poses(step.bodies, message_);
   const std::size_t poses_end = message_.size();
   message_.insert(message_.end(), force_density_n_per_measure.data(),
                   force_density_n_per_measure.data() + force_density_n_per_measure.size());
   broadcast(Command::advance, message_);
-  unpack_rigid_poses(request.time_s() + request.dt_s(), message_.data() + 2, message_.data() + poses_end);
+  unpack_rigid_poses(step.time_s + step.dt_s, message_.data() + 2, message_.data() + poses_end);
   force_density_ = force_density_n_per_measure;
   std::vector<rigid::BodyLoad> loads;
-  do_advance(request.time_s(), request.dt_s(), loads);
-  for (std::size_t b = 0; b < loads.size(); ++b) {
-    auto *out = reply.add_rigid_body_loads();
-    out->set_name(bodies_[b]->name());
-    proto::write_vector3(loads[b].force_n, *out->mutable_force_n());
-    proto::write_vector3(loads[b].torque_n_m, *out->mutable_torque_n_m());
-  }
+  do_advance(step.time_s, step.dt_s, loads);
+  for (std::size_t b = 0; b < loads.size(); ++b)
+    loads_out.push_back({bodies_[b]->name(), loads[b].force_n, loads[b].torque_n_m});
 }
 
-void OpenFoamFluidModel::pack_rigid_poses(const proto::v2::FluidAdvance &request, std::vector<double> &out) const {
+void OpenFoamFluidModel::pack_rigid_poses(const std::vector<participant::BodyPose> &poses,
+                                          std::vector<double> &out) const {
   // Section 2.3: the coupler moved the rigid surfaces; Eqs. (9-10) penalize them at t + dt.
   std::size_t expected = 0;
   for (const auto &body : bodies_)
     expected += body->coupled_motion() != nullptr;
-  if (static_cast<std::size_t>(request.rigid_bodies_size()) != expected)
-    throw proto::MalformedMessageError("FluidAdvance carries " + std::to_string(request.rigid_bodies_size()) +
+  if (poses.size() != expected)
+    throw proto::MalformedMessageError("FluidAdvance carries " + std::to_string(poses.size()) +
                                        " rigid-body poses; this case has " + std::to_string(expected) +
                                        " moving bodies");
   out.push_back(static_cast<double>(expected));
-  for (const auto &message : request.rigid_bodies()) {
-    const proto::BodyPose pose = proto::read_body_pose(message);
+  for (const participant::BodyPose &pose : poses) {
     std::size_t b = 0;
     while (b < bodies_.size() && !(bodies_[b]->name() == pose.name && bodies_[b]->coupled_motion()))
       ++b;
@@ -196,12 +192,13 @@ const double *OpenFoamFluidModel::unpack_rigid_poses(double time_s, const double
     pose.linear() = Eigen::Map<const Eigen::Matrix3d>(begin + 1);
     pose.translation() = Eigen::Map<const Vec3>(begin + 10);
     bodies_[static_cast<std::size_t>(begin[0])]->coupled_motion()->set(time_s, pose, Eigen::Map<const Vec3>(begin + 13),
-                                                                      Eigen::Map<const Vec3>(begin + 16));
+                                                                       Eigen::Map<const Vec3>(begin + 16));
   }
   return begin;
 }
 
-void OpenFoamFluidModel::finish(bool success) {
+void OpenFoamFluidModel::finish(const participant::RunEnd &end) {
+  const bool success = end.success();
   message_.assign({success ? 1.0 : 0.0});
   broadcast(Command::finish, message_);
   log_lagrangian_stats();
@@ -301,7 +298,8 @@ void OpenFoamFluidModel::log_lagrangian_stats() {
 }
 
 void OpenFoamFluidModel::do_start(const std::vector<double> &point_measures) {
-  point_measures_ = Eigen::Map<const Eigen::VectorXd>(point_measures.data(), static_cast<Eigen::Index>(point_measures.size()));
+  point_measures_ =
+      Eigen::Map<const Eigen::VectorXd>(point_measures.data(), static_cast<Eigen::Index>(point_measures.size()));
 }
 
 void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) {
@@ -453,8 +451,8 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
       if (now && !before) {
         switching[0] += 1.0;
         const Vec3 u_rib = rigid_velocity_.row(c).transpose() / penalization_rate_[c];
-        switching[2] += 0.5 * config_.density_kg_per_m3 * cells_.volumes_m3()[c] *
-                        (u_now.row(c).transpose() - u_rib).squaredNorm();
+        switching[2] +=
+            0.5 * config_.density_kg_per_m3 * cells_.volumes_m3()[c] * (u_now.row(c).transpose() - u_rib).squaredNorm();
       } else if (before && !now) {
         switching[1] += 1.0;
       }
@@ -487,9 +485,9 @@ rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s
   const auto &body = *bodies_[b];
   // Torque about the body's centre (the centre of its bounding box, carried by its motion).
   const Vec3 centre = body.motion().pose_at(time_s) * body.body_box_m().center();
-  rigid::BodyLoad load = rigid::BodyLoads::from_source_on_fluid(*indicators_[b], cells_.centres_m(), penalization_force_,
-                                                                cells_.volumes_m3(), centre);
-  double sums[6] = {load.force_n.x(), load.force_n.y(), load.force_n.z(),
+  rigid::BodyLoad load = rigid::BodyLoads::from_source_on_fluid(*indicators_[b], cells_.centres_m(),
+                                                                penalization_force_, cells_.volumes_m3(), centre);
+  double sums[6] = {load.force_n.x(),    load.force_n.y(),    load.force_n.z(),
                     load.torque_n_m.x(), load.torque_n_m.y(), load.torque_n_m.z()};
   flow_.sum_over_ranks(sums, 6); // each rank has the part of the body in its cells
   load.force_n = Vec3(sums[0], sums[1], sums[2]);

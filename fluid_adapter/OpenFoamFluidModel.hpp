@@ -9,7 +9,7 @@
 // force and torque of the fluid on each body go back to the coupler.
 //
 // MPI: every rank holds a model over its own cells. The master (rank 0) talks to the coupler
-// through FluidParticipant and broadcasts each request to the other ranks, which run follow().
+// through participant::FluidParticipant and broadcasts each request to the other ranks, which run follow().
 // Kernel widths (the nearest cell over all ranks), weight sums and interpolated velocities are
 // reduced over the ranks; spreading touches only local cells.
 
@@ -22,7 +22,7 @@
 #include "fluid_adapter/rigid/BodyLoads.hpp"
 #include "fluid_adapter/rigid/ImmersedWallDistance.hpp"
 #include "fluid_adapter/rigid/RigidBody.hpp"
-#include "proto/FluidModel.hpp"
+#include "participant/FluidModel.hpp"
 
 #include <filesystem>
 #include <memory>
@@ -51,27 +51,26 @@ struct PenalizationSwitching {
   double transpiration_power_w = 0.0;
 };
 
-class OpenFoamFluidModel final : public proto::FluidModel {
+class OpenFoamFluidModel final : public participant::FluidModel {
 public:
   OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &flow,
                      std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies = {});
 
   std::string describe() const override;
-  void start(const proto::v2::Welcome &welcome) override;
-  void interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
-                   proto::MutablePointsView u_m_per_s) override;
-  void advance(const proto::v2::FluidAdvance &request, proto::PointsView force_density_n_per_measure,
-               proto::v2::AdvanceReply &reply) override;
+  void start(const participant::RunPlan &plan) override;
+  void interpolate(double time_s, participant::PointsView x_m, participant::MutablePointsView u_m_per_s) override;
+  void advance(const participant::FluidStep &step, participant::PointsView force_density_n_per_measure,
+               std::vector<participant::BodyLoad> &loads) override;
   /// The next advance spreads at these points (the coupling law two_point_sets): a second
   /// kernel stencil, built on every rank.
-  void spread_at(proto::PointsView x_m) override;
+  void spread_at(participant::PointsView x_m) override;
   /// Implicit coupling: every rank keeps its fields before a step, and puts them back.
   void save_step_start() override;
   void restore_step_start() override;
-  void finish(bool success) override;
+  void finish(const participant::RunEnd &end) override;
   /// Checkpoints (serial runs): the fields of the current time, written and copied into the set
   /// of step n in `checkpoints_root_` (FoamCheckpoint).
-  std::pair<std::string, std::string> write_checkpoint(long n_completed) override;
+  checkpoint::CheckpointPart write_checkpoint(long n_completed) override;
   /// The restart was prepared before OpenFOAM started (the case starts from the checkpoint's
   /// time folder): the coupler's step and checksum must be that checkpoint's.
   void resume(long step, const std::string &checksum) override;
@@ -94,12 +93,20 @@ private:
   FlowStepTimings timings_;
   PenalizationSwitching switching_;
   long cut_off_steps_ = 0; ///< steps in which the bodies cut water off (FoamFlow::cut_off_cells), for the log
-  enum class Command { start = 1, interpolate = 2, advance = 3, finish = 4, write_now = 5, spread_at = 6,
-                       save_step = 7, restore_step = 8 };
+  enum class Command {
+    start = 1,
+    interpolate = 2,
+    advance = 3,
+    finish = 4,
+    write_now = 5,
+    spread_at = 6,
+    save_step = 7,
+    restore_step = 8
+  };
   void broadcast(Command command, std::vector<double> &payload);
-  /// The moving bodies' poses of a FluidAdvance (at t + dt), appended for the other ranks:
-  /// their number, then per body its index and 18 values (rotation, origin, v_o, omega).
-  void pack_rigid_poses(const proto::v2::FluidAdvance &request, std::vector<double> &out) const;
+  /// The moving bodies' poses of a step (at t + dt), appended for the other ranks: their
+  /// number, then per body its index and 18 values (rotation, origin, v_o, omega).
+  void pack_rigid_poses(const std::vector<participant::BodyPose> &poses, std::vector<double> &out) const;
   /// Sets the bodies' coupled motions from such a block; returns the end of the block.
   const double *unpack_rigid_poses(double time_s, const double *begin, const double *end);
   void do_start(const std::vector<double> &point_measures);

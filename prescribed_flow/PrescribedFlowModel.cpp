@@ -13,7 +13,7 @@ constexpr char part_name[] = "fluid.ckpt";
 PrescribedFlowModel::PrescribedFlowModel(std::unique_ptr<FlowField> flow, std::filesystem::path checkpoints)
     : checkpoints_(std::move(checkpoints)), flow_(std::move(flow)) {}
 
-std::pair<std::string, std::string> PrescribedFlowModel::write_checkpoint(long n_completed) {
+checkpoint::CheckpointPart PrescribedFlowModel::write_checkpoint(long n_completed) {
   const auto folder = checkpoint::CheckpointSet::folder_of(checkpoints_, n_completed);
   std::filesystem::create_directories(folder);
   checkpoint::StateArchive archive;
@@ -38,11 +38,10 @@ std::string PrescribedFlowModel::describe() const {
   return "prescribed, " + flow_->describe() + " (one-way coupling: the FSI force does not act on this flow)";
 }
 
-void PrescribedFlowModel::interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
-                                      proto::MutablePointsView u_m_per_s) {
+void PrescribedFlowModel::interpolate(double time_s, PointsView x_m, participant::MutablePointsView u_m_per_s) {
   positions_ = x_m;
   velocities_.resize(positions_.rows(), 3);
-  flow_->velocities(positions_, request.time_s(), velocities_);
+  flow_->velocities(positions_, time_s, velocities_);
   u_m_per_s = velocities_;
 }
 

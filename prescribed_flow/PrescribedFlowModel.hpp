@@ -5,32 +5,33 @@
 // (coupling.h5), which a two-way model would feel.
 
 #include "FlowField.hpp"
-#include "proto/FluidModel.hpp"
+#include "participant/FluidModel.hpp"
 
 #include <filesystem>
 #include <memory>
 
 namespace fsi::prescribed_flow {
 
-class PrescribedFlowModel final : public proto::FluidModel {
+class PrescribedFlowModel final : public participant::FluidModel {
+  using PointsView = participant::PointsView;
+
 public:
   /// checkpoints: the run's <output>/checkpoints, where its part of each set goes.
   PrescribedFlowModel(std::unique_ptr<FlowField> flow, std::filesystem::path checkpoints);
 
   std::string describe() const override;
-  void start(const proto::v2::Welcome &) override {}
-  void interpolate(const proto::v2::InterpolateRequest &request, proto::PointsView x_m,
-                   proto::MutablePointsView u_m_per_s) override;
+  void start(const participant::RunPlan &) override {}
+  void interpolate(double time_s, PointsView x_m, participant::MutablePointsView u_m_per_s) override;
   /// One-way coupling: the flow is prescribed, so F_fsi (Eq. 8) is not spread, wherever.
-  void spread_at(proto::PointsView) override {}
+  void spread_at(PointsView) override {}
   /// A function of time and place: a repeated step is the same step.
   void save_step_start() override {}
   void restore_step_start() override {}
-  void advance(const proto::v2::FluidAdvance &, proto::PointsView, proto::v2::AdvanceReply &) override {}
-  void finish(bool) override {}
+  void advance(const participant::FluidStep &, PointsView, std::vector<participant::BodyLoad> &) override {}
+  void finish(const participant::RunEnd &) override {}
   /// The flow is a function of time and place: the part (fluid.ckpt) holds the step and the
   /// flow's description only, so that a restart checks that the flow is the same one.
-  std::pair<std::string, std::string> write_checkpoint(long n_completed) override;
+  checkpoint::CheckpointPart write_checkpoint(long n_completed) override;
   void resume(long step, const std::string &checksum) override;
 
 private:

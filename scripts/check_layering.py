@@ -6,7 +6,8 @@ layering (docs/layout.md). Top to bottom:
                 (tests/ and bench/ sit beside them)
   case          the whole case.yaml, its options and schema
   physics       structure_solver, coupler, prescribed_flow, fluid_adapter, pump (never each other)
-  foundations   proto, geometry, hdf5, checkpoint, motion (geometry may use motion)
+  foundations   participant, proto, geometry, hdf5, checkpoint, motion (participant may use
+                proto and checkpoint, geometry motion)
   common        configuration framework, logging, types, exit codes
 
 No file is exempt. A file's module is the first folder of its path, an executable's the folder
@@ -25,13 +26,14 @@ import re
 import sys
 
 PHYSICS = {"structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump"}
-FOUNDATIONS = {"proto", "geometry", "hdf5", "checkpoint", "motion"}
+FOUNDATIONS = {"participant", "proto", "geometry", "hdf5", "checkpoint", "motion"}
 BELOW_APPS = {"case"} | PHYSICS | FOUNDATIONS | {"common"}
 # What each module may include besides itself.
 ALLOWED = {
     "apps": BELOW_APPS,
     "case": PHYSICS | FOUNDATIONS | {"common"},
     **{m: FOUNDATIONS | {"common"} for m in PHYSICS},
+    "participant": {"proto", "checkpoint", "common"},
     "proto": {"common"},
     "geometry": {"motion", "common"},
     "hdf5": {"common"},

@@ -2,7 +2,7 @@
 
 #include "common/ExitCodes.hpp"
 #include "common/FormatDuration.hpp"
-#include "proto/FluidParticipant.hpp"
+#include "participant/FluidParticipant.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -49,7 +49,7 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
   auto last_report = start;
   double t = 0.0;
   for (long step = 0; step < n_steps; ++step) {
-    if (proto::FluidParticipant::stop_signal() != 0) {
+    if (participant::FluidParticipant::stop_signal() != 0) {
       spdlog::warn("{} interrupted at t = {:.6g} s", schedule.label, t);
       flow.write_now();
       return common::exit_code_interrupted;

@@ -1,6 +1,6 @@
 #include "SelfLaunch.hpp"
 
-#include "proto/FluidParticipant.hpp"
+#include "participant/FluidParticipant.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -37,7 +37,7 @@ int run_self(int argc, char **argv, const std::vector<std::string> &extra) {
   while (waitpid(child, &status, 0) < 0) {
     if (errno != EINTR)
       throw std::runtime_error(std::string("waiting for the precursor run: ") + std::strerror(errno));
-    const int signal = proto::FluidParticipant::stop_signal();
+    const int signal = participant::FluidParticipant::stop_signal();
     if (signal != 0 && !forwarded) {
       kill(child, signal);
       forwarded = true;

@@ -9,7 +9,7 @@
 namespace fsi::apps {
 
 /// Runs this program again with its arguments and `extra`, and waits for it; a stop signal
-/// received meanwhile (proto::FluidParticipant::stop_signal) is passed on. Returns its exit code.
+/// received meanwhile (participant::FluidParticipant::stop_signal) is passed on. Returns its exit code.
 int run_self(int argc, char **argv, const std::vector<std::string> &extra);
 
 /// Replaces this process by mpirun running n ranks of this program (with --mpi-rank) on the

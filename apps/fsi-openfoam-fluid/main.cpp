@@ -32,7 +32,7 @@
 #include "common/GuardedMain.hpp"
 #include "common/Logging.hpp"
 #include "common/UserError.hpp"
-#include "proto/FluidParticipant.hpp"
+#include "participant/FluidParticipant.hpp"
 #include "proto/ZmqContext.hpp"
 
 #include <CLI/CLI.hpp>
@@ -49,7 +49,7 @@ namespace fs = std::filesystem;
 using fsi::case_config::CaseConfig;
 using fsi::fluid::Precursor;
 
-extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_signal() = signal; }
+extern "C" void on_stop_signal(int signal) { fsi::participant::FluidParticipant::stop_signal() = signal; }
 
 /// What this process runs: the coupled participant, the precursor (the flow with its rigid
 /// bodies alone, section 3.2), or a case without structures (the flow alone, to its end).
@@ -174,7 +174,8 @@ int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, f
   }
   if (process.under_mpirun)
     fsi::common::add_log_file(out / "fluid.log");
-  fsi::proto::FluidParticipant participant(model, fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_FLUID));
+  fsi::participant::FluidParticipant participant(
+      model, fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_FLUID));
   return participant.run();
 }
 
@@ -182,8 +183,8 @@ int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, f
 /// precursor (no coupler) they follow their declared motions.
 std::vector<std::unique_ptr<fsi::fluid::rigid::RigidBody>> bodies_for(Role role, const CaseConfig &config) {
   auto bodies = fsi::apps::rigid_bodies(config.collisions ? config.collisions->surfaces
-                                                           : std::vector<fsi::geometry::SurfaceConfig>{},
-                                         config.gravity_m_per_s2.norm());
+                                                          : std::vector<fsi::geometry::SurfaceConfig>{},
+                                        config.gravity_m_per_s2.norm());
   if (role == Role::coupled)
     for (auto &body : bodies)
       if (!body->motion().is_static())
@@ -255,9 +256,9 @@ int main(int argc, char **argv) {
     if (process.under_mpirun && process.restart && process.role == Role::coupled) {
       // The ranks started by mpirun after the install: the same newest set (its step only).
       std::vector<std::string> skipped;
-      const auto found = fsi::checkpoint::CheckpointSet(base / "checkpoints", config.restart_fingerprint(),
-                                                        config.run.checkpoint_keep)
-                             .newest(skipped);
+      const auto found =
+          fsi::checkpoint::CheckpointSet(base / "checkpoints", config.restart_fingerprint(), config.run.checkpoint_keep)
+              .newest(skipped);
       restart_step = found ? found->step : 0;
     }
     const bool precursor_run = process.role == Role::precursor;

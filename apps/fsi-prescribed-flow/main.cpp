@@ -7,7 +7,7 @@
 
 #include "prescribed_flow/FlowFactory.hpp"
 #include "prescribed_flow/PrescribedFlowModel.hpp"
-#include "proto/FluidParticipant.hpp"
+#include "participant/FluidParticipant.hpp"
 #include "case/ParticipantSettings.hpp"
 #include "common/Allocator.hpp"
 #include "common/ConfigError.hpp"
@@ -26,7 +26,7 @@
 #include <csignal>
 
 namespace {
-extern "C" void on_stop_signal(int signal) { fsi::proto::FluidParticipant::stop_signal() = signal; }
+extern "C" void on_stop_signal(int signal) { fsi::participant::FluidParticipant::stop_signal() = signal; }
 } // namespace
 
 int main(int argc, char **argv) {
@@ -48,12 +48,13 @@ int main(int argc, char **argv) {
     const std::filesystem::path out = options.output_directory(config);
     std::filesystem::create_directories(out);
     fsi::common::add_log_file(out / "fluid.log");
-    auto settings = fsi::case_config::participant_settings(config, options.endpoint, case_dir, fsi::proto::v2::ROLE_FLUID);
+    auto settings =
+        fsi::case_config::participant_settings(config, options.endpoint, case_dir, fsi::proto::v2::ROLE_FLUID);
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     fsi::prescribed_flow::PrescribedFlowModel model(fsi::prescribed_flow::make_flow(*config.fluid->prescribed),
                                                     out / "checkpoints");
-    fsi::proto::FluidParticipant participant(model, std::move(settings));
+    fsi::participant::FluidParticipant participant(model, std::move(settings));
     return participant.run();
   });
 }

@@ -15,7 +15,8 @@
 #include "case/SchemaDoc.hpp"
 #include "case/ParticipantSettings.hpp"
 #include "structure_solver/MemoryBudget.hpp"
-#include "structure_solver/StructureParticipant.hpp"
+#include "participant/StructureParticipant.hpp"
+#include "structure_solver/CoupledStructure.hpp"
 #include "prescribed_flow/FlowFactory.hpp"
 #include "structure_solver/StructureRun.hpp"
 #include "proto/TransportError.hpp"
@@ -106,11 +107,14 @@ int main(int argc, char **argv) {
       spdlog::error("--coupled: case {} has no `fluid` section, so there is nothing to couple to", case_dir);
       return fsi::common::exit_code_bad_input;
     }
-    auto settings = fsi::case_config::participant_settings(config, options.endpoint, case_dir, fsi::proto::v2::ROLE_STRUCTURE);
+    auto settings =
+        fsi::case_config::participant_settings(config, options.endpoint, case_dir, fsi::proto::v2::ROLE_STRUCTURE);
     auto setup = fsi::case_config::structure_setup(std::move(config));
-    setup.rigid_motions_from_coupler = true; // the coupler evaluates the prescribed motions
+    setup.rigid_motions_from_coupler = true;                             // the coupler evaluates the prescribed motions
+    settings.stop_signal = &fsi::structure::StructureRun::stop_signal(); // its handler, installed by the run
     fsi::structure::StructureRun run(std::move(setup), case_dir, out);
-    fsi::structure::StructureParticipant participant(run, std::move(settings));
+    fsi::structure::CoupledStructure structure(run);
+    fsi::participant::StructureParticipant participant(structure, std::move(settings));
     return participant.run();
   });
 }

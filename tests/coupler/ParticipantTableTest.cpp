@@ -5,7 +5,7 @@
 
 #include "coupler/CouplingErrors.hpp"
 #include "coupler/ParticipantTable.hpp"
-#include "proto/ParticipantSession.hpp"
+#include "participant/ParticipantSession.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,8 +25,8 @@ protected:
   proto::CouplerChannel channel{proto::Endpoint::parse("tcp://127.0.0.1:0")};
   ParticipantTable table{channel, Liveness{50ms, 500ms, 20s}, nullptr};
 
-  proto::SessionSettings settings(const std::string &name) {
-    proto::SessionSettings s;
+  participant::SessionSettings settings(const std::string &name) {
+    participant::SessionSettings s;
     s.coupler = channel.endpoint();
     s.role = proto::v2::ROLE_STRUCTURE;
     s.name = name;
@@ -50,7 +50,7 @@ protected:
 };
 
 TEST_F(LivenessTest, AParticipantThatStopsIsNamedWithinTheTimeout) {
-  auto session = std::make_unique<proto::ParticipantSession>(settings("doomed"));
+  auto session = std::make_unique<participant::ParticipantSession>(settings("doomed"));
   auto joined = std::async(std::launch::async, [&] { session->handshake(); });
   const std::string id = accept_one();
   joined.get();
@@ -86,7 +86,7 @@ TEST_F(LivenessTest, AJoinedParticipantWaitingForTheOthersIsNotDeclaredDead) {
 }
 
 TEST_F(LivenessTest, ABusyParticipantStaysAliveThroughItsHeartbeat) {
-  proto::ParticipantSession session(settings("slow"));
+  participant::ParticipantSession session(settings("slow"));
   auto joined = std::async(std::launch::async, [&] { session.handshake(); });
   const std::string id = accept_one();
   joined.get();
@@ -104,7 +104,7 @@ TEST_F(LivenessTest, ABusyParticipantStaysAliveThroughItsHeartbeat) {
 }
 
 TEST_F(LivenessTest, MissingReplyOfALiveParticipantHitsTheStepDeadline) {
-  proto::ParticipantSession session(settings("hung"));
+  participant::ParticipantSession session(settings("hung"));
   auto joined = std::async(std::launch::async, [&] { session.handshake(); });
   const std::string id = accept_one();
   joined.get();
@@ -118,7 +118,7 @@ TEST_F(LivenessTest, MissingReplyOfALiveParticipantHitsTheStepDeadline) {
 }
 
 TEST_F(LivenessTest, StrangersAreAnsweredWithAnErrorAndTheWaitGoesOn) {
-  proto::ParticipantSession session(settings("main"));
+  participant::ParticipantSession session(settings("main"));
   auto joined = std::async(std::launch::async, [&] { session.handshake(); });
   const std::string id = accept_one();
   joined.get();

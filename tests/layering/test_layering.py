@@ -15,8 +15,8 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 CHECK = os.path.join(ROOT, "scripts", "check_layering.py")
-MODULES = ["apps", "case", "structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump", "proto", "geometry", "hdf5",
-           "checkpoint", "motion", "common"]
+MODULES = ["apps", "case", "structure_solver", "coupler", "prescribed_flow", "fluid_adapter", "pump", "participant", "proto",
+           "geometry", "hdf5", "checkpoint", "motion", "common"]
 
 
 def check(root):
@@ -105,6 +105,51 @@ class SolverLinks(unittest.TestCase):
             self.assertIn("fsi_structure_config", closure, target)
             self.assertNotIn("fsi_structure", closure, target)
         self.assertIn("fsi_structure", layering.link_closure(ROOT, "fsi-structure"))
+
+
+def load_script(name):
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(name, os.path.join(ROOT, "scripts", name + ".py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class FunctionLengths(unittest.TestCase):
+    """The run loops stay readable: no function of the participant runtime, the coupler or the
+    OpenFOAM solver over 60 lines, no participant handler (a request of the coupler answered)
+    over 25 (scripts/function_lengths.py)."""
+
+    def test_no_function_of_the_run_loops_is_over_60_lines(self):
+        lengths = load_script("function_lengths")
+        long = [(path, name, n) for folder in ["participant", "coupler", "fluid_adapter/solver"]
+                for path in lengths.sources([os.path.join(ROOT, folder)])
+                for name, _, n in lengths.function_lengths(path) if n > 60]
+        self.assertEqual(long, [])
+
+    def test_no_participant_handler_is_over_25_lines(self):
+        lengths = load_script("function_lengths")
+        handlers = 0
+        for path in glob.glob(os.path.join(ROOT, "participant", "*Participant.cpp")):
+            with open(path) as f:
+                names = re.findall(r"\bon\(proto::Envelope::k\w+, \"\w+\", \[this\]\(const auto &m\) \{ (\w+)\(m\); \}\)",
+                                   f.read())
+            cls = os.path.basename(path)[:-4]
+            measured = {name.split("::")[-1]: n for name, _, n in lengths.function_lengths(path)
+                        if name.startswith(cls + "::")}
+            for name in names:
+                handlers += 1
+                self.assertLessEqual(measured[name], 25, "%s::%s" % (cls, name))
+        self.assertEqual(handlers, 3)  # InterpolateRequest, FluidAdvance, StructureAdvance
+
+    def test_the_measure_counts_a_definition_from_its_signature_to_its_closing_brace(self):
+        lengths = load_script("function_lengths")
+        path = os.path.join(tempfile.mkdtemp(prefix="fsi-lengths-"), "f.cpp")
+        with open(path, "w") as f:
+            f.write("namespace a {\nint f();\nA::A(int x)\n    : x_(x) {}\n\nvoid A::g(int y) {\n  if (y) {\n"
+                    "    h(\"}\");\n  }\n}\n} // namespace a\n")
+        self.assertEqual(lengths.function_lengths(path), [("A::A", 3, 2), ("A::g", 6, 5)])
+        shutil.rmtree(os.path.dirname(path))
 
 
 class Layering(unittest.TestCase):

@@ -1,10 +1,13 @@
 #include "ParticipantSession.hpp"
 
-#include "TransportError.hpp"
+#include "proto/TransportError.hpp"
 
 #include <spdlog/spdlog.h>
 
-namespace fsi::proto {
+namespace fsi::participant {
+
+using proto::Envelope;
+using proto::Message;
 
 namespace {
 using std::chrono::milliseconds;
@@ -18,12 +21,12 @@ ParticipantSession::ParticipantSession(SessionSettings settings)
 
 ParticipantSession::~ParticipantSession() { stop_heartbeat(); }
 
-const v2::Welcome &ParticipantSession::handshake(const std::vector<v2::StructureTopology> &structures) {
-  Envelope hello = make_envelope(settings_.role, 0);
+const proto::v2::Welcome &ParticipantSession::handshake(const std::vector<proto::v2::StructureTopology> &structures) {
+  Envelope hello = proto::make_envelope(settings_.role, 0);
   auto *body = hello.mutable_hello();
   body->set_role(settings_.role);
   body->set_participant_name(settings_.name);
-  body->set_protocol_version(current_protocol_version);
+  body->set_protocol_version(proto::current_protocol_version);
   body->set_case_fingerprint(settings_.case_fingerprint);
   for (const auto &s : structures)
     *body->add_structures() = s;
@@ -40,7 +43,7 @@ const v2::Welcome &ParticipantSession::handshake(const std::vector<v2::Structure
   Envelope &reply = *welcome;
   if (!reply.has_welcome())
     throw CouplerLost("participant " + routing_id() + ": the coupler at " + settings_.coupler.str() +
-                      " answered the handshake with " + std::string(body_name(reply)) + " instead of Welcome");
+                      " answered the handshake with " + std::string(proto::body_name(reply)) + " instead of Welcome");
   welcome_ = reply.welcome();
   start_heartbeat(to_ms(welcome_.heartbeat_interval_s()));
   return welcome_;
@@ -104,14 +107,14 @@ Message &ParticipantSession::next_request() {
 }
 
 void ParticipantSession::send(Message &message) {
-  message.envelope().set_protocol_version(current_protocol_version);
+  message.envelope().set_protocol_version(proto::current_protocol_version);
   message.envelope().set_sender_role(settings_.role);
   channel_.send(message);
 }
 
 void ParticipantSession::report_error(const std::string &message, std::uint64_t step) noexcept {
   try {
-    Envelope error = make_envelope(settings_.role, step);
+    Envelope error = proto::make_envelope(settings_.role, step);
     error.mutable_error()->set_message(message);
     error.mutable_error()->set_fatal(true);
     channel_.send(error);
@@ -141,22 +144,22 @@ void ParticipantSession::heartbeat_loop(milliseconds interval) {
   // Its own socket (ZeroMQ sockets are single-threaded), so heartbeats go out while the main
   // thread is busy solving: the coupler tells a slow participant from a dead one.
   try {
-    ChannelOptions options = settings_.options;
+    proto::ChannelOptions options = settings_.options;
     options.send_timeout = milliseconds(1);
     options.linger = milliseconds(0); // stale heartbeats are worth nothing
-    ParticipantChannel beat(settings_.coupler, settings_.role, settings_.name + std::string(heartbeat_suffix), options);
+    proto::ParticipantChannel beat(settings_.coupler, settings_.role, settings_.name + std::string(proto::heartbeat_suffix), options);
     const auto start = std::chrono::steady_clock::now();
     std::unique_lock lock(heartbeat_mutex_);
     int reported = 0;
     while (!heartbeat_stop_) {
-      Envelope envelope = make_envelope(settings_.role, 0);
+      Envelope envelope = proto::make_envelope(settings_.role, 0);
       envelope.mutable_heartbeat()->set_wall_time_s(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       reported = reported_signal_;
       envelope.mutable_heartbeat()->set_stop_signal(reported);
       try {
         beat.send(envelope);
-      } catch (const TransportError &) {
+      } catch (const proto::TransportError &) {
         // Queue full: the coupler is not reading; the main thread's timeout handles it.
       }
       heartbeat_wakeup_.wait_for(lock, interval, [&] { return heartbeat_stop_ || reported_signal_ != reported; });
@@ -166,4 +169,4 @@ void ParticipantSession::heartbeat_loop(milliseconds interval) {
   }
 }
 
-} // namespace fsi::proto
+} // namespace fsi::participant

@@ -1,0 +1,43 @@
+#pragma once
+// What a structure computes for a coupled run, in domain types: StructureParticipant reads the
+// coupler's requests and calls these. Our model is the membrane solver (structure_solver/
+// CoupledStructure); a user's own structure implements the same (docs/protocol.md). All
+// arrays are N x 3, SI, all structures concatenated in the order of topology().
+
+#include "Model.hpp"
+#include "proto/BodyPose.hpp"
+#include "proto/PackedPoints.hpp"
+
+#include <vector>
+
+namespace fsi::participant {
+
+/// One step of the structure, from t^n to t^{n+1}.
+struct StructureStep {
+  long step = 0;       ///< n
+  double time_s = 0.0; ///< t^n
+  double dt_s = 0.0;
+  /// The moving rigid surfaces at t^{n+1}, where Eq. (11) corrects against them (every moving
+  /// surface of the case, nothing else).
+  std::vector<proto::BodyPose> surfaces;
+  /// false under implicit coupling: the step may be repeated, so its output waits for
+  /// Model::accept_step.
+  bool record = true;
+};
+
+class StructureModel : public Model {
+public:
+  /// The structures, declared to the coupler at the handshake (Hello); fixed for the run.
+  virtual std::vector<StructureTopology> topology() const = 0;
+
+  /// The state: X (m) and V (m/s) of every point, and the time it is at (s).
+  virtual void positions(proto::MutablePointsView x_m) const = 0;
+  virtual void velocities(proto::MutablePointsView v_m_per_s) const = 0;
+  virtual double time_s() const = 0;
+
+  /// Advances Eq. (4) and the collisions of Eq. (11) under the load -F_fsi^n (N per unit
+  /// measure). Throws Diverged, the last good state kept.
+  virtual void advance(const StructureStep &step, proto::PointsView load_density_n_per_measure) = 0;
+};
+
+} // namespace fsi::participant
