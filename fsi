@@ -52,6 +52,9 @@ set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 BUILD=${FSI_BUILD_DIR:-$ROOT/build}
+# The Python half is one package (python/fsi/): on PYTHONPATH once, for everything started from here
+# (runs, the cases' own scripts, CTest, studies); `python3 -m fsi.<module>` runs a module.
+export PYTHONPATH="$ROOT/python${PYTHONPATH:+:$PYTHONPATH}"
 JOBS=${FSI_JOBS:-$(nproc)}
 PACKAGES=(cmake ninja-build g++ ccache git pkg-config libeigen3-dev libspdlog-dev libfmt-dev libhdf5-dev
           libyaml-cpp-dev libcli11-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libnanoflann-dev
@@ -126,12 +129,12 @@ prepare() {
   build "$BUILD" -DCMAKE_BUILD_TYPE=Release -DFSI_REQUIRE_OPENFOAM=ON -- "$@" # no target: all
 }
 
-# The launcher (scripts/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
+# The launcher (python/fsi/fsi_launch.py) asks fsi-coupler --plan which processes the case needs
 # and starts them; the picture is drawn where the structure ran.
 cmd_run() {
   [ $# -ge 1 ] || die "usage: ./fsi run [-o DIR] [-v] [--resolution NAME] [--end-time S] [--restart] [--participant NAME] CASE_DIR"
   prepare "${RUN_TARGETS[@]}"
-  local launch=(/usr/bin/python3 "$ROOT/scripts/fsi_launch.py" --bin-dir "$BUILD/bin")
+  local launch=(/usr/bin/python3 -m fsi.fsi_launch --bin-dir "$BUILD/bin")
   local status=0 out="" participant="" prev=""
   for a in "$@"; do
     case "$prev" in --participant) participant=$a ;; esac
@@ -144,18 +147,18 @@ cmd_run() {
   out=$("${launch[@]}" --print-output-dir "$@" 2>/dev/null) || return "$status"
   local results="$out/structure.h5"
   if [ -n "$out" ] && [ -f "$results" ]; then
-    if /usr/bin/python3 "$ROOT/scripts/plot_structure.py" "$results" "$out/summary.png" 2>/dev/null; then
+    if /usr/bin/python3 -m fsi.plot_structure "$results" "$out/summary.png" 2>/dev/null; then
       say "picture: $out/summary.png"
     fi
-    # Probes (structure.h5 /probes) and forces (coupling.h5) against time: scripts/plot_quantities.py.
-    if /usr/bin/python3 "$ROOT/scripts/plot_quantities.py" "$out" 2>/dev/null && [ -f "$out/quantities.png" ]; then
+    # Probes (structure.h5 /probes) and forces (coupling.h5) against time: python/fsi/plot_quantities.py.
+    if /usr/bin/python3 -m fsi.plot_quantities "$out" 2>/dev/null && [ -f "$out/quantities.png" ]; then
       local tables=""
       [ -f "$out/probes.csv" ] && tables="$out/probes.csv"
       [ -f "$out/forces.csv" ] && tables="${tables:+$tables, }$out/forces.csv"
       say "quantities: $out/quantities.png${tables:+ ($tables)}"
     fi
-    # OpenFOAM runs: |U| on a slice through the sheet at a few times (scripts/plot_flow.py).
-    if [ -d "$out/openfoam" ] && /usr/bin/python3 "$ROOT/scripts/plot_flow.py" "$out" >/dev/null 2>&1; then
+    # OpenFOAM runs: |U| on a slice through the sheet at a few times (python/fsi/plot_flow.py).
+    if [ -d "$out/openfoam" ] && /usr/bin/python3 -m fsi.plot_flow "$out" >/dev/null 2>&1; then
       say "flow pictures: $(ls "$out"/flow_t*.png | tr '\n' ' ')"
     fi
   fi
@@ -165,8 +168,8 @@ cmd_run() {
   case_dir=$("${launch[@]}" --print-case-dir "$@" 2>/dev/null) || case_dir=${!#}
   if [ -n "$out" ] && { [ -f "$results" ] || [ -f "$out/forces.csv" ]; } && [ -f "$case_dir/postprocess.py" ]; then
     local made
-    # scripts/ on PYTHONPATH: a copy of the case away from the repository imports its helpers too
-    if made=$(PYTHONPATH="$ROOT/scripts${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
+    # python/ on PYTHONPATH (above): a copy of the case away from the repository imports the package too
+    if made=$(/usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
       say "case quantities: $made (in $out)"
     else
       say "warning: $case_dir/postprocess.py failed: $(echo "$made" | tail -1)"
@@ -181,7 +184,7 @@ cmd_check() {
   # A case's generated inputs first (cases/<case>/prepare.py: the pump's geometry), as ./fsi run.
   local case_dir=${!#}
   if [ -f "$case_dir/prepare.py" ]; then
-    PYTHONPATH="$ROOT/scripts${PYTHONPATH:+:$PYTHONPATH}" /usr/bin/python3 "$case_dir/prepare.py" "$case_dir" "$BUILD/bin" ||
+    /usr/bin/python3 "$case_dir/prepare.py" "$case_dir" "$BUILD/bin" ||
       die "preparing $case_dir failed (see above)"
   fi
   "$BUILD/bin/fsi-structure" --check "$@"
@@ -294,22 +297,22 @@ case "${1:-help}" in
   bench) shift; cmd_bench "$@" ;;
   schema) prepare fsi-structure; "$BUILD/bin/fsi-structure" --schema ;;
   build) prepare ;;
-  report) shift; prepare; /usr/bin/python3 "$ROOT/scripts/report.py" --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
+  report) shift; prepare; /usr/bin/python3 -m fsi.report --bin-dir "$BUILD/bin" --out "$ROOT/report" "$@" ;;
   pump-design)
     shift; [ $# -ge 1 ] || die "usage: ./fsi pump-design DESIGN.yaml [--write DIR] (e.g. pump/designs/single-blade.yaml)"
     prepare fsi-pump-design; "$BUILD/bin/fsi-pump-design" "$@" ;;
   pump-curve)
     shift; [ $# -ge 1 ] || die "usage: ./fsi pump-curve [--points F,F,...] [--jobs N] [--resolution NAME] CASE_DIR"
-    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/pump_curve.py" --bin-dir "$BUILD/bin" "$@" ;;
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.pump_curve --bin-dir "$BUILD/bin" "$@" ;;
   rag-ensemble)
     shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
-    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/rag_ensemble.py" --bin-dir "$BUILD/bin" "$@" ;;
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.rag_ensemble --bin-dir "$BUILD/bin" "$@" ;;
   coupling-study)
-    shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/coupling_study.py" --bin-dir "$BUILD/bin" "$@" ;;
+    shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.coupling_study --bin-dir "$BUILD/bin" "$@" ;;
   fuzz) shift; cmd_fuzz "$@" ;;
   submit)
     shift; [ $# -ge 1 ] || die "usage: ./fsi submit [--partition P] [--time T] [--fluid-nodes N] [--dry-run] CASE_DIR [CASE_DIR ...]"
-    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 "$ROOT/scripts/fsi_submit.py" --bin-dir "$BUILD/bin" "$@" ;;
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.fsi_submit --bin-dir "$BUILD/bin" "$@" ;;
   keys)
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;

@@ -1,10 +1,16 @@
+# FSI_PYTHON: the interpreter every Python test runs under, with the project's package
+# (python/fsi/) and the tests' shared helpers (tests/support/) on PYTHONPATH, as ./fsi sets it
+# for everything it starts: no script edits sys.path.
+set(FSI_PYTHON ${CMAKE_COMMAND} -E env "PYTHONPATH=${PROJECT_SOURCE_DIR}/python:${PROJECT_SOURCE_DIR}/tests/support"
+    /usr/bin/python3)
+
 # fsi_add_python_tests: one CTest test per class of a Python unittest script.
 #
 #   fsi_add_python_tests(PREFIX coupled.physics SCRIPT test_coupled_physics.py LABEL coupled
 #                        ENVIRONMENT "A=1" "B=2" [RUN_SERIAL]
 #                        TESTS Relaxation:60 HangingFilament:90)
 #
-# adds coupled.physics.Relaxation (timeout 60 s) running `/usr/bin/python3 SCRIPT -v Relaxation`
+# adds coupled.physics.Relaxation (timeout 60 s) running `${FSI_PYTHON} SCRIPT -v Relaxation`
 # in the script's folder. Exit code 77 means skipped (a Debian python3-* package or an
 # executable the test needs is missing; the test says which).
 function(fsi_add_python_tests)
@@ -15,7 +21,7 @@ function(fsi_add_python_tests)
     list(GET parts 1 timeout)
     set(name ${ARG_PREFIX}.${class})
     add_test(NAME ${name}
-             COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/${ARG_SCRIPT} -v ${class}
+             COMMAND ${FSI_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/${ARG_SCRIPT} -v ${class}
              WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
     set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABEL}" TIMEOUT ${timeout}
                          ENVIRONMENT "${ARG_ENVIRONMENT}" SKIP_RETURN_CODE 77)

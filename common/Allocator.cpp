@@ -5,7 +5,7 @@
 namespace fsi::common {
 namespace {
 
-// The same values as ALLOCATOR_TUNABLES in scripts/fsi_launch.py.
+// The same values as ALLOCATOR_TUNABLES in python/fsi/fsi_launch.py.
 constexpr int mmap_threshold_bytes = 32 << 20; // glibc's largest on 64-bit; bigger blocks are mmapped
 constexpr int trim_threshold_bytes = 256 << 20;
 

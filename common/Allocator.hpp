@@ -12,7 +12,7 @@ namespace fsi::common {
 /// start of main, before the solver allocates; calling it again does nothing more. Both
 /// settings are needed: either alone turns glibc's adaptive thresholds off and is worse. Stock
 /// OpenFOAM programs started by our scripts get the same values through GLIBC_TUNABLES
-/// (scripts/fsi_launch.py, ALLOCATOR_TUNABLES).
+/// (python/fsi/fsi_launch.py, ALLOCATOR_TUNABLES).
 void keep_freed_memory();
 
 } // namespace fsi::common

@@ -6,7 +6,7 @@
 // most once a second (a flush of 11 datasets costs about 0.1 ms, as much as a whole coupled
 // step of 10^3 points) and at every status change: a run that dies loses at most the last
 // second of timings. The root attribute `complete_steps`, rewritten after each flush, is the
-// number of rows a reader may trust (scripts/results_file.py).
+// number of rows a reader may trust (python/fsi/results_file.py).
 
 #include "StepTimings.hpp"
 #include "hdf5/ExtendableDataset.hpp"

@@ -132,7 +132,7 @@ void Precursor::invalidate() const {
   // Every earlier file goes, unlinked rather than overwritten: a precursor folder seeded with
   // hard links (./fsi rag-ensemble's members, a copy made with cp -al) then never writes into
   // the files it shares with another run's precursor. The launcher's console files stay: it has
-  // just made them anew (scripts/fsi_launch.py) and writes the solver's residuals into them.
+  // just made them anew (python/fsi/fsi_launch.py) and writes the solver's residuals into them.
   std::error_code error;
   if (fs::is_directory(folder_))
     for (const auto &entry : fs::directory_iterator(folder_))

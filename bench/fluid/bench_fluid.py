@@ -68,8 +68,7 @@ import numpy as np
 import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from fsi_launch import ALLOCATOR_TUNABLES  # noqa: E402  (the settings of common/Allocator.hpp)
+from fsi.fsi_launch import ALLOCATOR_TUNABLES  # noqa: E402  (the settings of common/Allocator.hpp)
 FOAM_ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
 HEADER = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"
 GOALS = {"a": 1.02, "b": 1.10, "c": 1.15, "b0": 1.10, "c0": 1.15, "c1": 1.25, "c2": 1.25}
@@ -306,7 +305,7 @@ def run_ours(bin_dir, case_dir, run_dir, warmup):
     shutil.rmtree(run_dir, ignore_errors=True)
     start = time.perf_counter()
     with open(os.path.join(os.path.dirname(run_dir), os.path.basename(run_dir) + ".launch.log"), "w") as log:
-        rc = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir,
+        rc = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir,
                              "-o", run_dir, case_dir], stdout=log, stderr=subprocess.STDOUT, env=FOAM_ENV).returncode
     total = time.perf_counter() - start
     h5_path = os.path.join(run_dir, "coupling.h5")

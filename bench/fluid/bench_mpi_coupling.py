@@ -55,7 +55,7 @@ def write_case(folder, n_side, ranks, steps):
 
 def run(bin_dir, case, out):
     shutil.rmtree(out, ignore_errors=True)
-    result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir,
+    result = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir,
                              "-o", out, case], stdin=subprocess.DEVNULL, capture_output=True, text=True, env=FOAM_ENV)
     if result.returncode != 0:
         raise RuntimeError("run %s failed (exit %d): %s" % (case, result.returncode, result.stderr[-2000:]))

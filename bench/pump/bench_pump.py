@@ -2,7 +2,7 @@
 """bench_pump.py: the cost of a revolution of the centrifugal pump (issue 11, "Speed"; run by
 `./fsi bench pump`), the penalized impeller (ours) side by side with the same geometry meshed
 body-fitted with the impeller in a rotating zone and an AMI to the casing (stock pimpleFoam,
-scripts/pump_ami_run.py), at the same cell size and time step, interleaved in one run:
+python/fsi/pump_ami_run.py), at the same cell size and time step, interleaved in one run:
 
     bench_pump.py --bin-dir BIN [--resolution coarse] [--ours-resolution coarse-gaps] [--revolutions 1]
                   [--rounds 1] [-o DIR]
@@ -32,9 +32,8 @@ import numpy as np
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-import fsi_launch  # noqa: E402
-import pump_ami_run  # noqa: E402
+from fsi import fsi_launch  # noqa: E402
+from fsi import pump_ami_run  # noqa: E402
 
 CASE = os.path.join(ROOT, "cases", "centrifugal-pump")
 CELLS = re.compile(r"PIMPLE, (\d+) cells")  # the fluid's description (the mesh may come from the cache)
@@ -42,7 +41,7 @@ LOOP = re.compile(r"flow: t = [0-9.eE+-]+ of [0-9.eE+-]+ s, step (\d+)/(\d+), ([
 
 
 def ours(bin_dir, resolution, end_time, out):
-    command = [sys.executable, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir, "-o", out,
+    command = [sys.executable, os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir, "-o", out,
                "--end-time", repr(end_time), "--resolution", resolution, CASE]
     start = time.monotonic()
     subprocess.run(command, check=True, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -31,15 +31,14 @@ import numpy
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-import fsi_launch  # noqa: E402
+from fsi import fsi_launch  # noqa: E402
 
 CASE = os.path.join(ROOT, "cases", "rag-in-pump")
 ITERATIONS = re.compile(r"Solving for (\w+), Initial residual = \S+, Final residual = \S+, No Iterations (\d+)")
 
 
 def launch(bin_dir, case, out, end_time, resolution):
-    command = [sys.executable, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir, "-o", out,
+    command = [sys.executable, os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir, "-o", out,
                "--end-time", repr(end_time)] + (["--resolution", resolution] if resolution else []) + [case]
     made = subprocess.run(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     if made.returncode != 0:

@@ -6,10 +6,10 @@ regions are wall patches, group `impeller`) and turns with a rotor cell zone tha
 stator through a cyclicAMI pair (AMI1 in the stator, AMI2 on the rotor), run by stock pimpleFoam:
 
     /usr/bin/python3 cases/centrifugal-pump/make_ami_case.py [--geometry DIR]
-    /usr/bin/python3 scripts/pump_ami_run.py cases/centrifugal-pump -o OUT   (meshes and runs)
+    /usr/bin/python3 python/fsi/pump_ami_run.py cases/centrifugal-pump -o OUT   (meshes and runs)
 
 One folder per resolution: openfoam-ami-coarse and openfoam-ami-medium (the background cubes of
-h = D2/25, D2/50, as the penalized ones). The mesh is made by scripts/pump_ami_run.py (or by hand):
+h = D2/25, D2/50, as the penalized ones). The mesh is made by python/fsi/pump_ami_run.py (or by hand):
     blockMesh; snappyHexMesh -overwrite; createBaffles -overwrite; mergeOrSplitBaffles -split -overwrite
 snappyHexMesh carves the impeller (constant/triSurface/impeller.stl) out of the casing
 (casing.stl) and marks the rotor, a cylinder (searchableCylinder) around the impeller: radius
@@ -32,10 +32,8 @@ import sys
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 import make_case  # noqa: E402
-from foam_case import write_foam_file  # noqa: E402
+from fsi.foam_case import write_foam_file  # noqa: E402
 
 RESOLUTIONS = {"coarse": 25, "medium": 50}   # cells across D2, as make_case.RESOLUTIONS
 GAP_CELL = 0.002                             # m: the cells in the impeller-casing gaps
@@ -176,7 +174,7 @@ omega           %(w)r;   // rad/s
 """
 
 FUNCTIONS_MORE = """    // The fluid's force (N) and torque (N m, about the origin on the axis) on the impeller's
-    // patches, pressure and viscous parts, every step: scripts/pump_ami_run.py writes them
+    // patches, pressure and viscous parts, every step: python/fsi/pump_ami_run.py writes them
     // to forces.csv.
     forces
     {

@@ -31,8 +31,7 @@ import sys
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-from foam_case import write_foam_file  # noqa: E402
+from fsi.foam_case import write_foam_file  # noqa: E402
 
 NU, RHO = 1.0e-6, 1000.0            # water: m^2/s, kg/m^3
 NU_TILDA_IN = 3.0 * NU              # free-stream nuTilda / nu = 3 (Spalart & Rumsey 2007)

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
 """After a run of centrifugal-pump (./fsi run calls it; ./fsi pump-curve calls it per point): the
-operating point averaged over the last whole revolutions (scripts/pump_point.py: head H, shaft
+operating point averaged over the last whole revolutions (python/fsi/pump_point.py: head H, shaft
 torque T, efficiency, psi, phi, the once-per-revolution pulsation), written to
 operating_point.yaml, and operating_point.png: T and H against revolutions with the averaged
 window, and the spectrum of T in multiples of the rotation frequency (24 Hz), where a single
 blade shows its once-per-revolution pulsation. With ParaView's Python, also the head budget of
-the last fields (scripts/pump_head_budget.py: the total head at the suction pipe, the
+the last fields (python/fsi/pump_head_budget.py: the total head at the suction pipe, the
 impeller's outlet, the volute and the discharge pipe, beside the Euler head T omega / (rho g Q)
 the shaft puts in): where the head is made and lost.
 Usage: postprocess.py RESULTS_DIR CASE_DIR"""
@@ -21,9 +21,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-import pump_head_budget  # noqa: E402
-import pump_point  # noqa: E402
+from fsi import pump_head_budget  # noqa: E402
+from fsi import pump_point  # noqa: E402
 
 
 def rotation(case_dir):
@@ -100,7 +99,7 @@ def main():
     point = pump_point.operating_point(out, omega, axis, radius, flow_rate(out))
     point.update(budget(out, design, point))
     with open(os.path.join(out, "operating_point.yaml"), "w") as f:
-        f.write("# The operating point of this run (scripts/pump_point.py), SI units.\n")
+        f.write("# The operating point of this run (python/fsi/pump_point.py), SI units.\n")
         yaml.safe_dump(point, f, sort_keys=False)
     picture(out, omega, axis, point, os.path.join(out, "operating_point.png"))
     print("operating_point.yaml (H = %.3g m, T = %.3g N m, eta = %.2f), operating_point.png"

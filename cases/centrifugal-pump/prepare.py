@@ -8,7 +8,7 @@ is deterministic: a regenerated geometry has the same bytes, and the cached snap
 stay valid. After a generation it rewrites the OpenFOAM cases' files (make_case.py,
 make_ami_case.py), which follow the geometry. It takes about 5 s.
 
-    prepare.py CASE_DIR BIN_DIR     (scripts/fsi_launch.py runs it before every run of the case)
+    prepare.py CASE_DIR BIN_DIR     (python/fsi/fsi_launch.py runs it before every run of the case)
 
 To run the case on your own STL files instead, see docs/pump-own-geometry.md.
 """

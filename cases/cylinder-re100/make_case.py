@@ -16,11 +16,9 @@ Geometry (D = 0.02 m, cylinder on the z axis at the origin):
 
 import math
 import os
-import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-from foam_case import cylinder_stl  # noqa: E402
+from fsi.foam_case import cylinder_stl  # noqa: E402
 
 D = 0.02                     # m
 CELLS_PER_D = 16

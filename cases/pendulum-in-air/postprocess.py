@@ -21,7 +21,7 @@ def main(out, case_dir):
         f.write(result.stdout)
     made = ["free_edge.png", "free_edge.txt"]
     if os.path.isdir(os.path.join(out, "openfoam")):
-        plot_flow = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "plot_flow.py")
+        plot_flow = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python", "fsi", "plot_flow.py")
         if subprocess.run([sys.executable, plot_flow, out, "--normal", "y"], capture_output=True).returncode == 0:
             made.append("flow_t*.png (plane of the swing)")
     print(", ".join(made))

@@ -17,11 +17,9 @@ Geometry (section 3.2 of the paper; x streamwise, y spanwise, z vertical, gravit
 """
 
 import os
-import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-from foam_case import cylinder_stl, write_foam_file  # noqa: E402
+from fsi.foam_case import cylinder_stl, write_foam_file  # noqa: E402
 
 LENGTH, SIDE = 0.8, 0.15            # m
 POLE_X, POLE_D, POLE_GAP = 0.2, 0.016, 0.01   # m: axis, diameter, gap above the floor

@@ -68,7 +68,7 @@ def main(out, case_dir):
     fig.savefig(os.path.join(out, "rag_path.png"), dpi=110)
     made = ["rag_path.png", "rag_path.csv"]
     if os.path.isdir(os.path.join(out, "openfoam")):
-        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "plot_flow.py")
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python", "fsi", "plot_flow.py")
         if subprocess.run([sys.executable, script, out, "--normal", "y"], capture_output=True).returncode == 0:
             made.append("flow_t*.png (side view)")
     print(", ".join(made))

@@ -1,18 +1,18 @@
 #!/usr/bin/python3
 """After a run of rag-in-pump (./fsi run calls it; ./fsi rag-ensemble calls it per member): the
-clogging metrics (scripts/rag_metrics.py: outcome, residence time, time to the cut-water, wrap on
+clogging metrics (python/fsi/rag_metrics.py: outcome, residence time, time to the cut-water, wrap on
 the leading edge, trap sites, what the rag costs the pump, strain and wall distance) written to
 rag_metrics.csv, rag_metrics.yaml and rag_summary.png; and the pictures of the passage
-(scripts/plot_rag_in_pump.py: rag_sequence.png as the paper's Figs. 12-13, rag_wrap.png as its
+(python/fsi/plot_rag_in_pump.py: rag_sequence.png as the paper's Figs. 12-13, rag_wrap.png as its
 Fig. 14, rag_passage.mp4); and the impeller at its pose of every saved frame for ParaView
-(scripts/impeller_xdmf.py: impeller.xdmf beside structure.xdmf).
+(python/fsi/impeller_xdmf.py: impeller.xdmf beside structure.xdmf).
 Usage: postprocess.py RESULTS_DIR CASE_DIR [--no-animation]"""
 
 import sys
 
-import impeller_xdmf  # scripts/, on PYTHONPATH (./fsi run, ./fsi rag-ensemble)
-import plot_rag_in_pump
-import rag_metrics
+from fsi import impeller_xdmf  # scripts/, on PYTHONPATH (./fsi run, ./fsi rag-ensemble)
+from fsi import plot_rag_in_pump
+from fsi import rag_metrics
 
 
 def main(argv):

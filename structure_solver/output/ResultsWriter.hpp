@@ -15,7 +15,7 @@
 //
 // The file is flushed after every step and status change, so it stays readable when the
 // process dies. The root attribute `complete_steps`, rewritten after each step's rows are
-// flushed, is the number of rows a reader may trust (ResultsReader, scripts/results_file.py):
+// flushed, is the number of rows a reader may trust (ResultsReader, python/fsi/results_file.py):
 // a process killed during a flush may leave a row extended but not written.
 
 #include "hdf5/H5Handle.hpp"

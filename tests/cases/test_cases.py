@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The shipped cases of cases/ (pendulum-in-air, flag-in-crossflow, rag-settling-in-still-water,
-rag-in-prescribed-flow) run through scripts/fsi_launch.py with their coarse preset (shortened
+rag-in-prescribed-flow) run through python/fsi/fsi_launch.py with their coarse preset (shortened
 where a full run would be too long for a test), against derived or measured references.
 
     FSI_BIN_DIR=build/bin WM_PROJECT_DIR=/usr/share/openfoam FOAM_ETC=/usr/share/openfoam/etc \\
@@ -18,12 +18,12 @@ Each test writes into its own temporary folder (FSI_KEEP_TEST_DIRS=1 keeps it).
 import os
 import re
 import shutil
+import tempfile
 import subprocess
 import sys
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "coupled"))
 
 from coupled_support import (BIN_DIR, LAUNCHER, PYTHON, STRUCTURE, TempDirTest,  # noqa: E402
                              case_dir, load_case, np, reference, write_case)
@@ -31,19 +31,16 @@ from coupled_support import (BIN_DIR, LAUNCHER, PYTHON, STRUCTURE, TempDirTest, 
 import h5py  # noqa: E402  (coupled_support has checked that it is installed)
 import yaml  # noqa: E402
 
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-from pump_point import read_dat  # noqa: E402  (scripts/pump_point.py)
+from fsi.pump_point import read_dat  # noqa: E402  (python/fsi/pump_point.py)
 
 load_case_yaml = yaml.safe_load
 
-sys.dont_write_bytecode = True  # the case scripts imported below: no __pycache__ in cases/
+sys.dont_write_bytecode = True  # the case scripts loaded below: no __pycache__ in cases/
 
-sys.path.insert(0, case_dir("pendulum-in-air"))
-sys.path.insert(0, case_dir("flag-in-crossflow"))
-import free_edge  # noqa: E402  (cases/pendulum-in-air/free_edge.py)
-import fsi_launch  # noqa: E402  (scripts/fsi_launch.py)
-import pump_head_budget  # noqa: E402  (scripts/pump_head_budget.py)
-import flapping  # noqa: E402  (cases/flag-in-crossflow/flapping.py)
+from fsi import case_module, fsi_launch, pump_head_budget  # noqa: E402  (python/fsi/)
+
+free_edge = case_module("pendulum-in-air", "free_edge")  # cases/pendulum-in-air/free_edge.py
+flapping = case_module("flag-in-crossflow", "flapping")  # cases/flag-in-crossflow/flapping.py
 
 OPENFOAM_FLUID = os.path.join(BIN_DIR, "fsi-openfoam-fluid")
 CASES = ("pendulum-in-air", "flag-in-crossflow", "rag-settling-in-still-water", "rag-in-prescribed-flow")
@@ -269,7 +266,18 @@ class CentrifugalPumpRefusals(CaseTest):
     """What a broken OpenFOAM case of the pump gives: a clear error and a non-zero exit, not a
     silent exit 0 (argList's destructor used to end the process with status 0 when the fluid's
     set-up threw), no mesh cut off by a background box that misses the outlet, and a step that
-    fails stops the run with the last good fields on disk (not the failed step's)."""
+    fails stops the run with the last good fields on disk (not the failed step's). The tests share
+    one mesh cache: the two whose mesh is the case's mesh it once."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.mesh_cache = tempfile.mkdtemp(prefix="fsi-pump-refusals-meshes-")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.mesh_cache, ignore_errors=True)
+        super().tearDownClass()
 
     def prepared_copy(self):
         """A copy of the case away from the repository, its geometry generated anew there (as a
@@ -280,8 +288,8 @@ class CentrifugalPumpRefusals(CaseTest):
         self.assertTrue(os.path.isfile(os.path.join(case, "geometry", "generated-from")))
         return case
 
-    def launch_one_step(self, case, end_time="0.00025"):
-        os.environ["FSI_MESH_CACHE"] = os.path.join(self.tmp, "mesh-cache")
+    def launch_one_step(self, case, end_time="0.00025", mesh_cache=None):
+        os.environ["FSI_MESH_CACHE"] = mesh_cache or self.mesh_cache
         try:
             result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", os.path.join(self.tmp, "out"),
                                      "--end-time", end_time, case], stdin=subprocess.DEVNULL,
@@ -297,7 +305,7 @@ class CentrifugalPumpRefusals(CaseTest):
         with open(block) as f:
             x_max = re.search(r"\(\S+ \S+ \S+\) \((\S+) ", f.read()).group(1)  # the second vertex's x
         self.edit(block, x_max, "0.3")  # the discharge pipe reaches x = 0.54 m
-        code, err = self.launch_one_step(case)
+        code, err = self.launch_one_step(case, mesh_cache=os.path.join(self.tmp, "mesh-cache"))
         self.assertEqual(code, 1, err[-2000:])
         self.assertIn("reaches the background box", err)
         self.assertIn("block patch 'background'", err)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks of scripts/plot_rag_in_pump.py (the pictures of cases/rag-in-pump) on a synthetic run
+"""Checks of python/fsi/plot_rag_in_pump.py (the pictures of cases/rag-in-pump) on a synthetic run
 written here: a structure.h5 in the layout of docs/results.md (a 4 x 3 rag, 5 frames), small
 ASCII STL files with the pump's region names (a box casing; an impeller of a hub plate, a shroud
 plate and a blade plate) and a case.yaml whose impeller turns about -z. No executable needed.
@@ -32,8 +32,7 @@ except ImportError as e:  # ctest reports exit code 77 as "skipped", with this l
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # no __pycache__ in scripts/ or pump/
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-import plot_rag_in_pump  # noqa: E402  (scripts/plot_rag_in_pump.py)
+from fsi import plot_rag_in_pump  # noqa: E402  (python/fsi/plot_rag_in_pump.py)
 
 THRESHOLD_M = 0.004
 RATE = 10.0               # rad/s about -z

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""scripts/rag_ensemble.py without running a case: the Wilson interval against its closed
+"""python/fsi/rag_ensemble.py without running a case: the Wilson interval against its closed
 form and known values, and the seeded draw of releases (every rag point inside the sump with
 two collision distances to spare, upright, reproducible for a seed and different for another).
 
@@ -9,15 +9,13 @@ two collision distances to spare, upright, reproducible for a seed and different
 import math
 import os
 import random
-import sys
 import unittest
 
 import numpy as np
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-import rag_ensemble  # noqa: E402
+from fsi import rag_ensemble  # noqa: E402
 
 CASE = os.path.join(HERE, "..", "..", "cases", "rag-in-pump")
 

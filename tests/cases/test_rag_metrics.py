@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""scripts/rag_metrics.py (the clogging metrics of a rag in a pump, docs/rag-metrics.md) on
+"""python/fsi/rag_metrics.py (the clogging metrics of a rag in a pump, docs/rag-metrics.md) on
 synthetic pumps and trajectories with known answers. No built binaries, no run: a few seconds.
 
     /usr/bin/python3 tests/cases/test_rag_metrics.py -v [Class]
@@ -34,10 +34,9 @@ except ImportError as error:  # ctest reports exit code 77 as "skipped", with th
     sys.exit(77)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 sys.dont_write_bytecode = True
-import impeller_xdmf  # noqa: E402  (scripts/impeller_xdmf.py)
-import rag_metrics  # noqa: E402  (scripts/rag_metrics.py)
+from fsi import impeller_xdmf  # noqa: E402  (python/fsi/impeller_xdmf.py)
+from fsi import rag_metrics  # noqa: E402  (python/fsi/rag_metrics.py)
 
 RATE = 2 * math.pi * 10.0          # rad/s: T = 0.1 s
 PERIOD = 2 * math.pi / RATE

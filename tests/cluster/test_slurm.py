@@ -24,11 +24,9 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
-LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
-SUBMIT = os.path.join(ROOT, "scripts", "fsi_submit.py")
+LAUNCH = os.path.join(ROOT, "python", "fsi", "fsi_launch.py")
+SUBMIT = os.path.join(ROOT, "python", "fsi", "fsi_submit.py")
 
 try:
     import slurm_cluster

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Coupled runs against derived references: the real fsi-coupler, fsi-structure --coupled and
-fsi-prescribed-flow, started by scripts/fsi_launch.py, over ZeroMQ on loopback.
+fsi-prescribed-flow, started by python/fsi/fsi_launch.py, over ZeroMQ on loopback.
 
     FSI_BIN_DIR=build/bin /usr/bin/python3 tests/coupled/test_coupled_physics.py [Class]
 

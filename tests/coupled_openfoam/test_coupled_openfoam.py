@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Two-way coupled runs with the OpenFOAM fluid (fsi-coupler, fsi-structure --coupled,
-fsi-openfoam-fluid), started by scripts/fsi_launch.py, against derived references.
+fsi-openfoam-fluid), started by python/fsi/fsi_launch.py, against derived references.
 
     FSI_BIN_DIR=build/bin /usr/bin/python3 tests/coupled_openfoam/test_coupled_openfoam.py [Class]
 

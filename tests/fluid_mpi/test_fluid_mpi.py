@@ -56,7 +56,7 @@ class OneAndTwoRanks(unittest.TestCase):
         text = open(control).read().replace("writeFormat     binary", "writeFormat     ascii")
         open(control, "w").write(text.replace("writeInterval   0.01", "writeInterval   0.005"))
         out = os.path.join(self.tmp, "out%d-%g" % (ranks, origin_x_m))
-        result = subprocess.run([PYTHON, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", BIN_DIR,
+        result = subprocess.run([PYTHON, os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", BIN_DIR,
                                  "-o", out, case], stdin=subprocess.DEVNULL, capture_output=True, timeout=600)
         self.assertEqual(result.returncode, 0, result.stderr.decode()[-3000:])
         foam = os.path.join(out, "openfoam")

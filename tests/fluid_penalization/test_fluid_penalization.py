@@ -33,7 +33,6 @@ import sys
 import time
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from penalization_support import (BIN_DIR, LAUNCHER, PYTHON, Block, PenalizationTest, box_triangles, bystander_sheet,  # noqa: E402
                                   cylinder_triangles, latest_time_dir, read_internal_field,
                                   rigid_body_loads, tube_triangles, write_case, write_openfoam_case,

@@ -25,7 +25,7 @@ import sys
 import time
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "fluid_penalization"))
+from fsi import case_module  # noqa: E402
 from penalization_support import (HEADER, SOURCE_DIR, Block, PenalizationTest, box_triangles,  # noqa: E402
                                   bystander_sheet, latest_time_dir, read_internal_field, rigid_body_loads,
                                   status_of, write_case, write_openfoam_case, write_stl, h5py, np, yaml)
@@ -90,10 +90,8 @@ class CylinderRe100(PenalizationTest):
             with open(os.path.join(case, "case.yaml"), "w") as f:
                 yaml.safe_dump(config, f, sort_keys=False)
         # The mesh thickness H and D from the case's generator (make_case.py).
-        sys.path.insert(0, self.CASE)
         sys.dont_write_bytecode = True   # nothing written into the source tree
-        import make_case
-        sys.path.pop(0)
+        make_case = case_module(os.path.basename(self.CASE), "make_case", os.path.dirname(self.CASE))
         self.assertEqual(make_case.D, self.D)
         h = make_case.H
         if reuse:

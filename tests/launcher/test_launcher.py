@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Contract tests of scripts/fsi_launch.py (the launcher behind `./fsi run`), against fake
+"""Contract tests of python/fsi/fsi_launch.py (the launcher behind `./fsi run`), against fake
 fsi-coupler / fsi-structure / fsi-prescribed-flow executables written into a temporary bin
 folder. The fakes follow the executables' contract (--plan, coupler.endpoint, spdlog-like
 lines, exit codes, signals) and record what they were given. Standard library only:
@@ -15,7 +15,7 @@ import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-LAUNCHER = os.path.join(HERE, "..", "..", "scripts", "fsi_launch.py")
+LAUNCHER = os.path.join(HERE, "..", "..", "python", "fsi", "fsi_launch.py")
 PYTHON = "/usr/bin/python3"
 
 # One fake for all three executables: its role comes from its file name, its behaviour from

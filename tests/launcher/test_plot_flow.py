@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks of scripts/plot_flow.py on a hand-written one-cell OpenFOAM case (ascii, no
+"""Checks of python/fsi/plot_flow.py on a hand-written one-cell OpenFOAM case (ascii, no
 structure): a PNG per time after 0, and exit 1 without results. Skipped without pvbatch.
     /usr/bin/python3 tests/launcher/test_plot_flow.py
 """
@@ -10,7 +10,7 @@ import tempfile
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(HERE, "..", "..", "scripts", "plot_flow.py")
+SCRIPT = os.path.join(HERE, "..", "..", "python", "fsi", "plot_flow.py")
 PVBATCH = shutil.which("pvbatch")
 
 HEADER = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks of scripts/plot_quantities.py on hand-written results files (the documented
+"""Checks of python/fsi/plot_quantities.py on hand-written results files (the documented
 layout of structure.h5 and coupling.h5): the picture and forces.csv when there is something to
 show, nothing at all (and exit 0, silent) when there is not.
     /usr/bin/python3 tests/launcher/test_plot_quantities.py
@@ -15,7 +15,7 @@ import h5py
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(HERE, "..", "..", "scripts", "plot_quantities.py")
+SCRIPT = os.path.join(HERE, "..", "..", "python", "fsi", "plot_quantities.py")
 
 
 def write_structure_h5(path, probes, n_saved=4):

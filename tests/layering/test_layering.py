@@ -41,7 +41,7 @@ def copy_of(tmp, name):
     return tree
 
 
-DOCUMENTED_FOLDERS = set(MODULES) | {"tests", "bench", "scripts", "cases", "docs", "cmake"}
+DOCUMENTED_FOLDERS = set(MODULES) | {"tests", "bench", "scripts", "python", "cases", "docs", "cmake"}
 
 
 def documented_paths(text):

@@ -29,11 +29,9 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
 COUPLER = os.path.join(BIN_DIR, "fsi-coupler")
-LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
+LAUNCH = os.path.join(ROOT, "python", "fsi", "fsi_launch.py")
 HOSTS = ("coupler", "structure", "fluid")
 
 try:

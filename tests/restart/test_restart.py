@@ -24,17 +24,15 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
 STRUCTURE = os.path.join(BIN_DIR, "fsi-structure")
 COUPLER = os.path.join(BIN_DIR, "fsi-coupler")
-LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
+LAUNCH = os.path.join(ROOT, "python", "fsi", "fsi_launch.py")
 
 try:
     import h5py
     import numpy
-    import state_archive
+    from fsi import state_archive
     from results_diff import differences
 except ImportError as missing:  # Debian's python3-h5py, python3-numpy
     print("skipped: %s" % missing)
@@ -230,10 +228,10 @@ class DamagedCheckpoints(Fixture):
 class KilledWriter(unittest.TestCase):
     """A run killed (kill -9) while it writes structure.h5 every step, 20 times at seeded random
     moments: the file opens, and the rows its `complete_steps` marker counts
-    (scripts/results_file.py) equal the uninterrupted run's, bit for bit."""
+    (python/fsi/results_file.py) equal the uninterrupted run's, bit for bit."""
 
     def test_the_marked_rows_of_a_killed_writer_are_complete(self):
-        from results_file import complete_rows
+        from fsi.results_file import complete_rows
         tmp = tempfile.mkdtemp(prefix="fsi_killed_writer_")
         self.addCleanup(shutil.rmtree, tmp, True)
         case = make_case(tmp)

@@ -33,8 +33,7 @@ ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
 COUPLER = os.path.join(BIN_DIR, "fsi-coupler")
 ROGUE = os.environ.get("FSI_ROGUE", os.path.join(ROOT, "build", "tests", "security", "fsi-rogue-client"))
-LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
+LAUNCH = os.path.join(ROOT, "python", "fsi", "fsi_launch.py")
 
 try:
     from results_diff import differences

@@ -30,8 +30,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
-LAUNCH = os.path.join(ROOT, "scripts", "fsi_launch.py")
-sys.path.insert(0, os.path.join(ROOT, "tests", "support"))
+LAUNCH = os.path.join(ROOT, "python", "fsi", "fsi_launch.py")
 
 try:
     import h5py

@@ -3,21 +3,19 @@
 asserting finite state, bounded energy and stretch, and no point inside a rigid body; cases
 beyond a threshold must stop cleanly (exit 1, status 'diverged: step N ... point ...', last
 saved state finite). Each class bisects its thresholds (largest stable time step, phi, K_fsi)
-with short runs and stores them as rows for OUT/stability.md (scripts/stability.py).
+with short runs and stores them as rows for OUT/stability.md (python/fsi/stability.py).
 
 Run one class: FSI_BIN_DIR=build/bin python3 test_stability.py -v StiffSheet
 (label 'stability': `./fsi test --stability`; not part of the default `./fsi test`).
 """
 
 import math
-import os
 import sys
 import unittest
 
 try:
     import numpy as np
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-    import stability as S
+    from fsi import stability as S
 except ImportError as e:  # python3-numpy, python3-h5py or python3-yaml missing
     print("skipped: %s" % e)
     sys.exit(77)

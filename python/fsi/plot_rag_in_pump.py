@@ -25,7 +25,7 @@ from a coupled run of cases/rag-in-pump (finished or interrupted):
 Usage: plot_rag_in_pump.py RUN_DIR CASE_DIR [--frames 8] [--no-animation]
 Python: write_pictures(run_dir, case_dir, frames=8, animation=True) -> list of files written.
 
-Reads RUN_DIR/structure.h5 (docs/results.md) and, as scripts/rag_metrics.py does, the run's
+Reads RUN_DIR/structure.h5 (docs/results.md) and, as python/fsi/rag_metrics.py does, the run's
 configuration (RUN_DIR/config.effective.yaml, else CASE_DIR/case.yaml): the collision threshold
 and surfaces, the rotating one the impeller (collisions.surfaces[].motion.rotation: its pose at
 time t is its STL turned by rate_rad_per_s * t about axis_direction through axis_point_m,
@@ -56,8 +56,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import ListedColormap, Normalize  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import rag_metrics  # noqa: E402  (scripts/rag_metrics.py: the pump's regions, exact distances)
+from fsi import rag_metrics  # noqa: E402  (python/fsi/rag_metrics.py: the pump's regions, exact distances)
 
 CONTACT_FACTOR = 1.5      # a rag point is in contact within CONTACT_FACTOR x threshold of the impeller
 FAR_FACTOR = 6.0          # distances are told up to FAR_FACTOR x threshold (the colour scale)

@@ -2,7 +2,7 @@
 the shipped cases in a temporary folder, OpenFOAM's ascii fields read with numpy, the cell
 centres of a one-block blockMesh channel, and the trapezoidal measure of the Lagrangian points.
 
-Builds on tests/coupled/coupled_support.py (where the executables are, how a run is launched).
+Builds on tests/support/coupled_support.py (where the executables are, how a run is launched).
 """
 
 import os
@@ -10,15 +10,13 @@ import re
 import shutil
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "coupled"))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 
 # Re-exported for the tests: EPS, StructureResults, TempDirTest, write_case.
 from coupled_support import (BIN_DIR, EPS, StructureResults, TempDirTest, case_dir,  # noqa: E402,F401
                              load_case, np, reference, write_case)
 
 import h5py  # noqa: E402  (coupled_support has checked that it is installed)
-from foam_case import set_foam_entry  # noqa: E402
+from fsi.foam_case import set_foam_entry  # noqa: E402
 
 OPENFOAM_FLUID = os.path.join(BIN_DIR, "fsi-openfoam-fluid")
 

@@ -28,7 +28,7 @@ except ImportError as e:  # ctest reports exit code 77 as "skipped", with this l
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE_DIR = os.path.abspath(os.path.join(HERE, "..", ".."))
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(SOURCE_DIR, "build", "bin"))
-LAUNCHER = os.path.join(SOURCE_DIR, "scripts", "fsi_launch.py")
+LAUNCHER = os.path.join(SOURCE_DIR, "python", "fsi", "fsi_launch.py")
 PYTHON = "/usr/bin/python3"
 COUPLER = os.path.join(BIN_DIR, "fsi-coupler")
 STRUCTURE = os.path.join(BIN_DIR, "fsi-structure")

@@ -35,10 +35,8 @@ import time
 
 import yaml
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import fsi_launch  # noqa: E402
-import pump_curve  # noqa: E402
+from fsi import fsi_launch  # noqa: E402
+from fsi import pump_curve  # noqa: E402
 
 LOCK = threading.Lock()
 # The coupler's progress line: "step 1674/2000  t = 0.4185 s (84%)  wall 9m34s  ETA 112.0 s ..."

@@ -11,7 +11,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from results_file import complete_rows  # noqa: E402
+from fsi.results_file import complete_rows  # noqa: E402
 import numpy as np  # noqa: E402
 
 

@@ -29,7 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+from fsi import ROOT, case_module
 J01 = 2.404825557695773  # first zero of the Bessel function J0
 
 
@@ -162,8 +162,7 @@ class FinerStrouhal:
         self.reference = None
 
     def __call__(self, out, config):
-        sys.path.insert(0, os.path.join(ROOT, "cases", "flag-in-crossflow"))
-        import flapping  # noqa: E402 (the case's own measurement)
+        flapping = case_module("flag-in-crossflow", "flapping")  # the case's own measurement
         result = flapping.analyse(out)
         if self.reference is None:
             self.reference = result["St_L"]
@@ -315,7 +314,7 @@ def launch(bin_dir, case, out, what):
     (the sum of coupling.h5's step times: start-up, meshing and a precursor are not counted), or
     of the whole run for a structure-only case."""
     start = time.monotonic()
-    result = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir,
+    result = subprocess.run([sys.executable, os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir,
                              "-o", out, case], stdin=subprocess.DEVNULL, capture_output=True)
     wall = time.monotonic() - start
     if result.returncode != 0:

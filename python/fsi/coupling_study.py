@@ -31,9 +31,9 @@ import time
 import h5py
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "cases", "flag-in-crossflow"))
-import flapping  # noqa: E402  (cases/flag-in-crossflow/flapping.py)
+from fsi import ROOT, case_module
+
+flapping = case_module("flag-in-crossflow", "flapping")  # cases/flag-in-crossflow/flapping.py
 
 
 def edit(text, pattern, replacement):
@@ -86,14 +86,14 @@ def make_case(runs_dir, name, source, law="penalty", k=None, dt=None, scheme=Non
 def run(case, bin_dir, timeout_s=3600):
     out = os.path.join(os.path.dirname(case), "out")
     started = time.time()
-    made = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "fsi_launch.py"), "--bin-dir", bin_dir,
+    made = subprocess.run([sys.executable, os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir,
                            "-o", out, case], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True, timeout=timeout_s)
     wall = time.time() - started
     row = {"out": out, "code": made.returncode, "wall_s": wall}
     script = os.path.join(case, "postprocess.py")  # the case's own quantities, as ./fsi run makes them
     if os.path.exists(script) and os.path.exists(os.path.join(out, "structure.h5")):
-        env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "scripts"))
+        env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
         subprocess.run([sys.executable, script, out, case], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, env=env)
     with h5py.File(os.path.join(out, "coupling.h5"), "r") as f:

@@ -1,7 +1,7 @@
 """The operating point of a pump run (a case without structures whose rigid body rotates): the
 head, the shaft torque, the efficiency and the once-per-revolution pulsation, averaged over the
 last whole revolutions after a settling period. Used by cases/centrifugal-pump/postprocess.py
-and scripts/pump_curve.py. Inputs, all in the run's output folder:
+and python/fsi/pump_curve.py. Inputs, all in the run's output folder:
   forces.csv            the fluid's force (N) and torque (N m, about the body's box centre, which
                         the generated impeller has on the axis) on each rigid body, every step
   openfoam/postProcessing/{inlet,outlet}TotalPressure/*/surfaceFieldValue.dat

@@ -3,7 +3,7 @@
 each of (at most) four OpenFOAM times after 0, as in Figs. 4 and 12 of the paper.
 
 Usage (ParaView's Python, no display needed):
-    pvbatch --force-offscreen-rendering scripts/plot_flow.py OUT_DIR
+    pvbatch --force-offscreen-rendering python/fsi/plot_flow.py OUT_DIR
             [--normal x|y|z] [--origin X Y Z] [--count N]
 OUT_DIR is a run's output folder: OUT_DIR/openfoam (the OpenFOAM case; a decomposed one,
 processor*/, is read as such) and, optional, OUT_DIR/structure.xdmf (+ structure.h5).

@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 
-import rag_metrics
+from fsi import rag_metrics
 
 
 def rotating_surface(run_dir, case_dir):

@@ -17,7 +17,7 @@ import h5py
 import numpy as np
 import yaml
 
-from results_file import complete_rows
+from fsi.results_file import complete_rows
 
 AXES = ("x", "y", "z")
 VELOCITY_AXES = ("u", "v", "w")

@@ -1,5 +1,5 @@
 """The one place that writes OpenFOAM dictionaries from Python: whole files for the case
-generators (cases/*/make_case.py) and the runs of stock OpenFOAM (scripts/pump_ami_run.py), and
+generators (cases/*/make_case.py) and the runs of stock OpenFOAM (python/fsi/pump_ami_run.py), and
 single entries read or set through OpenFOAM's own foamDictionary, never by pattern; plus closed
 STL solids, written as text. Standard library only."""
 

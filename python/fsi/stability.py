@@ -2,7 +2,7 @@
 """stability.py: driver of the numerical stability suite (issue 5, `./fsi test --stability`).
 
 Builds hard cases as Python dictionaries, writes them as case.yaml, runs them with
-scripts/fsi_launch.py (structure alone, or coupler + structure + prescribed flow), reads
+python/fsi/fsi_launch.py (structure alone, or coupler + structure + prescribed flow), reads
 structure.h5 back and checks it: finite state, bounded energy and stretch, no point inside a
 rigid body, a clean stop (exit 1, status 'diverged: step N ... point ...', last state finite)
 where a case is meant to diverge. Thresholds found by bisection are stored as JSON rows under
@@ -29,10 +29,10 @@ import h5py
 import numpy as np
 import yaml
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from fsi import ROOT
 BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(ROOT, "build", "bin"))
 OUT = os.environ.get("FSI_STABILITY_OUT", os.path.join(ROOT, "build", "stability"))
-LAUNCHER = os.path.join(ROOT, "scripts", "fsi_launch.py")
+LAUNCHER = os.path.join(ROOT, "python", "fsi", "fsi_launch.py")
 DIVERGED = re.compile(r"^diverged: step (\d+) \(t = [0-9.e+-]+ s\): structure '[^']+', point \d+")
 
 

@@ -29,11 +29,9 @@ import shlex
 import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-import fsi_launch  # noqa: E402
-from fsi_launch import UserError, say  # noqa: E402
+from fsi import ROOT
+from fsi import fsi_launch  # noqa: E402
+from fsi.fsi_launch import UserError, say  # noqa: E402
 
 try:
     import yaml
@@ -114,7 +112,7 @@ def coupled_script(case, plan, args, bin_dir):
     lines = header("fsi-" + os.path.basename(os.path.normpath(case)), os.path.join(out, "slurm", "slurm-%j.out"),
                    args, ["--nodes=1 --ntasks=2 --cpus-per-task=1",
                           "--nodes=%d --ntasks=%d" % (args.fluid_nodes, ranks)])
-    launch = "/usr/bin/python3 %s --bin-dir %s -o %s" % (q(os.path.join(ROOT, "scripts", "fsi_launch.py")), q(bin_dir),
+    launch = "/usr/bin/python3 %s --bin-dir %s -o %s" % (q(os.path.join(ROOT, "python", "fsi", "fsi_launch.py")), q(bin_dir),
                                                           q(out))
     lines += ["set -uo pipefail", "", RESUME.format(out=q(out)),
               "# The coupler listens on component 0's node, at a port of this job.",
@@ -139,7 +137,7 @@ def single_script(case, plan, args, bin_dir):
                    args, ["--nodes=1 --ntasks=1 --cpus-per-task=%d" % (2 if len(plan.processes) > 1 else 1)])
     lines += ["set -uo pipefail", "", RESUME.format(out=q(out)),
               '/usr/bin/python3 %s --bin-dir %s -o %s "${RESTART[@]}" %s' % (
-                  q(os.path.join(ROOT, "scripts", "fsi_launch.py")), q(bin_dir), q(out), q(case)), ""]
+                  q(os.path.join(ROOT, "python", "fsi", "fsi_launch.py")), q(bin_dir), q(out), q(case)), ""]
     return "\n".join(lines)
 
 
@@ -153,7 +151,7 @@ def array_script(cases, plans, args, bin_dir, folder):
               'CASE=${CASES[$SLURM_ARRAY_TASK_ID]}', 'OUT=${OUTS[$SLURM_ARRAY_TASK_ID]}',
               RESUME.format(out='"$OUT"'),
               '/usr/bin/python3 %s --bin-dir %s -o "$OUT" "${RESTART[@]}" "$CASE"' % (
-                  q(os.path.join(ROOT, "scripts", "fsi_launch.py")), q(bin_dir)), ""]
+                  q(os.path.join(ROOT, "python", "fsi", "fsi_launch.py")), q(bin_dir)), ""]
     return "\n".join(lines)
 
 

@@ -34,7 +34,7 @@ import types
 
 import numpy as np
 
-from results_file import complete_rows
+from fsi.results_file import complete_rows
 
 try:
     from scipy.spatial import cKDTree
@@ -916,7 +916,7 @@ def read_loads(run_dir, geometry, config, impeller_index=None):
     """{"torque": (t, shaft torque), "head": (t, head)} with what the run left; missing parts
     are None. Torque: forces.csv (columns <body>.torque_{x,y,z}_n_m or body<k>.t{x,y,z}_n_m),
     else coupling.h5 /rigid_bodies/<body>/torque_n_m; shaft torque = -axis . torque.
-    Head: (p_t,out - p_t,in) / (rho g) from openfoam/postProcessing (scripts/pump_point.py)."""
+    Head: (p_t,out - p_t,in) / (rho g) from openfoam/postProcessing (python/fsi/pump_point.py)."""
     loads, notes = {"torque": None, "head": None}, []
     torque = None
     path = os.path.join(run_dir, "forces.csv")
@@ -953,8 +953,7 @@ def read_loads(run_dir, geometry, config, impeller_index=None):
     else:
         notes.append("no torque (no forces.csv or coupling.h5 with a rigid body)")
     try:
-        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-        import pump_point
+        from fsi import pump_point
         t_in, p_in = pump_point.read_dat(run_dir, "inletTotalPressure")
         t_out, p_out = pump_point.read_dat(run_dir, "outletTotalPressure")
         rho = float(((config.get("fluid") or {}).get("openfoam") or {}).get("density_kg_per_m3", 1000.0))
@@ -985,7 +984,7 @@ def read_clean(path):
         point = _yaml().safe_load(f) or {}
     if "shaft_torque_n_m" not in point and "head_m" not in point:
         raise MetricsError("%s: neither shaft_torque_n_m nor head_m (an operating_point.yaml of "
-                           "scripts/pump_point.py is expected)" % path)
+                           "python/fsi/pump_point.py is expected)" % path)
     return {"torque": point.get("shaft_torque_n_m"), "head": point.get("head_m"),
             "flow_rate_m3_per_s": point.get("flow_rate_m3_per_s")}
 
@@ -1143,7 +1142,7 @@ def write_yaml(path, metrics, parameters, extra):
         for q, v in PAPER.items() if isinstance(v, dict)] + ["strain kept under %.0f %%" % (100 * PAPER["max_strain"])]
     doc.update(_plain(extra))
     with open(path, "w") as f:
-        f.write("# The clogging metrics of the rag (scripts/rag_metrics.py; docs/rag-metrics.md), SI units;\n"
+        f.write("# The clogging metrics of the rag (python/fsi/rag_metrics.py; docs/rag-metrics.md), SI units;\n"
                 "# null: undefined (never reached, no data).\n")
         yaml.safe_dump(doc, f, sort_keys=False, width=110)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """./fsi pump-curve: the performance curve of a pump case (cases/centrifugal-pump): the same
 case run at several flow rates, each point independent and averaged over its last whole
-revolutions (scripts/pump_point.py), written to pump_curve.csv and drawn in pump_curve.png (H/H_BEP
+revolutions (python/fsi/pump_point.py), written to pump_curve.csv and drawn in pump_curve.png (H/H_BEP
 and T/T_BEP against Q/Q_BEP, as the paper's Figs. 10-11, the efficiency on a second axis).
 
     pump_curve.py --bin-dir BIN [--points 0.36,0.6,0.8,1.0,1.2] [--method ibm|ami|both] [--jobs N] [--resolution NAME]
@@ -16,7 +16,7 @@ reported and the curve drawn with the others. A point already run with the same 
 flow rate and options (DIR/q<fraction>/run.complete) is not run again: its results are reused.
 --method ami runs the reference instead, --method both both of them: the same geometry meshed
 body-fitted with the impeller in a rotating zone behind an AMI, by stock pimpleFoam
-(scripts/pump_ami_run.py, in DIR/ami-q<fraction>/), the same averaging; the picture then shows
+(python/fsi/pump_ami_run.py, in DIR/ami-q<fraction>/), the same averaging; the picture then shows
 both curves scaled by the reference's BEP and the log the differences point by point.
 """
 
@@ -35,8 +35,7 @@ import time
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import fsi_launch  # noqa: E402
+from fsi import fsi_launch  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
 AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
@@ -161,7 +160,7 @@ def run_point(args, point):
     if point.method == "ibm":
         copy_case(args.case_dir, point)
         command = launcher_command(args, point.folder, point.case, point.flow_rate)
-    else:  # the reference: scripts/pump_ami_run.py on the case's openfoam-ami-<resolution>
+    else:  # the reference: python/fsi/pump_ami_run.py on the case's openfoam-ami-<resolution>
         os.makedirs(point.folder, exist_ok=True)
         point.case = args.case_dir
         command = [sys.executable, AMI_RUN, "--resolution", args.resolution or "coarse", "--flow-rate",

@@ -7,7 +7,7 @@ of the mesh inputs>, as apps/fsi-openfoam-fluid/OpenFoamCase.cpp does for the pe
 end_time with the logs in OUT/logs/, and the forces function object's output converted to
 OUT/forces.csv in the format of the penalized runs (time_s,body0.fx_n,...,body0.tz_n_m: the
 fluid's force and torque on the impeller, pressure + viscous, about the origin), so that
-scripts/pump_point.py's operating_point(OUT, ...) reads it unchanged.
+python/fsi/pump_point.py's operating_point(OUT, ...) reads it unchanged.
 
     pump_ami_run.py [--resolution coarse] [--flow-rate Q] [--end-time S] -o OUT CASE_DIR
 
@@ -29,12 +29,10 @@ import time
 
 import yaml
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import pump_head_budget  # noqa: E402
-import pump_point  # noqa: E402
-from foam_case import foam_entry, set_foam_entry, write_operating_point  # noqa: E402
-from fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
+from fsi import pump_head_budget  # noqa: E402
+from fsi import pump_point  # noqa: E402
+from fsi.foam_case import foam_entry, set_foam_entry, write_operating_point  # noqa: E402
+from fsi.fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
 for _name, _value in OPENFOAM_ENVIRONMENT.items():
     os.environ.setdefault(_name, _value)
@@ -403,7 +401,7 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
         except (ImportError, ValueError) as error:
             say("no head budget: %s" % error)
         with open(os.path.join(out_dir, "operating_point.yaml"), "w") as f:
-            f.write("# The operating point of this AMI run (scripts/pump_point.py), SI units.\n")
+            f.write("# The operating point of this AMI run (python/fsi/pump_point.py), SI units.\n")
             yaml.safe_dump(point, f, sort_keys=False)
         say("H = %.4g m, T = %.4g N m, eta = %.3f" % (point["head_m"], point["shaft_torque_n_m"], point["efficiency"]))
     return point

@@ -36,7 +36,7 @@ import sys
 import threading
 import time
 
-import foam_case  # scripts/: this script's own folder
+from fsi import foam_case  # scripts/: this script's own folder
 
 EXIT_OK, EXIT_RUN_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 POLL_S = 0.05
@@ -147,11 +147,12 @@ def output_args(args):
 
 
 def case_script_env():
-    """The environment for a case's own scripts (prepare.py, postprocess.py): this folder on
-    PYTHONPATH, so that they import its helpers also from a copy of the case elsewhere (a
-    pump-curve point, a case copied away from the repository)."""
+    """The environment for a case's own scripts (prepare.py, postprocess.py): this package's
+    folder on PYTHONPATH (as ./fsi sets it), so that they import it also from a copy of the case
+    elsewhere (a pump-curve point, a case copied away from the repository), and also when this
+    launcher was started without ./fsi."""
     env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.abspath(__file__)),
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                                       env.get("PYTHONPATH")]))
     return env
 
