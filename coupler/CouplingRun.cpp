@@ -6,6 +6,7 @@
 #include "ExplicitStep.hpp"
 #include "ImplicitStep.hpp"
 #include "common/ExitCodes.hpp"
+#include "common/Version.hpp"
 #include "common/Logging.hpp"
 #include "motion/MotionFactory.hpp"
 #include "proto/PackedPoints.hpp"
@@ -162,7 +163,7 @@ void CouplingRun::open() {
       throw HandshakeRefused(std::string("--restart: ") + e.what());
     }
   } else {
-    results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_.case_yaml, FSI_VERSION);
+    results_ = std::make_unique<CouplingResults>(output_dir_ / "coupling.h5", config_.case_yaml, common::code_version());
   }
   report_ = std::make_unique<RunReport>(*results_, n_steps_, dt_, config_.run.progress_interval_s,
                                         checkpoints_->first_step());

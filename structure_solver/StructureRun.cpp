@@ -8,6 +8,7 @@
 #include "common/FormatDuration.hpp"
 #include "common/Logging.hpp"
 #include "common/ExitCodes.hpp"
+#include "common/Version.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -70,7 +71,7 @@ void StructureRun::open_results() {
   std::filesystem::create_directories(output_dir_);
   std::ofstream(output_dir_ / "config.effective.yaml") << config_yaml_ << "\n";
   results_ = std::make_unique<output::ResultsWriter>(output_dir_ / "structure.h5", output_dir_ / "structure.xdmf",
-                                                     output::RunMetadata{config_yaml_, FSI_VERSION});
+                                                     output::RunMetadata{config_yaml_, common::code_version()});
   for (const auto &s : scene_->structures())
     results_->add_structure({s->name(), s->model(), s->grid_shape().first, s->grid_shape().second});
   open_probes();
