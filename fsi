@@ -215,10 +215,12 @@ cmd_test() {
   fi
   if [ "${FSI_SANITIZE:-1}" != "0" ]; then
     say "sanitizer pass (AddressSanitizer + UndefinedBehaviorSanitizer) of the structure tests"
-    # Release flags (no debug info) keep the CGAL-heavy sources quick to compile with sanitizers.
-    build "$ROOT/build-sanitize" -DCMAKE_BUILD_TYPE=Release -DFSI_SANITIZE=ON -DFSI_BUILD_BENCH=OFF \
+    # -O1, no debug info: the CGAL-heavy sources compile in 0.58 of the time of -O3 with the
+    # sanitizers (OrientedMesh.cpp: 33 s against 57 s), and -O1 is what AddressSanitizer advises.
+    build "$ROOT/build-sanitize" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
+      -DFSI_SANITIZE=ON -DFSI_BUILD_BENCH=OFF \
       -- fsi-structure test_common test_motion test_structure test_geometry test_collision test_output
-    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 FSI_SANITIZED=1 \
+    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS" -L structure --timeout 1800
   fi
 }
