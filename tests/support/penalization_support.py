@@ -13,24 +13,12 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 import unittest
 
-try:
-    import h5py
-    import numpy as np
-    import yaml
-except ImportError as e:  # ctest reports exit code 77 as "skipped", with this line
-    print("SKIP: %s (install python3-h5py, python3-numpy and python3-yaml)" % e)
-    sys.exit(77)
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE_DIR = os.path.abspath(os.path.join(HERE, "..", ".."))
-BIN_DIR = os.environ.get("FSI_BIN_DIR", os.path.join(SOURCE_DIR, "build", "bin"))
-LAUNCHER = os.path.join(SOURCE_DIR, "python", "fsi", "fsi_launch.py")
-PYTHON = "/usr/bin/python3"
+# The packages (a missing one skips the test, exit 77) and the paths of every coupled test.
+from coupled_support import BIN_DIR, LAUNCHER, PYTHON, SOURCE_DIR, h5py, np, yaml  # noqa: F401
 
 # ---- OpenFOAM case files ---------------------------------------------------------------------
 
