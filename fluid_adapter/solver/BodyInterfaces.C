@@ -108,7 +108,9 @@ Foam::labelList OpenFoamFlow::trapped_free_cells() const {
   });
   const regionSplit regions(mesh, blocked);
   // Open: a region with a face on a boundary whose pressure is fixed, or with the reference cell.
-  boolList open(regions.nRegions(), false);
+  // (never negative; said so, or GCC's -Walloc-size-larger-than sees a negative label become a size)
+  const label n_regions = std::max(regions.nRegions(), label(0));
+  boolList open(n_regions, false);
   const auto &p_boundary = p_->boundaryField();
   forAll(p_boundary, patch) {
     if (!p_boundary[patch].fixesValue())
@@ -123,7 +125,7 @@ Foam::labelList OpenFoamFlow::trapped_free_cells() const {
   Pstream::listCombineScatter(open);
   if (!std::any_of(open.begin(), open.end(), [](bool o) { return o; })) {
     // No fixed pressure and the reference cell inside a body: the largest free region is the water.
-    labelList size(regions.nRegions(), 0);
+    labelList size(n_regions, 0);
     forAll(rate, c) if (rate[c] <= 0.0) ++size[regions[c]];
     Pstream::listCombineGather(size, plusEqOp<label>());
     Pstream::listCombineScatter(size);
