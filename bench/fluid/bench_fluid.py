@@ -69,8 +69,8 @@ import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from fsi.fsi_launch import ALLOCATOR_TUNABLES  # noqa: E402  (the settings of common/Allocator.hpp)
+from fsi.foam_case import foam_header  # noqa: E402
 FOAM_ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
-HEADER = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"
 GOALS = {"a": 1.02, "b": 1.10, "c": 1.15, "b0": 1.10, "c0": 1.15, "c1": 1.25, "c2": 1.25}
 LABELS = {"stock": "stock pimpleFoam", "stockt": "stock pimpleFoam, our allocator settings (GLIBC_TUNABLES)", "a": "(a) ours, no structure (3x3 sheet far downstream)",
           "b": "(b) ours, 50x50-point sheet", "c": "(c) ours, rotating STL torus",
@@ -88,7 +88,7 @@ TORUS_VARIANTS = ("c", "c0", "c1", "c2", "cs", "cn")
 def write_foam_case(folder, cells, dt, n_steps):
     length = (0.4, 0.1, 0.1)
     files = {
-        "system/blockMeshDict": HEADER % ("dictionary", "blockMeshDict") + """convertToMeters 1;
+        "system/blockMeshDict": foam_header("dictionary", "blockMeshDict") + """convertToMeters 1;
 vertices ((0 0 0) (%g 0 0) (%g %g 0) (0 %g 0) (0 0 %g) (%g 0 %g) (%g %g %g) (0 %g %g));
 blocks ( hex (0 1 2 3 4 5 6 7) (%d %d %d) simpleGrading (1 1 1) );
 edges ();
@@ -102,19 +102,19 @@ mergePatchPairs ();
 """ % (length[0], length[0], length[1], length[1], length[2], length[0], length[2], length[0], length[1],
        length[2], length[1], length[2], cells[0], cells[1], cells[2]),
         # writeInterval beyond the run: neither solver writes fields during the measured steps.
-        "system/controlDict": HEADER % ("dictionary", "controlDict") + """application pimpleFoam;
+        "system/controlDict": foam_header("dictionary", "controlDict") + """application pimpleFoam;
 startFrom startTime; startTime 0; stopAt endTime; endTime %.10g; deltaT %.10g;
 writeControl timeStep; writeInterval 1000000; purgeWrite 0; writeFormat binary; writePrecision 8;
 writeCompression off; timeFormat general; timePrecision 8; runTimeModifiable false; adjustTimeStep no;
 """ % (n_steps * dt, dt),
-        "system/fvSchemes": HEADER % ("dictionary", "fvSchemes") + """ddtSchemes { default Euler; }
+        "system/fvSchemes": foam_header("dictionary", "fvSchemes") + """ddtSchemes { default Euler; }
 gradSchemes { default Gauss linear; }
 divSchemes { default none; div(phi,U) Gauss linearUpwind grad(U); div((nuEff*dev2(T(grad(U))))) Gauss linear; }
 laplacianSchemes { default Gauss linear corrected; }
 interpolationSchemes { default linear; }
 snGradSchemes { default corrected; }
 """,
-        "system/fvSolution": HEADER % ("dictionary", "fvSolution") + """solvers
+        "system/fvSolution": foam_header("dictionary", "fvSolution") + """solvers
 {
     p      { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol 0.01; }
     pFinal { $p; relTol 0; }
@@ -122,10 +122,10 @@ snGradSchemes { default corrected; }
 }
 PIMPLE { nOuterCorrectors 1; nCorrectors 2; nNonOrthogonalCorrectors 0; momentumPredictor yes; }
 """,
-        "constant/transportProperties": HEADER % ("dictionary", "transportProperties") +
+        "constant/transportProperties": foam_header("dictionary", "transportProperties") +
         "transportModel Newtonian;\nnu 1e-06;\n",
-        "constant/turbulenceProperties": HEADER % ("dictionary", "turbulenceProperties") + "simulationType laminar;\n",
-        "0/U": HEADER % ("volVectorField", "U") + """dimensions [0 1 -1 0 0 0 0];
+        "constant/turbulenceProperties": foam_header("dictionary", "turbulenceProperties") + "simulationType laminar;\n",
+        "0/U": foam_header("volVectorField", "U") + """dimensions [0 1 -1 0 0 0 0];
 internalField uniform (0.1 0 0);
 boundaryField
 {
@@ -134,7 +134,7 @@ boundaryField
     walls  { type noSlip; }
 }
 """,
-        "0/p": HEADER % ("volScalarField", "p") + """dimensions [0 2 -2 0 0 0 0];
+        "0/p": foam_header("volScalarField", "p") + """dimensions [0 2 -2 0 0 0 0];
 internalField uniform 0;
 boundaryField
 {
@@ -269,7 +269,7 @@ def run_stock(template, run_dir, warmup, ranks=1, tunables=False):
     command = ["/usr/bin/pimpleFoam", "-case", run_dir]
     if ranks > 1:  # the decomposition our fluid makes (apps/fsi-openfoam-fluid/OpenFoamCase.cpp)
         with open(os.path.join(run_dir, "system", "decomposeParDict"), "w") as f:
-            f.write(HEADER % ("dictionary", "decomposeParDict") +
+            f.write(foam_header("dictionary", "decomposeParDict") +
                     "numberOfSubdomains %d;\nmethod hierarchical;\ncoeffs { n (%d 1 1); order xyz; }\n" % (ranks, ranks))
         with open(os.path.join(run_dir, "log.decomposePar"), "w") as log:
             subprocess.run(["decomposePar", "-force", "-case", run_dir], stdout=log, stderr=subprocess.STDOUT,

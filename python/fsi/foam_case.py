@@ -22,12 +22,17 @@ FoamFile
 """
 
 
+def foam_header(cls, obj):
+    """The FoamFile header of a dictionary or field file: class cls, object obj."""
+    return FOAM_HEADER % {"cls": cls, "obj": obj}
+
+
 def write_foam_file(case_dir, relative_path, cls, body):
     """case_dir/relative_path with the FoamFile header (class cls) and body."""
     path = os.path.join(case_dir, relative_path)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
-        f.write(FOAM_HEADER % {"cls": cls, "obj": os.path.basename(relative_path)} + body)
+        f.write(foam_header(cls, os.path.basename(relative_path)) + body)
     return path
 
 

@@ -31,7 +31,7 @@ import yaml
 
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
-from fsi.foam_case import foam_entry, set_foam_entry, write_operating_point  # noqa: E402
+from fsi.foam_case import foam_entry, set_foam_entry, write_foam_file, write_operating_point  # noqa: E402
 from fsi.fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
 for _name, _value in OPENFOAM_ENVIRONMENT.items():
@@ -290,8 +290,7 @@ def case_folder(case_dir, resolution):
     return os.path.join(case_dir, "openfoam-ami-" + resolution)
 
 
-MAP_FIELDS = """FoamFile { version 2.0; format ascii; class dictionary; object mapFieldsDict; }
-// Written by pump_ami_run.py: a warm start from a run of the penalized case (the same casing
+MAP_FIELDS = """// Written by pump_ami_run.py: a warm start from a run of the penalized case (the same casing
 // patches; the AMI case's impeller walls and AMI pair are not in the source and keep their
 // conditions).
 patchMap ( %s );
@@ -309,8 +308,8 @@ def map_initial_fields(foam_case, logs, source):
     latest = max(times, key=float)
     with open(os.path.join(source, "constant", "polyMesh", "boundary")) as f:
         patches = re.findall(r"^\s*(\w+)\s*\n\s*\{", f.read(), re.M)
-    with open(os.path.join(foam_case, "system", "mapFieldsDict"), "w") as f:
-        f.write(MAP_FIELDS % " ".join("%s %s" % (p, p) for p in patches))
+    write_foam_file(foam_case, "system/mapFieldsDict", "dictionary",
+                    MAP_FIELDS % " ".join("%s %s" % (p, p) for p in patches))
     run_tool("mapFields", foam_case, logs, ["-sourceTime", latest, source])
     for stale in ("phi", "fsiAcceleration"):
         path = os.path.join(foam_case, "0", stale)

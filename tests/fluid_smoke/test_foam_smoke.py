@@ -17,14 +17,8 @@ import subprocess
 import sys
 import tempfile
 
-HEADER = """FoamFile
-{{
-    version     2.0;
-    format      ascii;
-    class       {cls};
-    object      {obj};
-}}
-"""
+from fsi.foam_case import foam_header
+
 
 SIDE = 0.1          # m
 N = 10              # cells per direction
@@ -125,7 +119,7 @@ def write_case(case):
         path = os.path.join(case, rel)
         os.makedirs(os.path.dirname(path), exist_ok=True)
         with open(path, "w") as f:
-            f.write(HEADER.format(cls=cls, obj=os.path.basename(rel)) + body)
+            f.write(foam_header(cls, os.path.basename(rel)) + body)
 
 
 def run(cmd, case, env, log):

@@ -26,7 +26,8 @@ import time
 import unittest
 
 from fsi import case_module  # noqa: E402
-from penalization_support import (HEADER, SOURCE_DIR, Block, PenalizationTest, box_triangles,  # noqa: E402
+from fsi.foam_case import foam_header  # noqa: E402
+from penalization_support import (SOURCE_DIR, Block, PenalizationTest, box_triangles,  # noqa: E402
                                   bystander_sheet, latest_time_dir, read_internal_field, rigid_body_loads,
                                   status_of, write_case, write_openfoam_case, write_stl, h5py, np, yaml)
 
@@ -231,7 +232,7 @@ PIMPLE
         }
         for name, (cls, body) in files.items():
             with open(os.path.join(foam, name), "w") as f:
-                f.write(HEADER.format(cls=cls, obj=os.path.basename(name)) + body)
+                f.write(foam_header(cls, os.path.basename(name)) + body)
 
     def test_turbulence_is_zero_inside_the_body(self):
         start = time.monotonic()

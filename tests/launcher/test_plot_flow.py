@@ -9,11 +9,12 @@ import subprocess
 import tempfile
 import unittest
 
+from fsi.foam_case import foam_header
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, "..", "..", "python", "fsi", "plot_flow.py")
 PVBATCH = shutil.which("pvbatch")
 
-HEADER = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"
 MESH = {
     "points": ("vectorField", "8 ((0 0 0) (2 0 0) (2 1 0) (0 1 0)"
                               " (0 0 1) (2 0 1) (2 1 1) (0 1 1))"),
@@ -47,7 +48,7 @@ class PlotFlow(unittest.TestCase):
                                *extra], capture_output=True, text=True, timeout=120)
 
     def test_no_results_exits_1_with_a_message(self):
-        write(os.path.join(self.case, "0", "U"), HEADER % ("volVectorField", "U") + U)
+        write(os.path.join(self.case, "0", "U"), foam_header("volVectorField", "U") + U)
         result = self.run_script()
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
         self.assertIn("no OpenFOAM results", result.stderr)
@@ -55,9 +56,9 @@ class PlotFlow(unittest.TestCase):
     def test_one_picture_per_time_after_0(self):
         for name, (cls, body) in MESH.items():
             write(os.path.join(self.case, "constant", "polyMesh", name),
-                  HEADER % (cls, name) + body + "\n")
+                  foam_header(cls, name) + body + "\n")
         for time in ("0", "0.5", "1"):
-            write(os.path.join(self.case, time, "U"), HEADER % ("volVectorField", "U") + U)
+            write(os.path.join(self.case, time, "U"), foam_header("volVectorField", "U") + U)
         result = self.run_script("--normal", "z")
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         for name in ("flow_t0.5.png", "flow_t1.png"):

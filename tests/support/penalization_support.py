@@ -19,17 +19,10 @@ import unittest
 
 # The packages (a missing one skips the test, exit 77) and the paths of every coupled test.
 from coupled_support import BIN_DIR, LAUNCHER, PYTHON, SOURCE_DIR, h5py, np, yaml  # noqa: F401
+from fsi.foam_case import foam_header  # noqa: E402
 
 # ---- OpenFOAM case files ---------------------------------------------------------------------
 
-HEADER = """FoamFile
-{{
-    version     2.0;
-    format      ascii;
-    class       {cls};
-    object      {obj};
-}}
-"""
 
 
 class Block:
@@ -155,7 +148,7 @@ boundaryField
         path = os.path.join(folder, name)
         os.makedirs(os.path.dirname(path), exist_ok=True)
         with open(path, "w") as f:
-            f.write(HEADER.format(cls=cls, obj=os.path.basename(name)) + body)
+            f.write(foam_header(cls, os.path.basename(name)) + body)
 
 
 def latest_time_dir(foam_case):
