@@ -1,7 +1,7 @@
 #include "Admission.hpp"
 
 #include "CouplingErrors.hpp"
-#include "Durations.hpp"
+#include "common/Durations.hpp"
 #include "checkpoint/CheckpointError.hpp"
 
 #include <spdlog/spdlog.h>
@@ -9,6 +9,10 @@
 #include <chrono>
 
 namespace fsi::coupler {
+
+using common::Clock;
+using common::seconds_since;
+using common::to_ms;
 
 Admission::Admission(ParticipantTable &participants, const proto::CouplerChannel &channel, const CouplingSetup &setup)
     : participants_(participants), channel_(channel), setup_(setup) {}

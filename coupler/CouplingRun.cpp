@@ -2,7 +2,7 @@
 
 #include "Admission.hpp"
 #include "CouplingErrors.hpp"
-#include "Durations.hpp"
+#include "common/Durations.hpp"
 #include "ExplicitStep.hpp"
 #include "ImplicitStep.hpp"
 #include "common/ExitCodes.hpp"
@@ -19,6 +19,10 @@
 #include <fstream>
 
 namespace fsi::coupler {
+
+using common::Clock;
+using common::seconds_since;
+using common::to_ms;
 
 using proto::v2::Envelope;
 

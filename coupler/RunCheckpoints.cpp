@@ -1,7 +1,7 @@
 #include "RunCheckpoints.hpp"
 
 #include "CouplingErrors.hpp"
-#include "Durations.hpp"
+#include "common/Durations.hpp"
 #include "checkpoint/ArchiveFile.hpp"
 
 #include <spdlog/spdlog.h>
@@ -9,6 +9,10 @@
 #include <chrono>
 
 namespace fsi::coupler {
+
+using common::Clock;
+using common::seconds_since;
+using common::to_ms;
 
 RunCheckpoints::RunCheckpoints(const std::filesystem::path &output_dir, const CouplingSetup &setup)
     : set_(output_dir / "checkpoints", setup.restart_fingerprint, setup.run.checkpoint_keep),

@@ -1,13 +1,17 @@
 #include "StepExchange.hpp"
 
 #include "CouplingErrors.hpp"
-#include "Durations.hpp"
+#include "common/Durations.hpp"
 #include "proto/BodyPose.hpp"
 #include "proto/TransportError.hpp"
 
 #include <chrono>
 
 namespace fsi::coupler {
+
+using common::Clock;
+using common::seconds_since;
+using common::to_ms;
 
 using proto::v2::Envelope;
 

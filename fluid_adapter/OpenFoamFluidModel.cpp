@@ -2,6 +2,7 @@
 
 #include "FoamCheckpoint.hpp"
 #include "checkpoint/ArchiveFile.hpp"
+#include "common/Durations.hpp"
 
 #include "fluid_adapter/ibm/ClosestCellLinear.hpp"
 #include "fluid_adapter/ibm/PeskinKernel.hpp"
@@ -379,10 +380,8 @@ void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigi
 }
 
 void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
-  using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
+  using common::Clock;
+  using common::seconds_since;
   const double t_next = time_s + dt_s;
   auto start = Clock::now();
   timings_ = {};

@@ -2,9 +2,8 @@
 
 #include "BodyPoses.hpp"
 
+#include "common/Durations.hpp"
 #include "proto/PackedPoints.hpp"
-
-#include <chrono>
 
 namespace fsi::participant {
 
@@ -14,9 +13,6 @@ SessionSettings fluid_settings(SessionSettings settings) {
   if (!settings.stop_signal)
     settings.stop_signal = &FluidParticipant::stop_signal();
   return settings;
-}
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 } // namespace
 
@@ -32,18 +28,18 @@ FluidParticipant::FluidParticipant(FluidModel &model, SessionSettings settings)
 }
 
 void FluidParticipant::interpolate(const proto::Message &request) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = common::Clock::now();
   const auto &body = request.envelope().interpolate_request();
   const proto::PointsView x = request.points(body.position_m(), plan().n_points(), "InterpolateRequest.position_m");
   auto *reply = interpolate_reply_.envelope().mutable_interpolate_reply();
   model_.interpolate(body.time_s(), x, interpolate_reply_.add_points(*reply->mutable_velocity_m_per_s(), x.rows()));
-  reply->set_solve_wall_s(seconds_since(start));
+  reply->set_solve_wall_s(common::seconds_since(start));
   interpolate_reply_.envelope().set_step(request.envelope().step());
   session().send(interpolate_reply_);
 }
 
 void FluidParticipant::advance(const proto::Message &request) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = common::Clock::now();
   const auto &body = request.envelope().fluid_advance();
   const auto step = request.envelope().step();
   const proto::PointsView force =
@@ -57,7 +53,7 @@ void FluidParticipant::advance(const proto::Message &request) {
   auto *reply = advance_reply_.envelope().mutable_advance_reply();
   write_loads(loads_, *reply->mutable_rigid_body_loads());
   reply->set_time_s(body.time_s() + body.dt_s());
-  reply->set_solve_wall_s(seconds_since(start));
+  reply->set_solve_wall_s(common::seconds_since(start));
   advance_reply_.envelope().set_step(step);
   session().send(advance_reply_);
   end_advance();

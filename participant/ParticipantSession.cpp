@@ -1,5 +1,6 @@
 #include "ParticipantSession.hpp"
 
+#include "common/Durations.hpp"
 #include "proto/TransportError.hpp"
 
 #include <spdlog/spdlog.h>
@@ -9,15 +10,11 @@ namespace fsi::participant {
 using proto::Envelope;
 using proto::Message;
 
-namespace {
+using common::to_ms;
 using std::chrono::milliseconds;
 
-milliseconds to_ms(double seconds) { return milliseconds(static_cast<long long>(seconds * 1000.0)); }
-} // namespace
-
 ParticipantSession::ParticipantSession(SessionSettings settings)
-    : settings_(std::move(settings)),
-      channel_(settings_.coupler, settings_.role, settings_.name, settings_.options) {}
+    : settings_(std::move(settings)), channel_(settings_.coupler, settings_.role, settings_.name, settings_.options) {}
 
 ParticipantSession::~ParticipantSession() { stop_heartbeat(); }
 
@@ -56,9 +53,9 @@ Message &ParticipantSession::wait_for_message(milliseconds timeout, const char *
       on_stop_signal(*settings_.stop_signal);
     const auto left = std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0)
-      throw CouplerLost("participant " + routing_id() + ": no message from the coupler at " +
-                        settings_.coupler.str() + " for " + std::to_string(timeout.count() / 1000.0) +
-                        " s while waiting for " + waiting_for + "; is the coupler running and reachable?");
+      throw CouplerLost("participant " + routing_id() + ": no message from the coupler at " + settings_.coupler.str() +
+                        " for " + std::to_string(timeout.count() / 1000.0) + " s while waiting for " + waiting_for +
+                        "; is the coupler running and reachable?");
     // Short slices so that a stop signal is seen promptly.
     if (!channel_.receive_into(incoming_, std::min(left, milliseconds(200))))
       continue;
@@ -91,8 +88,9 @@ void ParticipantSession::on_stop_signal(int signal) {
     }
     heartbeat_wakeup_.notify_all(); // tell it now, not at the next beat
   } else if (now - signal_seen_ > settings_.stop_grace) {
-    throw Interrupted(signal, "interrupted by signal " + std::to_string(signal) + "; the coupler had not ended the run " +
-                                  std::to_string(settings_.stop_grace.count() / 1000) + " s later",
+    throw Interrupted(signal,
+                      "interrupted by signal " + std::to_string(signal) + "; the coupler had not ended the run " +
+                          std::to_string(settings_.stop_grace.count() / 1000) + " s later",
                       false);
   }
 }
@@ -147,7 +145,8 @@ void ParticipantSession::heartbeat_loop(milliseconds interval) {
     proto::ChannelOptions options = settings_.options;
     options.send_timeout = milliseconds(1);
     options.linger = milliseconds(0); // stale heartbeats are worth nothing
-    proto::ParticipantChannel beat(settings_.coupler, settings_.role, settings_.name + std::string(proto::heartbeat_suffix), options);
+    proto::ParticipantChannel beat(settings_.coupler, settings_.role,
+                                   settings_.name + std::string(proto::heartbeat_suffix), options);
     const auto start = std::chrono::steady_clock::now();
     std::unique_lock lock(heartbeat_mutex_);
     int reported = 0;

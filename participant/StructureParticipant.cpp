@@ -2,9 +2,9 @@
 
 #include "BodyPoses.hpp"
 
+#include "common/Durations.hpp"
 #include "proto/TransportError.hpp"
 
-#include <chrono>
 #include <cmath>
 
 namespace fsi::participant {
@@ -38,10 +38,9 @@ void StructureParticipant::advance(const proto::Message &request) {
   const StructureStep structure_step{static_cast<long>(step), body.time_s(), body.dt_s(),
                                      read_poses(body.rigid_bodies()), !plan().implicit};
   begin_advance(step, body.repeat(), "StructureAdvance");
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = common::Clock::now();
   model_.advance(structure_step, loads);
-  const double solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  send_state(step, solve_s, false);
+  send_state(step, common::seconds_since(start), false);
   end_advance();
 }
 
