@@ -51,20 +51,20 @@ void CoupledStructure::accept_step(long step) {
     throw participant::Diverged(outcome.message);
 }
 
-void CoupledStructure::positions(proto::MutablePointsView x_m) const {
+template <class Field> void CoupledStructure::concatenate(proto::MutablePointsView out, Field field) const {
   Eigen::Index at = 0;
   for (const auto &s : run_.scene().structures()) {
-    x_m.middleRows(at, s->n_points()) = s->positions_m();
+    out.middleRows(at, s->n_points()) = field(*s);
     at += s->n_points();
   }
 }
 
+void CoupledStructure::positions(proto::MutablePointsView x_m) const {
+  concatenate(x_m, [](const auto &s) -> const PointArray & { return s.positions_m(); });
+}
+
 void CoupledStructure::velocities(proto::MutablePointsView v_m_per_s) const {
-  Eigen::Index at = 0;
-  for (const auto &s : run_.scene().structures()) {
-    v_m_per_s.middleRows(at, s->n_points()) = s->velocities_m_per_s();
-    at += s->n_points();
-  }
+  concatenate(v_m_per_s, [](const auto &s) -> const PointArray & { return s.velocities_m_per_s(); });
 }
 
 double CoupledStructure::time_s() const { return run_.scene().time_s(); }

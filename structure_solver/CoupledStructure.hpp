@@ -32,6 +32,8 @@ public:
   void advance(const participant::StructureStep &step, proto::PointsView load_density_n_per_measure) override;
 
 private:
+  /// out: every structure's field(structure), in the order of topology().
+  template <class Field> void concatenate(proto::MutablePointsView out, Field field) const;
   /// The moving rigid surfaces at the end of the step, from the coupler (section 2.3).
   void take_rigid_poses(const participant::StructureStep &step);
 
