@@ -25,7 +25,7 @@ Laminar air: rho_f = 1.25 kg/m^3, mu = 2e-5 Pa s, nu = mu / rho_f = 1.6e-5 m^2/s
 
 import os
 
-from fsi.foam_case import foam_header
+from fsi.foam_case import LAMINAR_FV_SCHEMES, foam_header
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -84,18 +84,7 @@ timePrecision   6;
 runTimeModifiable false;
 """
 
-FV_SCHEMES = header("dictionary", "fvSchemes") + """ddtSchemes      { default Euler; }
-gradSchemes     { default Gauss linear; }
-divSchemes
-{
-    default         none;
-    div(phi,U)      Gauss linearUpwind grad(U);
-    div((nuEff*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes   { default corrected; }
-"""
+FV_SCHEMES = header("dictionary", "fvSchemes") + LAMINAR_FV_SCHEMES
 
 FV_SOLUTION = header("dictionary", "fvSolution") + """solvers
 {

@@ -22,6 +22,22 @@ FoamFile
 """
 
 
+# fvSchemes of a laminar incompressible case: Euler in time, second order in space
+# (linearUpwind convection), non-orthogonal corrections.
+LAMINAR_FV_SCHEMES = """ddtSchemes      { default Euler; }
+gradSchemes     { default Gauss linear; }
+divSchemes
+{
+    default         none;
+    div(phi,U)      Gauss linearUpwind grad(U);
+    div((nuEff*dev2(T(grad(U))))) Gauss linear;
+}
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes   { default corrected; }
+"""
+
+
 def foam_header(cls, obj):
     """The FoamFile header of a dictionary or field file: class cls, object obj."""
     return FOAM_HEADER % {"cls": cls, "obj": obj}

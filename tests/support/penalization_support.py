@@ -19,7 +19,7 @@ import unittest
 
 # The packages (a missing one skips the test, exit 77) and the paths of every coupled test.
 from coupled_support import BIN_DIR, LAUNCHER, PYTHON, SOURCE_DIR, h5py, np, yaml  # noqa: F401
-from fsi.foam_case import foam_header  # noqa: E402
+from fsi.foam_case import LAMINAR_FV_SCHEMES, foam_header  # noqa: E402
 
 # ---- OpenFOAM case files ---------------------------------------------------------------------
 
@@ -95,19 +95,7 @@ timeFormat      general;
 timePrecision   8;
 runTimeModifiable false;
 """),
-        "system/fvSchemes": ("dictionary", """
-ddtSchemes      { default Euler; }
-gradSchemes     { default Gauss linear; }
-divSchemes
-{
-    default         none;
-    div(phi,U)      Gauss linearUpwind grad(U);
-    div((nuEff*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes   { default corrected; }
-"""),
+        "system/fvSchemes": ("dictionary", "\n" + LAMINAR_FV_SCHEMES),
         "system/fvSolution": ("dictionary", f"""
 solvers
 {{
