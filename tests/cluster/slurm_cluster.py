@@ -115,6 +115,19 @@ class SlurmCluster:
             time.sleep(0.2)
         raise AssertionError("job %s did not start within %d s" % (job, limit_s))
 
+    def wait_no_steps(self, limit_s):
+        """Waits until no job step runs on this host (no slurmstepd process: the cluster tests run
+        one at a time, so every slurmstepd is this cluster's). A requeued job is PENDING again
+        while its old steps still end; started again before they have, the old batch script's
+        exit status reached the new run, which SLURM then marked FAILED (seen on CI)."""
+        deadline = time.time() + limit_s
+        while time.time() < deadline:
+            if subprocess.run(["pgrep", "-x", "slurmstepd"], stdout=subprocess.DEVNULL).returncode != 0:
+                return
+            time.sleep(0.2)
+        raise AssertionError("job steps still running after %d s: %s" % (
+            limit_s, self.run("pgrep", "-a", "slurmstepd").stdout.strip()))
+
     def wait(self, job, limit_s):
         """Waits until the job (all its components) has ended; returns its final states. An idle
         test cluster's backfill scheduler (which alone starts heterogeneous jobs) runs only when

@@ -126,11 +126,13 @@ class Requeue(SubmitTest):
         # A requeued job waits (its begin time) before it may start again: not a test's 2 minutes.
         # Its old steps end first (SIGTERM, then up to 30 s); then it waits again, counted as a restart.
         # Every component, not just one: a component given StartTime=now while another still
-        # ends its old steps made the whole job FAILED (seen once in three runs on CI).
+        # ends its old steps made the whole job FAILED (seen once in three runs on CI); so did
+        # every component started while the old batch script was still ending (wait_no_steps).
         deadline = time.time() + 60
         while not self.all_requeued(job):
             self.assertLess(time.time(), deadline, "the job was not requeued")
             time.sleep(0.2)
+        self.cluster.wait_no_steps(60)
         for component in self.cluster.components(job):
             updated = self.cluster.scontrol("update", "JobId=%s" % component, "StartTime=now")
             self.assertEqual(updated.returncode, 0, updated.stdout)
