@@ -55,6 +55,8 @@ BUILD=${FSI_BUILD_DIR:-$ROOT/build}
 # The Python half is one package (python/fsi/): on PYTHONPATH once, for everything started from here
 # (runs, the cases' own scripts, CTest, studies); `python3 -m fsi.<module>` runs a module.
 export PYTHONPATH="$ROOT/python${PYTHONPATH:+:$PYTHONPATH}"
+# ... and the executables' folder, where the package finds its geometry engine (fsi-surface-query).
+export FSI_BIN_DIR=${FSI_BIN_DIR:-$BUILD/bin}
 JOBS=${FSI_JOBS:-$(nproc)}
 PACKAGES=(cmake ninja-build g++ ccache git pkg-config libeigen3-dev libspdlog-dev libfmt-dev libhdf5-dev
           libyaml-cpp-dev libcli11-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libnanoflann-dev
@@ -122,7 +124,7 @@ ensure_openfoam() { "$ROOT/scripts/ensure_openfoam.sh" || die "OpenFOAM provisio
 # prepare [TARGET...]: packages, OpenFOAM, then a build of the given targets (default: everything,
 # tests and benchmarks included). A run needs only the four process executables, and the pump
 # generator (a case's prepare.py may generate its geometry: cases/centrifugal-pump).
-RUN_TARGETS=(fsi-structure fsi-coupler fsi-prescribed-flow fsi-openfoam-fluid fsi-pump-design)
+RUN_TARGETS=(fsi-structure fsi-coupler fsi-prescribed-flow fsi-openfoam-fluid fsi-pump-design fsi-surface-query)
 prepare() {
   ensure_packages
   ensure_openfoam

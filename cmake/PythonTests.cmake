@@ -1,8 +1,8 @@
 # FSI_PYTHON: the interpreter every Python test runs under, with the project's package
 # (python/fsi/) and the tests' shared helpers (tests/support/) on PYTHONPATH, as ./fsi sets it
-# for everything it starts: no script edits sys.path.
+# for everything it starts (no script edits sys.path), and the executables' folder (FSI_BIN_DIR).
 set(FSI_PYTHON ${CMAKE_COMMAND} -E env "PYTHONPATH=${PROJECT_SOURCE_DIR}/python:${PROJECT_SOURCE_DIR}/tests/support"
-    /usr/bin/python3)
+    "FSI_BIN_DIR=${CMAKE_RUNTIME_OUTPUT_DIRECTORY}" /usr/bin/python3)
 
 # fsi_add_python_tests: one CTest test per class of a Python unittest script.
 #

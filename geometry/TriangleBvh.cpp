@@ -104,8 +104,25 @@ TriangleBvh::Nearest TriangleBvh::nearest(const Vec3 &point_m, std::int32_t star
   best.distance_sq_m2 = std::numeric_limits<double>::infinity();
   if (start_face >= 0)
     test_triangle(slot_[static_cast<std::size_t>(start_face)], point_m, best);
+  search(point_m, best);
+  return best;
+}
+
+TriangleBvh::Nearest TriangleBvh::nearest_within(const Vec3 &point_m, double max_distance_m) const {
+  // The bound is on sqrt(distance_sq_m2), inclusive: search a little beyond its square (which
+  // rounds either way), then keep the nearest triangle only if it is within the bound.
+  Nearest best;
+  const double searched_m = max_distance_m * (1.0 + 8.0 * std::numeric_limits<double>::epsilon());
+  best.distance_sq_m2 = std::nextafter(searched_m * searched_m, std::numeric_limits<double>::infinity());
+  search(point_m, best);
+  if (best.face < 0 || !(std::sqrt(best.distance_sq_m2) <= max_distance_m))
+    return Nearest{-1, TrianglePoint{}, std::numeric_limits<double>::infinity()};
+  return best;
+}
+
+void TriangleBvh::search(const Vec3 &point_m, Nearest &best) const {
   if (nodes_.empty())
-    return best;
+    return;
   // Depth-first, nearer child first; a stack entry keeps its box distance to re-check it
   // against the best distance when it is popped. Each level adds at most one entry.
   struct Pending {
@@ -134,7 +151,6 @@ TriangleBvh::Nearest TriangleBvh::nearest(const Vec3 &point_m, std::int32_t star
     if (near.distance_sq_m2 < best.distance_sq_m2)
       stack[top++] = near;
   }
-  return best;
 }
 
 } // namespace fsi::geometry

@@ -30,6 +30,11 @@ public:
   /// believed to be close: its distance bounds the search from the start.
   Nearest nearest(const Vec3 &point_m, std::int32_t start_face = -1) const;
 
+  /// Exact closest triangle to p if one lies within max_distance_m (inclusive); otherwise
+  /// face -1 and an infinite distance. The bound prunes the search from the start, so far
+  /// points cost a few box tests.
+  Nearest nearest_within(const Vec3 &point_m, double max_distance_m) const;
+
   std::size_t n_nodes() const { return nodes_.size(); }
 
 private:
@@ -43,6 +48,8 @@ private:
   /// Builds the subtree of triangles [begin, end) of order_ and returns its node index.
   std::uint32_t build(std::uint32_t begin, std::uint32_t end,
                       const std::vector<Triangle> &triangles, const std::vector<Vec3> &centroids);
+  /// Depth-first search improving `best` (whose distance bounds it from the start).
+  void search(const Vec3 &p, Nearest &best) const;
   double box_distance_sq(const Node &node, const Vec3 &p) const;
   void test_triangle(std::uint32_t slot, const Vec3 &p, Nearest &best) const;
 

@@ -30,8 +30,8 @@ configuration (RUN_DIR/config.effective.yaml, else CASE_DIR/case.yaml): the coll
 and surfaces, the rotating one the impeller (collisions.surfaces[].motion.rotation: its pose at
 time t is its STL turned by rate_rad_per_s * t about axis_direction through axis_point_m,
 right-hand rule), the other the casing; ASCII STL files with named regions. The rotation axis
-must be along z. Distances (exact, rag_metrics.TriangleSet): to the walls, the casing without
-its openings (inlet, outlet) and the impeller at its pose; to the impeller.
+must be along z. Distances (exact, rag_metrics.TriangleSet: the solver's BVH): to the walls,
+the casing without its openings (inlet, outlet) and the impeller at its pose; to the impeller.
 """
 import argparse
 import math
@@ -193,14 +193,13 @@ class Pump:
 
 def distances(run, pump):
     """(distance of each point of each frame to the nearest wall, to the impeller) [n, P] in m,
-    exact up to FAR_FACTOR x threshold, some larger value beyond (rag_metrics.TriangleSet). The
-    walls: the casing without its openings (inlet, outlet) and the impeller at its pose."""
+    exact (rag_metrics.TriangleSet). The walls: the casing without its openings (inlet, outlet)
+    and the impeller at its pose."""
     n, p, _ = run.points.shape
-    far = FAR_FACTOR * pump.threshold_m
     g = pump.geometry
-    to_casing = g.casing_walls.distance(run.points.reshape(-1, 3), cap=far).reshape(n, p)
+    to_casing = g.casing_walls.distance(run.points.reshape(-1, 3)).reshape(n, p)
     turned = g.to_impeller_frame(run.time_s, run.points)
-    to_impeller = g.impeller_all.distance(turned.reshape(-1, 3), cap=far).reshape(n, p)
+    to_impeller = g.impeller_all.distance(turned.reshape(-1, 3)).reshape(n, p)
     return np.minimum(to_casing, to_impeller), to_impeller
 
 

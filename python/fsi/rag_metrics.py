@@ -14,7 +14,8 @@ docs/rag-metrics.md defines every metric exactly as computed here.
 As a module: write_metrics(run_dir, case_dir, **options) -> metrics dict (what the CLI does);
 compute_metrics(times, positions, grid_shape, geometry, threshold_m, ...) -> metrics dict from
 arrays (tests feed synthetic trajectories); PumpGeometry (the regions and the derived radii and
-heights); TriangleSet.distance (exact point-to-triangle-mesh distances).
+heights); TriangleSet.distance (exact point-to-triangle-mesh distances). The geometry (STL
+regions, distances, self-contacts) is the solver's own, through surface_engine.
 
 Frames and durations: the saved frames t_0 < ... < t_{n-1} of structure.h5; frame k stands for
 the times nearer to it than to any other frame, [e_k, e_{k+1}] with e_0 = t_0,
@@ -34,12 +35,9 @@ import types
 
 import numpy as np
 
+from fsi import surface_engine
 from fsi.results_file import complete_rows
 
-try:
-    from scipy.spatial import cKDTree
-except ImportError as error:  # pragma: no cover - the Debian python3-scipy package
-    raise ImportError("rag_metrics.py needs scipy (python3-scipy): %s" % error)
 
 IMPELLER_REGIONS = ("blade_leading_edge", "blade_pressure_side", "blade_suction_side", "blade_trailing_edge",
                     "hub", "shroud", "eye")
@@ -102,7 +100,8 @@ class MetricsError(Exception):
 
 def read_stl_regions(path):
     """{solid name: triangles [n, 3, 3]} of an ASCII STL with named solids (the generator's
-    regions). Raises MetricsError for a missing file, a binary STL or a file without solids."""
+    regions), read by the solver's STL reader (surface_engine). Raises MetricsError for a
+    missing file, a binary STL or a file the reader refuses."""
     if not os.path.isfile(path):
         raise MetricsError("%s: no such file" % path)
     with open(path, "rb") as f:
@@ -110,164 +109,33 @@ def read_stl_regions(path):
     if not head.lstrip().lower().startswith(b"solid") or b"facet" not in head:
         raise MetricsError("%s: not an ASCII STL with named solids (the regions are read from 'solid NAME' "
                            "blocks; a binary STL has none)" % path)
-    regions, name, vertices = {}, None, []
-    with open(path, errors="replace") as f:
-        for line in f:
-            words = line.split()
-            if not words:
-                continue
-            key = words[0].lower()
-            if key == "vertex":
-                vertices.append((float(words[1]), float(words[2]), float(words[3])))
-            elif key == "solid":
-                name, vertices = (" ".join(words[1:]) or "unnamed"), []
-            elif key == "endsolid":
-                if len(vertices) % 3:
-                    raise MetricsError("%s: solid '%s' has %d vertices, not a multiple of 3" % (path, name, len(vertices)))
-                tri = np.array(vertices, float).reshape(-1, 3, 3)
-                regions[name] = np.concatenate([regions[name], tri]) if name in regions else tri
-                name, vertices = None, []
-    if not regions:
-        raise MetricsError("%s: no 'solid NAME ... endsolid' blocks" % path)
-    return regions
-
-
-def _dot(u, v):
-    return np.einsum("ij,ij->i", u, v)
-
-
-def closest_points_on_triangles(p, a, b, c):
-    """Closest points on triangles (a, b, c) to points p, all [m, 3] (Ericson, Real-Time
-    Collision Detection, 5.1.5: the Voronoi regions of the vertices, edges and face)."""
-    ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = _dot(ab, ap), _dot(ac, ap)
-    bp = p - b
-    d3, d4 = _dot(ab, bp), _dot(ac, bp)
-    cp = p - c
-    d5, d6 = _dot(ab, cp), _dot(ac, cp)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-    out = np.empty_like(p)
-    left = np.ones(len(p), bool)
-
-    def take(mask, value):
-        m = left & mask
-        out[m] = value(m)
-        left[m] = False
-
-    with np.errstate(divide="ignore", invalid="ignore"):
-        take((d1 <= 0) & (d2 <= 0), lambda m: a[m])
-        take((d3 >= 0) & (d4 <= d3), lambda m: b[m])
-        take((vc <= 0) & (d1 >= 0) & (d3 <= 0), lambda m: a[m] + (d1[m] / (d1[m] - d3[m]))[:, None] * ab[m])
-        take((d6 >= 0) & (d5 <= d6), lambda m: c[m])
-        take((vb <= 0) & (d2 >= 0) & (d6 <= 0), lambda m: a[m] + (d2[m] / (d2[m] - d6[m]))[:, None] * ac[m])
-        take((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0),
-             lambda m: b[m] + ((d4[m] - d3[m]) / ((d4[m] - d3[m]) + (d5[m] - d6[m])))[:, None] * (c[m] - b[m]))
-        denom = 1.0 / (va[left] + vb[left] + vc[left])
-        out[left] = a[left] + (vb[left] * denom)[:, None] * ab[left] + (vc[left] * denom)[:, None] * ac[left]
-    return out
-
-
-def point_triangle_distance(p, a, b, c):
-    """Exact distances of points p to triangles (a, b, c), all [m, 3]."""
-    return np.linalg.norm(p - closest_points_on_triangles(p, a, b, c), axis=1)
+    try:
+        return surface_engine.engine().regions(path)
+    except surface_engine.EngineError as error:
+        raise MetricsError(str(error))
 
 
 class TriangleSet:
-    """A triangle set (one region, or several with a label per triangle) with exact distances.
-    Candidate triangles come from a k-d tree of the centroids: a triangle whose centroid is d
-    away is at least d - R away, R the largest centroid-to-vertex distance of the set, so the
-    k nearest centroids are enough once the best distance among them is <= d_k - R; otherwise
-    k grows (x4) for those points until that holds or k covers the set."""
-
-    PAIRS_PER_CHUNK = 1_500_000
+    """A triangle set (one region, or several with a label per triangle) with exact distances,
+    answered by the solver's triangle BVH (surface_engine; zero-area triangles are left out)."""
 
     def __init__(self, triangles, labels=None):
         tri = np.asarray(triangles, float).reshape(-1, 3, 3)
-        labels = np.zeros(len(tri), int) if labels is None else np.asarray(labels)
-        area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
-        keep = area2 > 1e-24  # degenerate (zero-area) triangles: their edges belong to neighbours
-        if not np.any(keep):
-            raise MetricsError("a triangle set with no triangle of non-zero area")
-        tri, self.labels = tri[keep], labels[keep]
-        self.a, self.b, self.c = tri[:, 0].copy(), tri[:, 1].copy(), tri[:, 2].copy()
-        self.centroids = tri.mean(axis=1)
-        self.rmax = float(np.max(np.linalg.norm(tri - self.centroids[:, None, :], axis=2)))
-        self.tree = cKDTree(self.centroids)
-        self.n = len(tri)
-        self.vertices = tri.reshape(-1, 3)
+        self.labels = np.zeros(len(tri), int) if labels is None else np.asarray(labels)
+        self.engine = surface_engine.engine()
+        try:
+            self.id, self.n = self.engine.add_set(tri)
+        except surface_engine.EngineError as error:
+            raise MetricsError(str(error))
 
     def distance(self, points, cap=None, return_index=False):
         """Distances of points [m, 3] to the set. Without cap: exact. With cap (a number or one
-        per point): exact where the distance is <= cap, else some value > cap (inf when nothing
-        lies within cap + R). return_index: also the nearest triangle (-1 where unknown).
-        The points the k = 8 nearest centroids do not settle get every triangle whose centroid
-        lies within min(best, cap) + R (a ball query)."""
+        per point): exact where the distance is <= cap, else inf. return_index: also the
+        nearest triangle (-1 beyond the cap)."""
         points = np.asarray(points, float).reshape(-1, 3)
-        m = len(points)
-        caps = np.full(m, np.inf) if cap is None else np.broadcast_to(np.asarray(cap, float), (m,)).copy()
-        best = np.full(m, np.inf)
-        nearest = np.full(m, -1)
-        k = min(8, self.n)
-        unresolved = []
-        step = max(1, self.PAIRS_PER_CHUNK // k)
-        for s in range(0, m, step):
-            rows = np.arange(s, min(m, s + step))
-            bound = float(np.max(caps[rows])) + self.rmax
-            dd, ii = self.tree.query(points[rows], k=k, distance_upper_bound=bound)
-            dd, ii = dd.reshape(len(rows), k), ii.reshape(len(rows), k)
-            valid = ii < self.n
-            d = np.full(dd.shape, np.inf)
-            r, j = np.nonzero(valid)
-            if r.size:
-                t = ii[r, j]
-                d[r, j] = point_triangle_distance(points[rows][r], self.a[t], self.b[t], self.c[t])
-            arg = np.argmin(d, axis=1)
-            b = d[np.arange(len(rows)), arg]
-            best[rows] = b
-            nearest[rows] = np.where(np.isfinite(b), ii[np.arange(len(rows)), arg], -1)
-            lower = dd[:, -1] - self.rmax  # every triangle not among the k is at least this far
-            done = (k >= self.n) | ~np.isfinite(dd[:, -1]) | (b <= lower) | (lower > caps[rows])
-            unresolved.append(rows[~done])
-        todo = np.concatenate(unresolved) if unresolved else np.zeros(0, int)
-        if todo.size:
-            radius = np.minimum(best[todo], caps[todo]) + self.rmax
-            # Ball queries in slices, so that the candidate pairs stay bounded in memory.
-            for s in range(0, todo.size, 2048):
-                rows = todo[s:s + 2048]
-                lists = self.tree.query_ball_point(points[rows], r=radius[s:s + 2048], return_sorted=False)
-                counts = np.fromiter((len(x) for x in lists), int, len(lists))
-                if not counts.sum():
-                    continue
-                tri = np.concatenate([np.asarray(x, int) for x in lists if len(x)])
-                owner = np.repeat(np.arange(len(rows)), counts)
-                for c0 in range(0, len(tri), self.PAIRS_PER_CHUNK):
-                    t = tri[c0:c0 + self.PAIRS_PER_CHUNK]
-                    o = owner[c0:c0 + self.PAIRS_PER_CHUNK]
-                    d = point_triangle_distance(points[rows][o], self.a[t], self.b[t], self.c[t])
-                    order = np.lexsort((d, o))  # per owner, nearest first
-                    first = order[np.r_[True, o[order][1:] != o[order][:-1]]]
-                    better = d[first] < best[rows[o[first]]]
-                    best[rows[o[first][better]]] = d[first][better]
-                    nearest[rows[o[first][better]]] = t[first][better]
+        caps = None if cap is None else np.broadcast_to(np.asarray(cap, float), (len(points),))
+        best, nearest = self.engine.nearest(self.id, points, caps)
         return (best, nearest) if return_index else best
-
-    def lower_upper(self, points):
-        """Cheap bounds (lower, upper) of the distances: the best of the 8 nearest centroids'
-        triangles (upper) and min(upper, d_8 - R) (lower)."""
-        points = np.asarray(points, float).reshape(-1, 3)
-        k = min(8, self.n)
-        upper = np.empty(len(points))
-        lower = np.empty(len(points))
-        step = max(1, self.PAIRS_PER_CHUNK // k)
-        for s in range(0, len(points), step):
-            p = points[s:s + step]
-            dd, ii = self.tree.query(p, k=k)
-            dd, ii = dd.reshape(len(p), k), ii.reshape(len(p), k)
-            d = point_triangle_distance(np.repeat(p, k, axis=0), self.a[ii.ravel()], self.b[ii.ravel()],
-                                        self.c[ii.ravel()]).reshape(len(p), k)
-            upper[s:s + step] = d.min(axis=1)
-            lower[s:s + step] = upper[s:s + step] if k >= self.n else np.minimum(upper[s:s + step], dd[:, -1] - self.rmax)
-        return lower, upper
 
 
 def rotate(points, axis, angle, origin):
@@ -342,8 +210,6 @@ class PumpGeometry:
             self.le_hub_axial, self.le_shroud_axial = None, None
             self.hub_above = True
         walls = [k for k in self.casing if k not in OPENINGS]
-        self.casing_all = TriangleSet(np.concatenate([self.casing[k] for k in self.casing]),
-                                      np.concatenate([[k] * len(self.casing[k]) for k in self.casing]))
         self.casing_walls = TriangleSet(np.concatenate([self.casing[k] for k in walls]),
                                         np.concatenate([[k] * len(self.casing[k]) for k in walls]))
         self.impeller_all = TriangleSet(np.concatenate([self.impeller[k] for k in self.impeller]),
@@ -401,31 +267,28 @@ def grid_edges(grid_shape):
     return np.concatenate(pairs)
 
 
-def _self_pairs(x, n2, distance):
-    """[P, 2] pairs of points of one frame closer than distance that are not grid neighbours
-    (|i1 - j1| <= 1 and |i2 - j2| <= 1)."""
-    pairs = cKDTree(x).query_pairs(distance, output_type="ndarray")
-    if not len(pairs):
-        return pairs.reshape(0, 2)
-    i, j = pairs[:, 0], pairs[:, 1]
-    close = np.linalg.norm(x[i] - x[j], axis=1) < distance
-    far_on_grid = (np.abs(i // n2 - j // n2) > 1) | (np.abs(i % n2 - j % n2) > 1)
-    return pairs[close & far_on_grid]
+def _self_pairs(positions, grid_shape, distance):
+    """[P, 3] (frame, i, j): the pairs of points of each frame closer than distance that are not
+    grid neighbours (|i1 - j1| <= 1 and |i2 - j2| <= 1); the pairs from the solver's spatial
+    hash (surface_engine)."""
+    n2 = int(grid_shape[1]) if len(grid_shape) > 1 else 1
+    return surface_engine.engine().pairs(positions, distance, grid_columns=n2)
 
 
 def self_contacts(positions, grid_shape, distance):
     """Per frame, the pairs of points closer than distance that are not grid neighbours."""
-    n2 = int(grid_shape[1]) if len(grid_shape) > 1 else 1
-    return np.array([len(_self_pairs(x, n2, distance)) for x in positions], int)
+    positions = np.asarray(positions, float)
+    return np.bincount(_self_pairs(positions, grid_shape, distance)[:, 0], minlength=len(positions)).astype(int)
 
 
 def in_contact(positions, grid_shape, distance):
     """[F, N] points with another point of the rag closer than distance that is not a grid
     neighbour: the rag touching itself."""
-    n2 = int(grid_shape[1]) if len(grid_shape) > 1 else 1
+    positions = np.asarray(positions, float)
     touching = np.zeros(positions.shape[:2], bool)
-    for f, x in enumerate(positions):
-        touching[f, _self_pairs(x, n2, distance).ravel()] = True
+    pairs = _self_pairs(positions, grid_shape, distance)
+    touching[pairs[:, 0], pairs[:, 1]] = True
+    touching[pairs[:, 0], pairs[:, 2]] = True
     return touching
 
 
@@ -562,21 +425,15 @@ def _exit_frame(run, geometry):
     discharge = [geometry.sets[("casing", k)] for k in ("discharge_wall", "outlet") if ("casing", k) in geometry.sets]
     others = [tset for (body, k), tset in geometry.sets.items()
               if body == "casing" and k not in ("discharge_wall", "outlet")]
-    for s in range(0, len(candidates), 4):
-        frames = candidates[s:s + 4]
-        p = run.x[frames].reshape(-1, 3)
-        # Nearest casing region discharge_wall or outlet: an upper bound u of that distance
-        # first; the other regions only where they come nearer than u (then exactly).
-        u = np.min([tset.lower_upper(p)[1] for tset in discharge], axis=0)
-        d2 = np.min([tset.distance(p, cap=u) for tset in others], axis=0)
-        unsure = d2 <= u
-        if np.any(unsure):
-            d1 = np.min([tset.distance(p[unsure]) for tset in discharge], axis=0)
-            u[unsure] = d1
-        inside = np.all((u < d2).reshape(len(frames), run.n_points), axis=1)
-        if np.any(inside):
-            return int(frames[np.argmax(inside)])
-    return None
+    if not len(candidates):
+        return None
+    p = run.x[candidates].reshape(-1, 3)
+    # Nearest casing region discharge_wall or outlet: its distance u first; the other regions
+    # only where they come at least as near (capped at u).
+    u = np.min([tset.distance(p) for tset in discharge], axis=0)
+    d2 = np.min([tset.distance(p, cap=u) for tset in others], axis=0)
+    inside = np.all((u < d2).reshape(len(candidates), run.n_points), axis=1)
+    return int(candidates[np.argmax(inside)]) if np.any(inside) else None
 
 
 def _residence(run, geometry, t_exit):
@@ -701,9 +558,9 @@ def _rag_mechanics(run, geometry, grid_shape):
 
 
 def _closest_wall(run, geometry):
-    """(flat index of the point, distance, region) of the closest approach to a wall: exact from
-    the capped distances when a point came within the contact distance of a wall; else from the
-    points whose lower bound can beat the best upper bound."""
+    """(flat index of the point, distance, region) of the closest approach to a wall: from the
+    capped distances when a point came within the contact distance of a wall; else from every
+    point's exact distance to the impeller and to the casing's walls."""
     wall_regions = [k for k in run.near]
     stacked = np.stack([run.near[k].ravel() for k in wall_regions])
     if np.min(stacked) <= run.contact:
@@ -711,16 +568,12 @@ def _closest_wall(run, geometry):
         wall_min = float(np.min(stacked[:, flat_best]))
         region = wall_regions[int(np.argmin(stacked[:, flat_best]))]
         return flat_best, wall_min, region
-    lower_i, upper_i = geometry.impeller_all.lower_upper(run.xi)
-    lower_c, upper_c = geometry.casing_walls.lower_upper(run.flat)
-    lower = np.minimum(lower_i, lower_c)
-    cand = np.nonzero(lower <= np.min(np.minimum(upper_i, upper_c)))[0]
-    di, ti = geometry.impeller_all.distance(run.xi[cand], return_index=True)
-    dc, tc = geometry.casing_walls.distance(run.flat[cand], return_index=True)
+    di, ti = geometry.impeller_all.distance(run.xi, return_index=True)
+    dc, tc = geometry.casing_walls.distance(run.flat, return_index=True)
     exact = np.minimum(di, dc)
     j = int(np.argmin(exact))
     region = geometry.impeller_all.labels[ti[j]] if di[j] <= dc[j] else geometry.casing_walls.labels[tc[j]]
-    return int(cand[j]), float(exact[j]), region
+    return j, float(exact[j]), region
 
 
 def _run_extent(run):

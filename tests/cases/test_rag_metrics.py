@@ -23,12 +23,12 @@ import subprocess
 import sys
 import tempfile
 import unittest
+from unittest import mock
 
 try:
     import h5py
     import numpy as np
     import yaml
-    from scipy.spatial import cKDTree  # noqa: F401  (the module needs it)
 except ImportError as error:  # ctest reports exit code 77 as "skipped", with this line
     print("skipped: a Debian python3 package is missing (%s)" % error)
     sys.exit(77)
@@ -37,6 +37,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True
 from fsi import impeller_xdmf  # noqa: E402  (python/fsi/impeller_xdmf.py)
 from fsi import rag_metrics  # noqa: E402  (python/fsi/rag_metrics.py)
+from fsi import surface_engine  # noqa: E402  (python/fsi/surface_engine.py)
 
 RATE = 2 * math.pi * 10.0          # rad/s: T = 0.1 s
 PERIOD = 2 * math.pi / RATE
@@ -238,6 +239,15 @@ class Distance(unittest.TestCase):
             self.assertTrue(np.any(near) and np.any(~near))
             self.assertLess(np.max(np.abs(capped[near] - exact[near])), 1e-12)  # exact within the cap
             self.assertTrue(np.all(capped[~near] > cap))                        # beyond it: reported beyond
+
+    def test_engine_refusals_are_said(self):
+        # The geometry engine (fsi-surface-query): its refusals become the metrics' errors.
+        with self.assertRaisesRegex(rag_metrics.MetricsError, "no triangle of non-zero area"):
+            rag_metrics.TriangleSet(np.zeros((2, 3, 3)))
+        with mock.patch.dict(os.environ, {"FSI_BIN_DIR": "/nonexistent"}):
+            with self.assertRaisesRegex(surface_engine.EngineError,
+                                        "fsi-surface-query not found in /nonexistent .*\\./fsi build"):
+                surface_engine.SurfaceEngine()
 
     def test_boxes_from_stl_against_box_distance(self):
         g = geometry()

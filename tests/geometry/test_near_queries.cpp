@@ -151,6 +151,34 @@ TEST(TriangleBvh, FindsTheExactClosestTriangleFromAnyStart) {
   }
 }
 
+TEST(TriangleBvh, WithinABoundIsExactInsideItAndEmptyBeyond) {
+  const TriangleSoup torus = testing::test_torus();
+  const BruteForceMesh oracle(torus);
+  const TriangleBvh bvh(corners_of(torus));
+  std::size_t n_inside = 0, n_beyond = 0;
+  for (const Vec3 &p : testing::random_points_around(torus, 2000, 0.5, 23)) {
+    const double expected_m = oracle.unsigned_distance(p);
+    const double bound_m = 0.1;
+    const TriangleBvh::Nearest hit = bvh.nearest_within(p, bound_m);
+    if (expected_m <= bound_m) {
+      ++n_inside;
+      ASSERT_GE(hit.face, 0) << "at " << p.transpose();
+      ASSERT_NEAR(std::sqrt(hit.distance_sq_m2), expected_m, 1e-12);
+      ASSERT_EQ(hit.face, bvh.nearest(p).face);
+    } else {
+      ++n_beyond;
+      ASSERT_EQ(hit.face, -1) << "at " << p.transpose();
+      ASSERT_TRUE(std::isinf(hit.distance_sq_m2));
+    }
+    // The bound is inclusive: exactly the distance finds the triangle, even a zero distance.
+    ASSERT_EQ(bvh.nearest_within(p, std::sqrt(bvh.nearest(p).distance_sq_m2)).face, bvh.nearest(p).face);
+  }
+  EXPECT_GT(n_inside, 100u);
+  EXPECT_GT(n_beyond, 100u);
+  const Vec3 on_surface = torus.vertices_m.row(0).transpose();
+  EXPECT_EQ(bvh.nearest_within(on_surface, 0.0).distance_sq_m2, 0.0);
+}
+
 TEST(PseudoNormals, AreAngleWeightedAtCubeCornersAndBisectEdges) {
   const TriangleSoup cube = testing::test_cube(Vec3::Zero()); // corner v at bits of v
   const PseudoNormals normals(cube.vertices_m, cube.triangles);
