@@ -4,6 +4,7 @@
 // a PIMPLE step of pimpleFoam (v1912) with an extra momentum source, the FSI acceleration.
 
 #include "common/Types.hpp"
+#include "fluid_adapter/PisoLimit.hpp"
 
 #include <filesystem>
 #include <memory>
@@ -66,6 +67,10 @@ public:
   /// and after each turbulence update nuTilda and nut are set to 0 in cells with
   /// inside_fraction >= 0.5 (the condition nuTilda = 0 at immersed walls). Laminar: no effect.
   virtual void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) = 0;
+  /// The PIMPLE settings of system/fvSolution that decide the time-step limit (PisoLimit).
+  virtual PisoSettings piso_settings() const = 0;
+  /// The largest viscous number nu_eff dt sum 1/dx^2 over the cells of every rank (collective).
+  virtual ViscousNumber max_viscous_number(double dt_s) const = 0;
   /// One PIMPLE time step of dt; writes fields at the case's write interval.
   virtual void advance(double dt_s) = 0;
   /// Implicit coupling (collective): keeps every field's values and the time before a step,

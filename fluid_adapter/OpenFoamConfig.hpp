@@ -12,6 +12,7 @@ namespace fsi::fluid {
 enum class InterpolationChoice { kernel, closest_cell_linear };
 enum class InterfaceFlux { interpolated, body_normal };
 enum class BodyIndicatorChoice { sharp, inside_smoothed };
+enum class ViscousLimitChoice { refuse, warn };
 
 struct OpenFoamConfig {
   std::string case_directory = "openfoam";
@@ -27,6 +28,7 @@ struct OpenFoamConfig {
   BodyIndicatorChoice body_indicator = BodyIndicatorChoice::sharp;
   double body_indicator_depth_cells = 1.0;
   std::optional<OperatingPoint> operating_point;
+  ViscousLimitChoice viscous_limit = ViscousLimitChoice::refuse;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -84,6 +86,13 @@ struct OpenFoamConfig {
     v.number("precursor_time_step_s", precursor_time_step_s, common::Range::non_negative("s"),
              "Time step of the precursor run (no structure, so only the flow's Courant number limits it). 0: "
              "run.time_step_s.");
+    v.choice("viscous_limit", viscous_limit,
+             {{"refuse", ViscousLimitChoice::refuse}, {"warn", ViscousLimitChoice::warn}},
+             "A time step over the measured limit of OpenFOAM's PISO loop for the case's largest viscous number "
+             "nu_eff dt sum 1/dx^2 (with a momentum predictor: 0.55 with nCorrectors 1, 30.5 with 2; "
+             "docs/verification.md): refuse (the run stops before its first step, naming the largest stable time "
+             "step and the settings without the limit) or warn (it runs; the divergence checks stop it when its "
+             "velocity or a body's load runs away).");
     v.optional_section("operating_point", operating_point,
                        "The inlet's volume flow rate, for an OpenFOAM case whose 0/U takes it from "
                        "constant/operatingPoint (the pump cases): required there, refused elsewhere.");

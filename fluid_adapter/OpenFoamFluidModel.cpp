@@ -3,6 +3,7 @@
 #include "FoamCheckpoint.hpp"
 #include "checkpoint/ArchiveFile.hpp"
 #include "common/Durations.hpp"
+#include "common/UserError.hpp"
 
 #include "fluid_adapter/ibm/ClosestCellLinear.hpp"
 #include "fluid_adapter/ibm/PeskinKernel.hpp"
@@ -154,7 +155,7 @@ void OpenFoamFluidModel::advance(const participant::FluidStep &step,
   unpack_rigid_poses(step.time_s + step.dt_s, message_.data() + 2, message_.data() + poses_end);
   force_density_ = force_density_n_per_measure;
   std::vector<rigid::BodyLoad> loads;
-  do_advance(step.time_s, step.dt_s, loads);
+  do_advance(step.step + 1, step.time_s, step.dt_s, loads);
   for (std::size_t b = 0; b < loads.size(); ++b)
     loads_out.push_back({bodies_[b]->name(), loads[b].force_n, loads[b].torque_n_m});
 }
@@ -248,7 +249,8 @@ void OpenFoamFluidModel::follow() {
       const double *forces = unpack_rigid_poses(payload[0] + payload[1], payload + 2, payload + n);
       force_density_ = Eigen::Map<const PointArray>(forces, static_cast<Eigen::Index>((payload + n - forces) / 3), 3);
       std::vector<rigid::BodyLoad> loads;
-      do_advance(payload[0], payload[1], loads);
+      do_advance(-1, payload[0], payload[1], loads); // rank 0 names the step
+
       break;
     }
     case Command::write_now:
@@ -371,18 +373,20 @@ void OpenFoamFluidModel::build_stencil() {
   }
 }
 
-void OpenFoamFluidModel::do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
+void OpenFoamFluidModel::do_advance(long step, double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
   // Eq. (8) at the points of this step's interpolation (X^n): N/m^2 x m^2 -> N/m^3 per cell,
   // then per unit density for OpenFOAM's kinematic momentum equation (Eq. 1: +f_fsi).
   acceleration_ = stencil_->spread(force_density_, point_measures_) / config_.density_kg_per_m3;
   flow_.set_fsi_acceleration(acceleration_);
-  step_flow(time_s, dt_s, loads);
+  step_flow(step, time_s, dt_s, loads);
 }
 
-void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
+void OpenFoamFluidModel::step_flow(long step, double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads) {
   using common::Clock;
   using common::seconds_since;
   const double t_next = time_s + dt_s;
+  if (dt_s != checked_dt_s_)
+    check_time_step(dt_s);
   auto start = Clock::now();
   timings_ = {};
   if (!bodies_.empty())
@@ -410,13 +414,41 @@ void OpenFoamFluidModel::step_flow(double time_s, double dt_s, std::vector<rigid
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     loads.push_back(rigid_body_load(b, t_next));
   timings_.loads_s = seconds_since(start);
+  // Every rank has the summed loads: all of them stop at the same step.
+  if (const std::string problem = runaway_loads_.observe(step, t_next, body_names(), loads); !problem.empty())
+    throw std::runtime_error(problem + "; this step's fields are written when the run stops");
 }
 
-std::vector<rigid::BodyLoad> OpenFoamFluidModel::advance_without_structure(double time_s, double dt_s) {
+void OpenFoamFluidModel::check_time_step(double dt_s) {
+  // Collective: every rank computes the same answer, so all refuse together.
+  const ViscousNumber d = flow_.max_viscous_number(dt_s);
+  const PisoSettings piso = flow_.piso_settings();
+  const double limit = PisoLimit::measured_limit(piso);
+  spdlog::info("viscous number nu_eff dt sum 1/dx^2 at dt = {:.6g} s: at most {:.3g}, in the cell at ({:.4g}, {:.4g}, "
+               "{:.4g}) m; PIMPLE with momentumPredictor {}, nCorrectors {}, nOuterCorrectors {}: {}",
+               dt_s, d.value, d.where_m.x(), d.where_m.y(), d.where_m.z(), piso.momentum_predictor ? "yes" : "no",
+               piso.correctors, piso.outer_correctors,
+               std::isfinite(limit) ? fmt::format("stable below {:.3g} (measured)", limit) : "no known limit");
+  if (const std::string refusal = PisoLimit::refusal(piso, d, dt_s); !refusal.empty()) {
+    if (config_.viscous_limit == ViscousLimitChoice::refuse)
+      throw common::UserError(refusal + " (fluid.openfoam.viscous_limit: warn runs it anyway)");
+    spdlog::warn("{} (fluid.openfoam.viscous_limit: warn: running anyway)", refusal);
+  }
+  checked_dt_s_ = dt_s;
+}
+
+std::vector<std::string> OpenFoamFluidModel::body_names() const {
+  std::vector<std::string> names;
+  for (const auto &body : bodies_)
+    names.push_back(body->name());
+  return names;
+}
+
+std::vector<rigid::BodyLoad> OpenFoamFluidModel::advance_without_structure(long step, double time_s, double dt_s) {
   if (acceleration_.rows() != cells_.n_cells()) // no structure: no FSI source
     flow_.set_fsi_acceleration(acceleration_ = PointArray::Zero(cells_.n_cells(), 3));
   std::vector<rigid::BodyLoad> loads;
-  step_flow(time_s, dt_s, loads);
+  step_flow(step, time_s, dt_s, loads);
   return loads;
 }
 

@@ -22,6 +22,7 @@
 #include "fluid_adapter/rigid/BodyLoads.hpp"
 #include "fluid_adapter/rigid/ImmersedWallDistance.hpp"
 #include "fluid_adapter/rigid/RigidBody.hpp"
+#include "fluid_adapter/rigid/RunawayLoadCheck.hpp"
 #include "participant/FluidModel.hpp"
 
 #include <filesystem>
@@ -82,8 +83,8 @@ public:
   void follow();
 
   /// The precursor run (no structure, no coupler): one step of the flow with its rigid bodies
-  /// from time_s to time_s + dt_s, collective over the ranks. Returns the rigid-body loads.
-  std::vector<rigid::BodyLoad> advance_without_structure(double time_s, double dt_s);
+  /// `step` from time_s to time_s + dt_s, collective over the ranks. Returns the rigid-body loads.
+  std::vector<rigid::BodyLoad> advance_without_structure(long step, double time_s, double dt_s);
   /// The split of the last step's wall time (the flow alone, the pump's cost per revolution).
   const FlowStepTimings &last_step_timings() const { return timings_; }
   /// The cells the rigid bodies switched in the last step (collective over the ranks).
@@ -115,8 +116,14 @@ private:
   void do_interpolate(PointArray &u_m_per_s);
   /// The kernel stencil of Eq. (6) at positions_ (collective: widths and weight sums).
   void build_stencil();
-  void do_advance(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
-  void step_flow(double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
+  /// One step (`step`, ending at time_s + dt_s; -1 on the ranks other than 0). Throws
+  /// std::runtime_error when the flow diverges or a body's load runs away.
+  void do_advance(long step, double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
+  void step_flow(long step, double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
+  std::vector<std::string> body_names() const;
+  /// Refuses a time step over PISO's measured limit for the case's viscous number (PisoLimit),
+  /// and logs that number; once per time step size.
+  void check_time_step(double dt_s);
   void kernel_widths(Eigen::VectorXd &widths_m);
   /// Runs one collective operation over the ranks (broadcast, reduction), timing it.
   template <class Operation> void collective(const Operation &operation);
@@ -137,6 +144,8 @@ private:
   std::unique_ptr<ibm::NearestCells> nearest_;
   std::unique_ptr<ibm::KernelStencil> stencil_;
   std::vector<std::unique_ptr<rigid::RigidBody>> bodies_;
+  rigid::RunawayLoadCheck runaway_loads_;
+  double checked_dt_s_ = -1.0;
   std::vector<std::unique_ptr<rigid::BodyIndicator>> indicators_;
   std::unique_ptr<rigid::ImmersedWallDistance> wall_distance_; ///< only with a wall-distance turbulence model
   Eigen::VectorXd penalization_rate_;

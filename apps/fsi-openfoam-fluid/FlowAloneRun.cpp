@@ -56,7 +56,7 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
     }
     std::vector<fluid::rigid::BodyLoad> loads;
     try {
-      loads = model.advance_without_structure(t, steps[static_cast<std::size_t>(step)]);
+      loads = model.advance_without_structure(step + 1, t, steps[static_cast<std::size_t>(step)]);
     } catch (const std::exception &) {
       // A diverged step has put the last good fields back (FoamFlow::advance): they go to disk,
       // as its message promises, before the error ends the run.

@@ -119,4 +119,47 @@ std::string OpenFoamFlow::find_divergence(double dt_s) const {
   return text.str();
 }
 
+PisoSettings OpenFoamFlow::piso_settings() const {
+  return {pimple_->momentumPredictor(), static_cast<int>(pimple_->nCorrPISO()),
+          static_cast<int>(pimple_->nCorrPIMPLE())};
+}
+
+ViscousNumber OpenFoamFlow::max_viscous_number(double dt_s) const {
+  // Per cell nu_eff dt sum_f |S_f| delta_f / (2 V): on a uniform hex, nu_eff dt sum_i 1/dx_i^2.
+  // Internal and coupled (processor, cyclic) faces only: an empty direction does not count.
+  using namespace Foam;
+  const fvMesh &mesh = *mesh_;
+  const tmp<volScalarField> nu_eff = turbulence_->nuEff();
+  const surfaceScalarField &delta = mesh.deltaCoeffs();
+  scalarField sum(mesh.nCells(), 0.0);
+  forAll(mesh.neighbour(), f) {
+    const scalar a = mesh.magSf()[f] * delta[f];
+    sum[mesh.owner()[f]] += a;
+    sum[mesh.neighbour()[f]] += a;
+  }
+  forAll(mesh.boundary(), patch) {
+    if (!mesh.boundary()[patch].coupled())
+      continue;
+    const labelUList &cells = mesh.boundary()[patch].faceCells();
+    forAll(cells, i) sum[cells[i]] += mesh.magSf().boundaryField()[patch][i] * delta.boundaryField()[patch][i];
+  }
+  ViscousNumber local;
+  forAll(sum, c) {
+    const double d = dt_s * nu_eff().primitiveField()[c] * sum[c] / (2.0 * mesh.V()[c]);
+    if (d > local.value) {
+      local.value = d;
+      local.where_m = Vec3(mesh.C()[c].x(), mesh.C()[c].y(), mesh.C()[c].z());
+    }
+  }
+  ViscousNumber global = local;
+  global.value = returnReduce(local.value, maxOp<scalar>());
+  double where[4] = {0.0, 0.0, 0.0, 0.0}; // the rank(s) holding the maximum give its cell
+  if (local.value == global.value)
+    where[0] = 1.0, where[1] = local.where_m.x(), where[2] = local.where_m.y(), where[3] = local.where_m.z();
+  sum_over_ranks(where, 4);
+  if (where[0] > 0.0)
+    global.where_m = Vec3(where[1], where[2], where[3]) / where[0];
+  return global;
+}
+
 } // namespace fsi::fluid
