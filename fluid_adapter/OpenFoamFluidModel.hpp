@@ -122,7 +122,7 @@ private:
   void step_flow(long step, double time_s, double dt_s, std::vector<rigid::BodyLoad> &loads);
   std::vector<std::string> body_names() const;
   /// Refuses a time step over PISO's measured limit for the case's viscous number (PisoLimit),
-  /// and logs that number; once per time step size.
+  /// and logs that number; again only for a larger time step.
   void check_time_step(double dt_s);
   void kernel_widths(Eigen::VectorXd &widths_m);
   /// Runs one collective operation over the ranks (broadcast, reduction), timing it.
