@@ -123,7 +123,11 @@ class StructureAlone(Fixture):
         out = os.path.join(self.tmp, "sigterm")
         child = subprocess.Popen([STRUCTURE, self.case, "-o", out], stdin=subprocess.DEVNULL,
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        time.sleep(0.4 * self.full_wall_s)
+        # SIGTERM once the first periodic checkpoint is on disk (step 500 of 4000), not after a
+        # fraction of the uninterrupted run's wall time: that run, slowed by a neighbouring test,
+        # once took 2.5 times longer than this one, which had finished before the signal.
+        wait_for_set(child, out, EVERY)
+        self.assertIsNone(child.poll(), "the run ended before its first checkpoint")
         child.send_signal(signal.SIGTERM)
         text = child.communicate(timeout=60)[0]
         self.assertEqual(child.returncode, 130, text[-2000:])
@@ -285,11 +289,16 @@ def start_until_first_set(case, out, first_step, new_session=False):
     child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, case],
                              stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                              start_new_session=new_session)
-    first = os.path.join(out, "checkpoints", "step-%09d" % first_step, "manifest.ckpt")
-    deadline = time.time() + 120
+    wait_for_set(child, out, first_step)
+    return child
+
+
+def wait_for_set(child, out, step, limit_s=120):
+    """Until the checkpoint set of `step` in `out` is complete, the child ended or limit_s passed."""
+    first = os.path.join(out, "checkpoints", "step-%09d" % step, "manifest.ckpt")
+    deadline = time.time() + limit_s
     while not os.path.exists(first) and child.poll() is None and time.time() < deadline:
         time.sleep(0.02)
-    return child
 
 
 def stop_at_boundary(out):
