@@ -266,7 +266,7 @@ PumpGeometryFrame PumpGeometryFrame::from_design(const PumpDesign &design) {
   frame.impeller_radius_m = 0.5 * imp.outer_diameter_m;
   frame.eye_radius_m = 0.5 * imp.eye_diameter_m;
   frame.outlet_width_m = imp.outlet_width_m;
-  frame.disc_thickness_m = imp.blade_thickness_m;
+  frame.disc_thickness_m = imp.disc_thickness_m();
   frame.volute_base_radius_m = design.volute.base_radius_m;
   // The generator's throat (CasingSolid: the spiral's 360 deg section) lies in the half-plane
   // x = 0 on the side -sense y: +y for rotation about -z, -y about +z.

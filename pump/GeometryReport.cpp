@@ -59,20 +59,34 @@ void write_geometry_report(const std::filesystem::path &file, const PumpDesign &
   out << YAML::Key << "axis_xy_m" << YAML::Value << YAML::Flow << YAML::BeginSeq << geometry.nose_centre_xy_m[0]
       << geometry.nose_centre_xy_m[1] << YAML::EndSeq;
   out << YAML::Key << "radius_m" << YAML::Value << geometry.nose_radius_m << YAML::EndMap;
-  const BladeCamber camber = design.blade_camber();
-  out << YAML::Key << "blade" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "design" << YAML::Value << YAML::Flow << YAML::BeginMap;
-  out << YAML::Key << "wrap_deg" << YAML::Value << design.impeller.wrap_angle_deg;
-  out << YAML::Key << "inlet_angle_deg" << YAML::Value << design.impeller.inlet_blade_angle_deg;
-  out << YAML::Key << "outlet_angle_deg" << YAML::Value << design.impeller.outlet_blade_angle_deg;
-  out << YAML::Key << "cot_beta_curvature_c" << YAML::Value << camber.curvature_coefficient();
-  out << YAML::EndMap;
-  out << YAML::Key << "as_built" << YAML::Value << YAML::Flow << YAML::BeginMap;
-  out << YAML::Key << "wrap_deg" << YAML::Value << geometry.blade.wrap_deg;
-  out << YAML::Key << "inlet_angle_deg" << YAML::Value << geometry.blade.inlet_angle_deg;
-  out << YAML::Key << "outlet_angle_deg" << YAML::Value << geometry.blade.outlet_angle_deg;
-  out << YAML::Key << "wrap_on_mesh_deg" << YAML::Value << geometry.blade.wrap_on_mesh_deg;
-  out << YAML::EndMap << YAML::EndMap;
+  if (geometry.channel) {
+    const BuiltChannel &c = *geometry.channel;
+    out << YAML::Key << "single_channel" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "channel_volume_m3" << YAML::Value << c.channel_volume_m3;
+    out << YAML::Key << "leading_edge" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "angle_deg" << YAML::Value << c.leading_edge_angle_deg;
+    out << YAML::Key << "inner_radius_m" << YAML::Value << c.leading_edge_inner_radius_m;
+    out << YAML::Key << "outer_radius_m" << YAML::Value << c.leading_edge_outer_radius_m;
+    out << YAML::Key << "nose_radius_m" << YAML::Value << design.impeller.leading_edge_radius_m << YAML::EndMap;
+    out << YAML::Key << "exit_area_m2" << YAML::Value << c.exit_area_m2;
+    out << YAML::Key << "smallest_section_side_m" << YAML::Value << c.smallest_section_side_m;
+    out << YAML::EndMap;
+  } else {
+    const BladeCamber camber = design.blade_camber();
+    out << YAML::Key << "blade" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "design" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "wrap_deg" << YAML::Value << design.impeller.wrap_angle_deg;
+    out << YAML::Key << "inlet_angle_deg" << YAML::Value << design.impeller.inlet_blade_angle_deg;
+    out << YAML::Key << "outlet_angle_deg" << YAML::Value << design.impeller.outlet_blade_angle_deg;
+    out << YAML::Key << "cot_beta_curvature_c" << YAML::Value << camber.curvature_coefficient();
+    out << YAML::EndMap;
+    out << YAML::Key << "as_built" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "wrap_deg" << YAML::Value << geometry.blade.wrap_deg;
+    out << YAML::Key << "inlet_angle_deg" << YAML::Value << geometry.blade.inlet_angle_deg;
+    out << YAML::Key << "outlet_angle_deg" << YAML::Value << geometry.blade.outlet_angle_deg;
+    out << YAML::Key << "wrap_on_mesh_deg" << YAML::Value << geometry.blade.wrap_on_mesh_deg;
+    out << YAML::EndMap << YAML::EndMap;
+  }
   out << YAML::Key << "design" << YAML::Value << YAML::BeginMap;
   PumpDesign inputs = design;
   common::ConfigEmitter emitter(out);

@@ -1,5 +1,8 @@
 #include "PumpDesign.hpp"
 
+#include "ChannelLayout.hpp"
+#include "GeometryChecks.hpp"
+
 #include "common/ConfigDocWriter.hpp"
 
 #include <algorithm>
@@ -38,12 +41,14 @@ BladeCamber PumpDesign::blade_camber() const {
 }
 
 double PumpDesign::impeller_bottom_z_m() const {
+  if (impeller.single_channel) // the shroud (the neck reaches on below, into the suction pipe)
+    return -impeller.disc_thickness_m();
   const double shroud = impeller.closed ? -impeller.blade_thickness_m : 0.0;
   const double nose = impeller.hub_diameter_m > 0.0 ? -hub_nose_depth * impeller.outlet_width_m : 0.0;
   return std::min(shroud, nose);
 }
 
-double PumpDesign::impeller_top_z_m() const { return impeller.outlet_width_m + impeller.blade_thickness_m; }
+double PumpDesign::impeller_top_z_m() const { return impeller.outlet_width_m + impeller.disc_thickness_m(); }
 
 void PumpDesign::validate(common::ConfigReader &v) const {
   const auto &i = impeller;
@@ -53,6 +58,40 @@ void PumpDesign::validate(common::ConfigReader &v) const {
   if (i.hub_diameter_m >= i.eye_diameter_m)
     v.fail_value("impeller", "hub_diameter_m = " + std::to_string(i.hub_diameter_m) +
                                  " must be below eye_diameter_m = " + std::to_string(i.eye_diameter_m) + ".");
+  if (i.single_channel)
+    validate_single_channel(v);
+  else
+    validate_blades(v);
+  validate_casing(v);
+}
+
+void PumpDesign::validate_single_channel(common::ConfigReader &v) const {
+  const auto &sc = *impeller.single_channel;
+  try {
+    ChannelLayout layout(*this);
+  } catch (const std::invalid_argument &e) {
+    v.fail_value("impeller", std::string("the single channel cannot be laid out: ") + e.what() + ".");
+  }
+  if (sc.neck_length_m > 0.0 && sc.wear_ring_clearance_m < GeometryCheckLimits{}.min_clearance_m)
+    v.fail_value("impeller", "single_channel.wear_ring_clearance_m = " + std::to_string(sc.wear_ring_clearance_m) +
+                                 " is below the " + std::to_string(GeometryCheckLimits{}.min_clearance_m) +
+                                 " m running clearance the geometry checks ask of every gap.");
+  const double neck_outer = 0.5 * inlet.suction_pipe_diameter_m - sc.wear_ring_clearance_m;
+  if (sc.neck_length_m > 0.0 && neck_outer < 0.5 * impeller.eye_diameter_m + 0.5 * sc.disc_thickness_m)
+    v.fail_value("impeller", "the wear-ring neck's wall, from the eye's radius " +
+                                 std::to_string(0.5 * impeller.eye_diameter_m) + " m out to the suction pipe's radius less "
+                                 "single_channel.wear_ring_clearance_m, " + std::to_string(neck_outer) +
+                                 " m, is thinner than half a disc: widen inlet.suction_pipe_diameter_m (or set "
+                                 "single_channel.neck_length_m: 0 for no neck).");
+  const double chamber_low = 0.5 * (impeller.outlet_width_m - volute.base_width_m);
+  if (sc.neck_length_m > 0.0 && -sc.disc_thickness_m - sc.neck_length_m > chamber_low - min_axial_clearance_m)
+    v.fail_value("impeller", "single_channel.neck_length_m = " + std::to_string(sc.neck_length_m) +
+                                 " does not reach past the impeller chamber's floor (z = " + std::to_string(chamber_low) +
+                                 " m) into the suction pipe: the neck would not seal the side space.");
+}
+
+void PumpDesign::validate_blades(common::ConfigReader &v) const {
+  const auto &i = impeller;
   if (2.0 * i.leading_edge_radius_m < i.blade_thickness_m * (1.0 - 1e-12))
     v.fail_value("impeller",
                  "leading_edge_radius_m = " + std::to_string(i.leading_edge_radius_m) +
@@ -71,6 +110,10 @@ void PumpDesign::validate(common::ConfigReader &v) const {
   } catch (const std::invalid_argument &e) {
     v.fail_value("impeller", e.what() + std::string("."));
   }
+}
+
+void PumpDesign::validate_casing(common::ConfigReader &v) const {
+  const auto &i = impeller;
   if (volute.base_radius_m <= 0.5 * i.outer_diameter_m)
     v.fail_value("volute", "base_radius_m = " + std::to_string(volute.base_radius_m) +
                                " must exceed the impeller radius outer_diameter_m / 2 = " +
@@ -84,7 +127,7 @@ void PumpDesign::validate(common::ConfigReader &v) const {
                                std::to_string(chamber_high) + "] m that does not hold the impeller, z in [" +
                                std::to_string(impeller_bottom_z_m()) + ", " + std::to_string(impeller_top_z_m()) +
                                "] m (shroud, hub disc and the hub's nose, from impeller.outlet_width_m, "
-                               "blade_thickness_m and hub_diameter_m), with " +
+                               "the discs' thickness and hub_diameter_m), with " +
                                std::to_string(min_axial_clearance_m) + " m clearance on each side.");
   if (0.5 * inlet.suction_pipe_diameter_m >= volute.base_radius_m)
     v.fail_value("inlet", "suction_pipe_diameter_m = " + std::to_string(inlet.suction_pipe_diameter_m) +

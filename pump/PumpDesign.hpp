@@ -11,9 +11,52 @@
 #include "common/Types.hpp"
 
 #include <filesystem>
+#include <optional>
+#include <type_traits>
 #include <string>
 
 namespace fsi::pump {
+
+/// A single-channel impeller (pump/ChannelImpellerSolid.hpp): one enclosed channel from the eye
+/// to D2, the vane the solid between the discs around it. The channel's meridional section at
+/// each angle of its wrap is a rectangle: radial width and the height between its floor and the
+/// hub disc. Keys of `impeller` that still apply: outer_diameter_m, outlet_width_m (the channel's
+/// height where it leaves D2), eye_diameter_m, hub_diameter_m (the boss), wrap_angle_deg (from
+/// the channel's back wall in the eye to its exit), inlet_blade_angle_deg (the leading edge's
+/// floor angle at the eye's mean radius), outlet_blade_angle_deg (the channel's inner wall at
+/// D2) and leading_edge_radius_m (the nose).
+struct SingleChannelDesign {
+  double mouth_angle_deg = 90.0;
+  double inlet_width_m = 0.06;
+  double exit_width_m = 0.07;
+  double eye_cover_thickness_m = 0.012;
+  double disc_thickness_m = 0.008;
+  double neck_length_m = 0.02;
+  double wear_ring_clearance_m = 0.002;
+
+  template <class V> void visit(V &v) {
+    v.number("mouth_angle_deg", mouth_angle_deg, common::Range::between(20.0, 240.0, "deg"),
+             "Wrap over which the channel stands open to the eye below it, from its back wall to where its floor "
+             "starts to rise towards the leading edge.");
+    v.number("inlet_width_m", inlet_width_m, common::Range::positive("m"),
+             "Radial width of the channel's section in the mouth, from the boss outwards (over the eye and beyond "
+             "it above the shroud).");
+    v.number("exit_width_m", exit_width_m, common::Range::positive("m"),
+             "Radial width of the channel's section where its outer wall reaches D2 (the width grows linearly "
+             "along the wrap from inlet_width_m).");
+    v.number("eye_cover_thickness_m", eye_cover_thickness_m, common::Range::positive("m"),
+             "Thickness of the vane's floor over the eye behind the leading edge (the channel's floor there is this "
+             "high above the shroud plane).");
+    v.number("disc_thickness_m", disc_thickness_m, common::Range::positive("m"),
+             "Thickness of the hub and shroud discs.");
+    v.number("neck_length_m", neck_length_m, common::Range::non_negative("m"),
+             "Length of the wear-ring neck: a tube of the eye's inner diameter below the shroud, reaching into the "
+             "suction pipe (0: no neck, the side space opens into the eye).");
+    v.number("wear_ring_clearance_m", wear_ring_clearance_m, common::Range::positive("m"),
+             "Radial clearance between the neck and the suction pipe (the neck's outer radius is the suction "
+             "pipe's radius less this).");
+  }
+};
 
 struct ImpellerDesign {
   double outer_diameter_m = 0.2;
@@ -28,6 +71,10 @@ struct ImpellerDesign {
   double blade_thickness_m = 0.008;
   double leading_edge_radius_m = 0.004;
   bool closed = true;
+  std::optional<SingleChannelDesign> single_channel;
+
+  /// Thickness of the hub and shroud discs: the channel's own key, or the blades' thickness.
+  double disc_thickness_m() const { return single_channel ? single_channel->disc_thickness_m : blade_thickness_m; }
 
   template <class V> void visit(V &v) {
     v.number("outer_diameter_m", outer_diameter_m, common::Range::positive("m"), "Impeller outer diameter D2.");
@@ -49,6 +96,15 @@ struct ImpellerDesign {
              "Radius of the rounded leading edge (the high-curvature surface a rag wraps around): half the "
              "blade thickness (a semicircle) or more (a circular bulb).");
     v.flag("closed", closed, "Closed impeller: hub and shroud discs (false: open, hub disc only).");
+    v.optional_section("single_channel", single_channel,
+                       "A single-channel impeller instead of blades: one enclosed channel from the eye to D2 "
+                       "(n_blades, blade_inlet_diameter_m, blade_thickness_m and closed do not apply and are refused).");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      if (v.has("single_channel"))
+        for (const char *key : {"n_blades", "blade_inlet_diameter_m", "blade_thickness_m", "closed"})
+          if (v.has(key))
+            v.fail_value(key, "is a key of bladed impellers; a single_channel impeller has none (its discs: "
+                              "single_channel.disc_thickness_m; it is always closed).");
   }
 };
 
@@ -167,6 +223,9 @@ struct PumpDesign {
 
 private:
   void validate(common::ConfigReader &v) const;
+  void validate_blades(common::ConfigReader &v) const;
+  void validate_single_channel(common::ConfigReader &v) const;
+  void validate_casing(common::ConfigReader &v) const;
 };
 
 } // namespace fsi::pump

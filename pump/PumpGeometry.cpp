@@ -1,6 +1,7 @@
 #include "PumpGeometry.hpp"
 
 #include "CasingSolid.hpp"
+#include "ChannelImpellerSolid.hpp"
 #include "GeometryReport.hpp"
 #include "GmshSession.hpp"
 #include "ImpellerSolid.hpp"
@@ -82,7 +83,23 @@ PumpGeometry PumpGeometry::build(const PumpDesign &design, const GeometryOptions
   const auto start = std::chrono::steady_clock::now();
   PumpGeometry geometry;
   GmshSession session;
-  {
+  if (design.impeller.single_channel) {
+    session.new_model("impeller");
+    ChannelImpellerSolid solid(design);
+    const int volume = solid.build();
+    geometry.impeller.surface = mesh_solid("impeller", volume, options.impeller, ImpellerSolid::region_names(),
+                                           [&](const CadFace &face) { return solid.classify(face); });
+    geometry.impeller.cad_volume_m3 = solid.cad_volume_m3();
+    BuiltChannel channel;
+    const ChannelLayout &layout = solid.layout();
+    channel.channel_volume_m3 = solid.channel_volume_m3();
+    channel.leading_edge_angle_deg = solid.angle_rad(layout.leading_edge_phi_rad()) * 180.0 / M_PI;
+    channel.leading_edge_inner_radius_m = layout.boss_radius_m();
+    channel.leading_edge_outer_radius_m = layout.eye_radius_m();
+    channel.exit_area_m2 = layout.exit_area_m2();
+    channel.smallest_section_side_m = layout.smallest_section_side_m();
+    geometry.channel = channel;
+  } else {
     session.new_model("impeller");
     ImpellerSolid solid(design);
     const int volume = solid.build();

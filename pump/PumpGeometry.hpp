@@ -9,6 +9,7 @@
 #include "SolidMesher.hpp"
 
 #include <filesystem>
+#include <optional>
 
 namespace fsi::pump {
 
@@ -28,6 +29,15 @@ struct AsBuiltBlade {
   double wrap_on_mesh_deg = 0.0; ///< from the leading-edge centre to the trailing-edge face's centroid
 };
 
+/// A single-channel impeller as built (ChannelImpellerSolid, ChannelLayout).
+struct BuiltChannel {
+  double channel_volume_m3 = 0.0;      ///< the channel inside D2 between the discs (OCC)
+  double leading_edge_angle_deg = 0.0; ///< the leading edge's angle about z (its radial axis, z = 0)
+  double leading_edge_inner_radius_m = 0.0, leading_edge_outer_radius_m = 0.0; ///< boss to the eye's rim
+  double exit_area_m2 = 0.0;            ///< through-flow area at the exit (ChannelLayout::exit_area_m2)
+  double smallest_section_side_m = 0.0; ///< ChannelLayout::smallest_section_side_m
+};
+
 struct BuiltPart {
   RegionSurface surface;
   double cad_volume_m3 = 0.0; ///< OCC's volume of the solid
@@ -35,7 +45,8 @@ struct BuiltPart {
 
 struct PumpGeometry {
   BuiltPart impeller, casing;
-  AsBuiltBlade blade;
+  AsBuiltBlade blade;                 ///< bladed impellers
+  std::optional<BuiltChannel> channel; ///< single-channel impellers
   Eigen::Vector2d nose_centre_xy_m = Eigen::Vector2d::Zero(); ///< axis of the cut-water's round nose (z-parallel)
   double nose_radius_m = 0.0;
   double seconds = 0.0; ///< wall time of the build (CAD and meshing)

@@ -14,6 +14,7 @@
 
 #include "pump/BladeInlet.hpp"
 #include "pump/BladeOutlet.hpp"
+#include "pump/ChannelLayout.hpp"
 #include "pump/DutyEstimate.hpp"
 #include "pump/GeometryChecks.hpp"
 #include "pump/PhysicalConstants.hpp"
@@ -40,6 +41,31 @@ namespace {
 std::string band(double value, double lo, double hi) {
   return value >= lo && value <= hi ? "within " + fmt::format("{:.4g}-{:.4g}", lo, hi)
                                     : "OUTSIDE " + fmt::format("{:.4g}-{:.4g}", lo, hi);
+}
+
+/// A single channel: its leading edge's inflow angle and a rotating-channel-jet estimate of the
+/// swirl it leaves (c_u2 = u2 - w2 cos beta_2, w2 = Q / A2), to be checked by the flow solver.
+void channel_report(const fsi::pump::PumpDesign &design, double duty_head_m) {
+  const auto &op = design.operation;
+  const auto &imp = design.impeller;
+  const fsi::pump::ChannelLayout layout(design);
+  const double q = op.design_flow_rate_m3_per_s, omega = op.rotation_rate_rad_per_s, deg = M_PI / 180.0;
+  const double r_mean = 0.5 * (layout.boss_radius_m() + layout.eye_radius_m());
+  const double eye_area = M_PI * (std::pow(layout.eye_radius_m(), 2) - std::pow(layout.boss_radius_m(), 2));
+  const double c1m = q / eye_area, flow_angle = std::atan2(c1m, omega * r_mean) / deg;
+  spdlog::info("single channel: leading edge from r = {:.4g} to {:.4g} m across the eye, {:.1f} deg along the wrap; "
+               "inflow c1m = {:.3g} m/s at Q = {:.4g} m^3/s meets it at {:.1f} deg against its {:.4g} deg at r = "
+               "{:.3g} m (no incidence at Q = {:.3g} m^3/s)",
+               layout.boss_radius_m(), layout.eye_radius_m(), layout.leading_edge_phi_rad() / deg, c1m, q, flow_angle,
+               imp.inlet_blade_angle_deg, r_mean,
+               std::tan(imp.inlet_blade_angle_deg * deg) * omega * r_mean * eye_area);
+  const double u2 = omega * 0.5 * imp.outer_diameter_m, a2 = layout.exit_area_m2();
+  const double w2 = q / a2, cu2 = u2 - w2 * std::cos(imp.outlet_blade_angle_deg * deg);
+  spdlog::info("  exit area {:.4g} cm^2 (normal to the channel), w2 = {:.3g} m/s, c_u2 = u2 - w2 cos beta_2 = {:.3g} "
+               "m/s: Euler head {:.3g} m (an estimate; the duty above needs H / eta_h = {:.3g} m); smallest section "
+               "side {:.3g} m",
+               1e4 * a2, w2, cu2, u2 * cu2 / fsi::pump::g_m_per_s2, duty_head_m / op.hydraulic_efficiency,
+               layout.smallest_section_side_m());
 }
 
 int report(const fsi::pump::PumpDesign &design) {
@@ -70,6 +96,10 @@ int report(const fsi::pump::PumpDesign &design) {
                1e4 * volute.throat_area_m2(),
                band(1e4 * volute.throat_area_m2(), 1e4 * throat.min_area_m2, 1e4 * throat.max_area_m2),
                fsi::pump::ThroatBand::min_velocity_ratio, fsi::pump::ThroatBand::max_velocity_ratio);
+  if (imp.single_channel) {
+    channel_report(design, duty.head_m);
+    return fsi::common::exit_code_success;
+  }
   const auto inlet = fsi::pump::blade_inlet_at(design, op.design_flow_rate_m3_per_s);
   spdlog::info("blade inlet at Q = {:.4g} m^3/s: r1 = {:.4g} m, u1 = {:.3g} m/s, c1m = {:.3g} m/s (b1 = b2); flow angle "
                "beta_1 = {:.1f} deg against the blade's {:.4g} deg: incidence {:.1f} deg ({} deg)",
@@ -126,10 +156,14 @@ int write_geometry(const fsi::pump::PumpDesign &design, const std::filesystem::p
   geometry.write(dir, design);
   log_part("impeller", geometry.impeller);
   log_part("casing", geometry.casing);
-  spdlog::info("blade as built: wrap {:.3f} deg (on the mesh {:.2f} deg), beta1 {:.3f} deg, beta2 {:.3f} deg; "
-               "built in {:.1f} s",
-               geometry.blade.wrap_deg, geometry.blade.wrap_on_mesh_deg, geometry.blade.inlet_angle_deg,
-               geometry.blade.outlet_angle_deg, geometry.seconds);
+  if (geometry.channel)
+    spdlog::info("channel as built: {:.4g} m^3 inside D2; leading edge at {:.1f} deg; built in {:.1f} s",
+                 geometry.channel->channel_volume_m3, geometry.channel->leading_edge_angle_deg, geometry.seconds);
+  else
+    spdlog::info("blade as built: wrap {:.3f} deg (on the mesh {:.2f} deg), beta1 {:.3f} deg, beta2 {:.3f} deg; "
+                 "built in {:.1f} s",
+                 geometry.blade.wrap_deg, geometry.blade.wrap_on_mesh_deg, geometry.blade.inlet_angle_deg,
+                 geometry.blade.outlet_angle_deg, geometry.seconds);
   const std::string plot =
       std::string("/usr/bin/python3 ") + FSI_SOURCE_DIR + "/pump/plot_geometry.py '" + dir.string() + "'";
   if (std::system(plot.c_str()) != 0)

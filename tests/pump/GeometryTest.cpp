@@ -2,6 +2,7 @@
 // the project's STL reader sees them, their volumes against independent estimates, the
 // impeller inside the casing, the inlet and outlet discs' areas, the blade as built.
 
+#include "pump/ChannelLayout.hpp"
 #include "pump/PumpGeometry.hpp"
 
 #include "geometry/StlIo.hpp"
@@ -26,12 +27,13 @@ struct Built {
 
 /// The designs built: the single blade (the default), two blades, and the single blade with an
 /// inlet sump (cases/rag-in-pump).
-enum class Variant { single_blade, two_blades, single_blade_with_sump };
+enum class Variant { single_blade, two_blades, single_blade_with_sump, single_channel };
 
 std::string variant_name(Variant v) {
   switch (v) {
   case Variant::single_blade: return "SingleBlade";
   case Variant::two_blades: return "TwoBlades";
+  case Variant::single_channel: return "SingleChannel";
   default: return "SingleBladeWithSump";
   }
 }
@@ -43,6 +45,8 @@ const Built &built(Variant variant) {
   auto found = cache.find(variant);
   if (found == cache.end()) {
     Built b;
+    if (variant == Variant::single_channel)
+      b.design = PumpDesign::load(std::string(FSI_SOURCE_DIR) + "/pump/designs/single-channel.yaml");
     b.design.impeller.n_blades = variant == Variant::two_blades ? 2 : 1;
     if (variant == Variant::single_blade_with_sump) {
       b.design.inlet.sump_diameter_m = 0.2;
@@ -85,6 +89,38 @@ double estimated_impeller_volume(const PumpDesign &d) {
   return hub + shroud + boss + i.n_blades * blade;
 }
 
+/// The channel inside D2 between the discs from its sections (each clipped to the block, the
+/// integral of r dr dz dphi), the vane the block less it, the discs, the neck and the noses.
+double estimated_channel_volume(const ChannelLayout &layout, double b2) {
+  const double r2 = layout.outer_radius_m();
+  const int n = 20000;
+  double volume = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const ChannelSection s = layout.section((k + 0.5) * layout.exit_phi_rad() / n);
+    const double inner = std::min(s.inner_radius_m, r2), outer = std::min(s.outer_radius_m, r2);
+    const double height = std::min(s.top_z_m, b2) - std::max(s.floor_z_m, 0.0);
+    volume += 0.5 * (outer * outer - inner * inner) * height * layout.exit_phi_rad() / n;
+  }
+  return volume;
+}
+
+double estimated_channel_impeller_volume(const PumpDesign &d) {
+  const auto &i = d.impeller;
+  const auto &sc = *i.single_channel;
+  const ChannelLayout layout(d);
+  const double r2 = 0.5 * i.outer_diameter_m, t = sc.disc_thickness_m, b2 = i.outlet_width_m;
+  const double r_eye = 0.5 * i.eye_diameter_m, r_boss = 0.5 * i.hub_diameter_m, nose = i.leading_edge_radius_m;
+  const double neck_outer = 0.5 * d.inlet.suction_pipe_diameter_m - sc.wear_ring_clearance_m;
+  const double vane = M_PI * r2 * r2 * b2 - estimated_channel_volume(layout, b2);
+  const double discs = M_PI * r2 * r2 * t + M_PI * (r2 * r2 - r_eye * r_eye) * t;
+  const double neck = M_PI * (neck_outer * neck_outer - r_eye * r_eye) * sc.neck_length_m;
+  // below the shroud plane: the boss nose's cap and the leading edge's half cylinder
+  const double radius = 0.98 * r_boss, depth = radius - 0.2 * r_boss;
+  const double cap = M_PI * depth * depth * (3.0 * radius - depth) / 3.0;
+  const double edge = 0.5 * M_PI * nose * nose * (r_eye - r_boss);
+  return vane + discs + neck + cap + edge;
+}
+
 void BothSolidsAreClosedOutwardAndNamedByRegion(const Built &b) {
   for (const char *file : {"impeller.stl", "casing.stl"}) {
     const auto soup = geometry::read_stl((b.dir / file).string());
@@ -107,7 +143,14 @@ void BothSolidsAreClosedOutwardAndNamedByRegion(const Built &b) {
 
 void VolumesMatchIndependentEstimates(const Built &b) {
   const double impeller = b.geometry.impeller.surface.enclosed_volume_m3();
-  EXPECT_NEAR(impeller, estimated_impeller_volume(b.design), 0.03 * impeller);
+  if (b.design.impeller.single_channel) {
+    EXPECT_NEAR(impeller, estimated_channel_impeller_volume(b.design), 0.03 * impeller);
+    const double channel = b.geometry.channel->channel_volume_m3;
+    EXPECT_NEAR(channel, estimated_channel_volume(ChannelLayout(b.design), b.design.impeller.outlet_width_m),
+                0.03 * channel);
+  } else {
+    EXPECT_NEAR(impeller, estimated_impeller_volume(b.design), 0.03 * impeller);
+  }
   EXPECT_NEAR(impeller, b.geometry.impeller.cad_volume_m3, 0.01 * impeller);
   const double casing = b.geometry.casing.surface.enclosed_volume_m3();
   EXPECT_NEAR(casing, b.geometry.casing.cad_volume_m3, 0.01 * casing);
@@ -166,10 +209,50 @@ void TheWaterAtThePipesMouthIsFluidForTheCollisions(const Built &b) {
 }
 
 void TheBladeIsBuiltWithItsDesignWrapAndAngles(const Built &b) {
+  if (b.design.impeller.single_channel)
+    return;
   EXPECT_NEAR(b.geometry.blade.wrap_deg, b.design.impeller.wrap_angle_deg, 1.0);
   EXPECT_NEAR(b.geometry.blade.wrap_on_mesh_deg, b.design.impeller.wrap_angle_deg, 1.0);
   EXPECT_NEAR(b.geometry.blade.inlet_angle_deg, b.design.impeller.inlet_blade_angle_deg, 0.5);
   EXPECT_NEAR(b.geometry.blade.outlet_angle_deg, b.design.impeller.outlet_blade_angle_deg, 0.5);
+}
+
+/// A single channel's leading edge: its round nose runs across the eye from the boss to the
+/// shroud's rim in the shroud plane, every vertex within the nose's radius of its axis (most on
+/// it; the end cap at the rim, in the channel, inside), and it
+/// meets the axial inflow crosswise (its area facing the inflow about its length times its
+/// diameter). Blades: the edge is axial, the nose a cylinder about z.
+void TheLeadingEdgeCrossesTheInflow(const Built &b) {
+  if (!b.design.impeller.single_channel)
+    return;
+  const RegionSurface &impeller = b.geometry.impeller.surface;
+  const int edge = impeller.region_index("blade_leading_edge");
+  const double angle = b.geometry.channel->leading_edge_angle_deg * M_PI / 180.0;
+  const Vec3 axis(std::cos(angle), std::sin(angle), 0.0);
+  const double radius = b.design.impeller.leading_edge_radius_m;
+  double lo = 1e300, hi = 0.0, facing = 0.0, on_radius = 0.0, count = 0.0;
+  for (std::size_t t = 0; t < impeller.triangles.size(); ++t) {
+    if (impeller.triangle_regions[t] != edge)
+      continue;
+    const auto &tri = impeller.triangles[t];
+    const Vec3 &a = impeller.vertices_m[tri[0]], &p1 = impeller.vertices_m[tri[1]], &p2 = impeller.vertices_m[tri[2]];
+    facing += std::max(0.0, -0.5 * (p1 - a).cross(p2 - a)[2]); // area x (n . -e_z) where it faces the inflow
+    for (const int v : tri) {
+      const Vec3 &p = impeller.vertices_m[v];
+      const double along = p.dot(axis);
+      const double distance = (p - along * axis).norm();
+      EXPECT_LE(distance, radius + 2e-4);
+      on_radius += std::abs(distance - radius) < 2e-4;
+      ++count;
+      lo = std::min(lo, along);
+      hi = std::max(hi, along);
+    }
+  }
+  const double r_boss = 0.5 * b.design.impeller.hub_diameter_m, r_eye = 0.5 * b.design.impeller.eye_diameter_m;
+  EXPECT_GT(on_radius, 0.8 * count);
+  EXPECT_LT(lo, r_boss + radius);
+  EXPECT_GT(hi, r_eye - 1e-3);
+  EXPECT_GT(facing, 0.8 * 2.0 * radius * (r_eye - r_boss - radius));
 }
 
 void TheCutWaterHasItsRoundNose(const Built &b) {
@@ -219,13 +302,18 @@ TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
     TheBladeIsBuiltWithItsDesignWrapAndAngles(b);
   }
   {
+    SCOPED_TRACE("TheLeadingEdgeCrossesTheInflow");
+    TheLeadingEdgeCrossesTheInflow(b);
+  }
+  {
     SCOPED_TRACE("TheCutWaterHasItsRoundNose");
     TheCutWaterHasItsRoundNose(b);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Designs, GeneratedPump,
-                         testing::Values(Variant::single_blade, Variant::two_blades, Variant::single_blade_with_sump),
+                         testing::Values(Variant::single_blade, Variant::two_blades, Variant::single_blade_with_sump,
+                                         Variant::single_channel),
                          [](const testing::TestParamInfo<Variant> &info) { return variant_name(info.param); });
 
 } // namespace
