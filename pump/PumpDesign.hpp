@@ -170,6 +170,7 @@ struct OperationDesign {
   RotationDirection direction = RotationDirection::counterclockwise;
   double design_flow_rate_m3_per_s = 0.045;
   double hydraulic_efficiency = 0.85;
+  double design_swirl_m2_per_s = 0.0;
 
   template <class V> void visit(V &v) {
     v.number("rotation_rate_rad_per_s", rotation_rate_rad_per_s, common::Range::positive("rad/s"),
@@ -181,6 +182,10 @@ struct OperationDesign {
              "Flow rate the volute is sized for (the best efficiency point).");
     v.number("hydraulic_efficiency", hydraulic_efficiency, common::Range::between(0.3, 1.0, "1"),
              "eta_h of the Euler equation gH = eta_h u2 c_u2, for the swirl the volute is sized to carry.");
+    v.number("design_swirl_m2_per_s", design_swirl_m2_per_s, common::Range::non_negative("m^2/s"),
+             "The swirl c_u2 r2 the impeller leaves at design_flow_rate_m3_per_s, measured (./fsi pump-curve prints "
+             "it at the best point: T / (rho Q)); the volute is sized to carry it. 0: from the design rules' head "
+             "and hydraulic_efficiency.");
   }
 };
 

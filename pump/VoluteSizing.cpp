@@ -17,6 +17,13 @@ VoluteSizing::VoluteSizing(double flow_rate_m3_per_s, double head_m, double hydr
     throw std::invalid_argument("VoluteSizing: flow rate, head, speeds and the section must be positive");
 }
 
+VoluteSizing VoluteSizing::for_swirl(double flow_rate_m3_per_s, double angular_momentum_m2_per_s,
+                                     double base_radius_m, double base_width_m, double flank_angle_rad) {
+  // k = g H / (eta_h u2) r2: with eta_h = 1, u2 = g and r2 = 1, H is k itself.
+  return VoluteSizing(flow_rate_m3_per_s, angular_momentum_m2_per_s, 1.0, g_m_per_s2, 1.0, base_radius_m, base_width_m,
+                      flank_angle_rad);
+}
+
 double VoluteSizing::section_flow_m3_per_s(double outer_radius_m) const {
   // k int_{r3}^{ro} (b3 + 2 (r - r3) t) / r dr = k [(b3 - 2 r3 t) ln(ro / r3) + 2 t (ro - r3)]
   return k_ *
@@ -50,6 +57,9 @@ VoluteSizing size_volute(const PumpDesign &design) {
   const auto &op = design.operation;
   const auto &vol = design.volute;
   const double d2 = design.impeller.outer_diameter_m;
+  if (op.design_swirl_m2_per_s > 0.0)
+    return VoluteSizing::for_swirl(op.design_flow_rate_m3_per_s, op.design_swirl_m2_per_s, vol.base_radius_m,
+                                   vol.base_width_m, vol.flank_angle_deg * M_PI / 180.0);
   const DutyEstimate duty = estimate_duty_for_flow(op.rotation_rate_rad_per_s, d2, op.design_flow_rate_m3_per_s);
   return VoluteSizing(op.design_flow_rate_m3_per_s, duty.head_m, op.hydraulic_efficiency, duty.tip_speed_m_per_s,
                       0.5 * d2, vol.base_radius_m, vol.base_width_m, vol.flank_angle_deg * M_PI / 180.0);
@@ -67,6 +77,9 @@ ThroatBand throat_band(double flow_rate_m3_per_s, double head_m) {
 
 ThroatBand throat_band(const PumpDesign &design) {
   const auto &op = design.operation;
+  if (op.design_swirl_m2_per_s > 0.0)
+    return throat_band(op.design_flow_rate_m3_per_s,
+                       op.hydraulic_efficiency * op.rotation_rate_rad_per_s * op.design_swirl_m2_per_s / g_m_per_s2);
   const DutyEstimate duty =
       estimate_duty_for_flow(op.rotation_rate_rad_per_s, design.impeller.outer_diameter_m, op.design_flow_rate_m3_per_s);
   return throat_band(op.design_flow_rate_m3_per_s, duty.head_m);

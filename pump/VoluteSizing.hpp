@@ -15,6 +15,9 @@ public:
   /// base radius, the width at it and the flank angle of the section.
   VoluteSizing(double flow_rate_m3_per_s, double head_m, double hydraulic_efficiency, double tip_speed_m_per_s,
                double impeller_radius_m, double base_radius_m, double base_width_m, double flank_angle_rad);
+  /// The volute for a swirl c_u2 r2 given as such (measured: T / (rho Q) at the best point).
+  static VoluteSizing for_swirl(double flow_rate_m3_per_s, double angular_momentum_m2_per_s, double base_radius_m,
+                                double base_width_m, double flank_angle_rad);
 
   /// Angular momentum per unit mass of the free vortex, c_u2 r2 (m^2/s).
   double angular_momentum_m2_per_s() const { return k_; }
@@ -34,7 +37,8 @@ private:
 };
 
 struct PumpDesign;
-/// The volute of a design: sized for the duty its impeller reaches at the design flow rate.
+/// The volute of a design: sized for the swirl its impeller leaves at the design flow rate,
+/// operation.design_swirl_m2_per_s when given (measured), else the design rules' duty's.
 VoluteSizing size_volute(const PumpDesign &design);
 
 /// The design rules' band of the throat area for a duty, as a band of the volute velocity ratio
@@ -47,7 +51,8 @@ struct ThroatBand {
   double min_area_m2 = 0.0, max_area_m2 = 0.0;
 };
 ThroatBand throat_band(double flow_rate_m3_per_s, double head_m);
-/// The band for the duty of a design at its design flow rate (Gülich's head, DutyEstimate).
+/// The band for the duty of a design at its design flow rate: the head its given swirl makes,
+/// eta_h omega c_u2 r2 / g, or else Gülich's head (DutyEstimate).
 ThroatBand throat_band(const PumpDesign &design);
 
 } // namespace fsi::pump

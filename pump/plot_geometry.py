@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Draws DIR/geometry.png from DIR/impeller.stl and DIR/casing.stl: a top view of the impeller
-inside the volute (the triangles cut by the mid-channel plane) and a side section (cut by the
-plane through the axis and the discharge). Usage: plot_geometry.py DIR"""
+inside the volute (the triangles cut by the mid-channel plane), a side section (cut by the
+plane through the axis and the discharge), and the impeller in 3-D seen from below, from the
+suction side into its eye, shaded and coloured by region. Usage: plot_geometry.py DIR"""
 import sys
 import numpy as np
 import matplotlib
@@ -45,12 +46,36 @@ def cut(tris, axis, level):
     return np.array(segments).reshape(-1, 2, 3)
 
 
+def impeller_view(ax, impeller, colours):
+    """The impeller's triangles from below and aside (the eye and its leading edge in sight)."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    light = np.array([0.3, -0.5, -0.8])
+    light /= np.linalg.norm(light)
+    for k, (name, tris) in enumerate(sorted(impeller.items())):
+        normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
+        normals /= np.maximum(np.linalg.norm(normals, axis=1), 1e-30)[:, None]
+        shade = 0.35 + 0.65 * np.clip(normals @ light, 0.0, 1.0)
+        base = np.array(matplotlib.colors.to_rgb(colours[k % len(colours)]))
+        ax.add_collection3d(Poly3DCollection(tris, facecolors=shade[:, None] * base, edgecolors="none", label=name))
+    points = np.concatenate(list(impeller.values())).reshape(-1, 3)
+    centre, half = 0.5 * (points.max(0) + points.min(0)), 0.5 * (points.max(0) - points.min(0)).max()
+    for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
+        setter(c - half, c + half)
+    ax.view_init(elev=-65, azim=-75)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_title("impeller from the suction side (into the eye)")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+
+
 def main(folder):
     impeller = read_regions(f"{folder}/impeller.stl")
     casing = read_regions(f"{folder}/casing.stl")
     all_imp = np.concatenate(list(impeller.values()))
     z_mid = 0.5 * (all_imp[:, :, 2].min() + all_imp[:, :, 2].max())
-    fig, (top, side) = plt.subplots(1, 2, figsize=(15, 7.5))
+    fig = plt.figure(figsize=(21, 7.5))
+    top, side = fig.add_subplot(1, 3, 1), fig.add_subplot(1, 3, 2)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]  # the impeller's regions
     casing_colours = ["0.25", "0.45", "0.6", "tab:cyan", "tab:olive", "k"]  # the casing's, in greys
     for ax, axis, level, plane in ((top, 2, z_mid, (0, 1)), (side, 1, None, (0, 2))):
@@ -74,6 +99,7 @@ def main(folder):
     side.set_xlabel("x (m)")
     side.set_ylabel("z (m)")
     side.legend(loc="upper right", fontsize=7)
+    impeller_view(fig.add_subplot(1, 3, 3, projection="3d"), impeller, colours)
     fig.tight_layout()
     fig.savefig(f"{folder}/geometry.png", dpi=110)
 

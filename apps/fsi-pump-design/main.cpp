@@ -82,16 +82,14 @@ int report(const fsi::pump::PumpDesign &design) {
   spdlog::info("  hydraulic power {:.4g} W; shaft torque {:.3g} N m at eta = 0.8, {:.3g} N m at eta = 0.6",
                duty.hydraulic_power_w, duty.torque_n_m(0.8, op.rotation_rate_rad_per_s),
                duty.torque_n_m(0.6, op.rotation_rate_rad_per_s));
-  const auto &vol = design.volute;
-  const fsi::pump::VoluteSizing volute(op.design_flow_rate_m3_per_s, duty.head_m, op.hydraulic_efficiency,
-                                       duty.tip_speed_m_per_s, 0.5 * imp.outer_diameter_m, vol.base_radius_m,
-                                       vol.base_width_m, vol.flank_angle_deg * M_PI / 180.0);
+  const fsi::pump::VoluteSizing volute = fsi::pump::size_volute(design);
   std::string radii;
   for (int deg = 45; deg <= 360; deg += 45)
     radii += fmt::format("{}{:.4g}", radii.empty() ? "" : ", ", volute.outer_radius_m(deg * M_PI / 180.0));
-  spdlog::info("volute (constant angular momentum, c_u2 r2 = {:.4g} m^2/s): outer radius every 45 deg {} m",
-               volute.angular_momentum_m2_per_s(), radii);
-  const fsi::pump::ThroatBand throat = fsi::pump::throat_band(op.design_flow_rate_m3_per_s, duty.head_m);
+  spdlog::info("volute (constant angular momentum, c_u2 r2 = {:.4g} m^2/s, {}): outer radius every 45 deg {} m",
+               volute.angular_momentum_m2_per_s(),
+               op.design_swirl_m2_per_s > 0.0 ? "operation.design_swirl_m2_per_s" : "the duty's head and eta_h", radii);
+  const fsi::pump::ThroatBand throat = fsi::pump::throat_band(design);
   spdlog::info("  throat area {:.4g} cm^2 ({} cm^2 for this duty: throat velocity c3 = {:.3g}-{:.3g} sqrt(2 g H))",
                1e4 * volute.throat_area_m2(),
                band(1e4 * volute.throat_area_m2(), 1e4 * throat.min_area_m2, 1e4 * throat.max_area_m2),

@@ -24,6 +24,7 @@ import argparse
 import concurrent.futures
 import csv
 import hashlib
+import math
 import os
 import re
 import shutil
@@ -232,6 +233,50 @@ def plausibility(points, method):
     return lines
 
 
+def best_point_duty(points, method, design):
+    """The best point's duty against a single-channel waste-water pump's (issue 30: n_q 56 +- 5,
+    psi_G = 2 g H / u2^2 >= 0.6, eta >= 0.6), and the swirl it leaves, c_u2 r2 = T / (rho Q) (the
+    shaft torque's angular momentum, disc friction included): what the volute is sized for."""
+    done = [p for p in points if p.result and p.method == method]
+    if not done:
+        return None, []
+    bep = max(done, key=lambda p: p.result["efficiency"])
+    omega = float(design["operation"]["rotation_rate_rad_per_s"])
+    u2 = omega * 0.5 * float(design["impeller"]["outer_diameter_m"])
+    q, h, t = bep.flow_rate, bep.result["head_m"], bep.result["shaft_torque_n_m"]
+    swirl = t / (1000.0 * q)
+    lines = []
+    if h > 0:
+        n_q = omega * 30.0 / math.pi * math.sqrt(q) / h ** 0.75
+        lines.append(method + ": BEP Q = %.4g L/s, H = %.3g m: n_q = %.1f (56 +- 5), psi_G = 2 g H / u2^2 = %.3f "
+                     "(>= 0.6), eta = %.2f (>= 0.6)" % (1e3 * q, h, n_q, 2 * 9.81 * h / u2 ** 2,
+                                                      bep.result["efficiency"]))
+    lines.append(method + ": swirl at the BEP c_u2 r2 = T / (rho Q) = %.4g m^2/s (the volute's design_swirl_m2_per_s)"
+                 % swirl)
+    return (q, swirl), lines
+
+
+def with_operation(text, values):
+    """pump.yaml's text with keys of its operation section set (replaced, or added at its end)."""
+    lines = text.splitlines()
+    start = next((i for i, line in enumerate(lines) if line.rstrip() == "operation:"), None)
+    if start is None:
+        lines.append("operation:")
+        start = len(lines) - 1
+    end = start + 1
+    while end < len(lines) and (lines[end].startswith(" ") or not lines[end].strip()):
+        end += 1
+    for key, value in values.items():
+        entry = "  %s: %s" % (key, value)
+        found = [i for i in range(start + 1, end) if lines[i].split(":")[0].strip() == key]
+        if found:
+            lines[found[0]] = entry
+        else:
+            lines.insert(end, entry)
+            end += 1
+    return "\n".join(lines) + "\n"
+
+
 def comparison(points):
     """The penalized IBM against the AMI reference, point by point (relative differences)."""
     ami = {p.fraction: p for p in points if p.method == "ami" and p.result}
@@ -363,6 +408,18 @@ def main(argv):
             say(line)
     for line in comparison(points):
         say(line)
+    with open(design_file) as f:
+        design_text = f.read()
+    sizing, lines = best_point_duty(points, methods[0], yaml.safe_load(design_text))
+    for line in lines:
+        say(line)
+    if sizing:
+        volute_file = os.path.join(out, "pump.bep-volute.yaml")
+        with open(volute_file, "w") as f:
+            f.write(with_operation(design_text, {"design_flow_rate_m3_per_s": "%.6g" % sizing[0],
+                                                 "design_swirl_m2_per_s": "%.6g" % sizing[1]}))
+        say("the volute for this BEP: %s (pump.yaml with the BEP's flow rate and swirl; see its throat and spiral "
+            "with ./fsi pump-design %s, run it by copying it over the case's pump.yaml)" % (volute_file, volute_file))
     say("pump_curve.csv, pump_curve.png in %s (%.0f s)" % (out, time.monotonic() - start))
     return 0 if all(p.result for p in points) else 1
 

@@ -87,6 +87,21 @@ TEST(VoluteSizing, EverySectionCarriesItsShareOfTheFlowAsAFreeVortex) {
   }
 }
 
+TEST(VoluteSizing, AMeasuredSwirlSizesTheVoluteAndItsThroatBand) {
+  // operation.design_swirl_m2_per_s: the free vortex carries exactly that c_u2 r2; a rectangular
+  // throat is b3 r3 (exp(Q / (k b3)) - 1); the band's head is eta_h omega k / g.
+  PumpDesign design;
+  design.operation.design_flow_rate_m3_per_s = 0.02;
+  design.operation.design_swirl_m2_per_s = 0.55;
+  const VoluteSizing v = size_volute(design);
+  const double q = 0.02, k = 0.55, r3 = design.volute.base_radius_m, b3 = design.volute.base_width_m;
+  EXPECT_DOUBLE_EQ(v.angular_momentum_m2_per_s(), k);
+  EXPECT_NEAR(v.throat_area_m2(), b3 * r3 * (std::exp(q / (k * b3)) - 1.0), 1e-12);
+  const double head = design.operation.hydraulic_efficiency * design.operation.rotation_rate_rad_per_s * k / 9.81;
+  EXPECT_NEAR(throat_band(design).min_area_m2, throat_band(q, head).min_area_m2, 1e-15);
+  EXPECT_NEAR(throat_band(design).max_area_m2, throat_band(q, head).max_area_m2, 1e-15);
+}
+
 TEST(VoluteSizing, TheDefaultDesignsThroatIsInTheDesignRulesBand) {
   // Issue 11: the design rules give 80-115 cm^2 for this duty. Measured: 111 cm^2 (base width 0.076 m).
   const PumpDesign design;
