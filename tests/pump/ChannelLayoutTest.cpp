@@ -130,12 +130,18 @@ TEST(ChannelLayout, ADesignThatCannotBeBuiltIsRefusedNamingItsKeys) {
             ""); // past its mouth's radii: the end may come round to it
   EXPECT_NE(load_error("    inlet_width_m: 0.06\n", "    inlet_width_m: 0.085\n").find("takes the mouth out to D2"),
             std::string::npos);
-  EXPECT_NE(load_error("    wear_ring_clearance_m: 0.002\n", "    wear_ring_clearance_m: 0.0005\n")
+  const std::pair<std::string, std::string> pipe{"  suction_pipe_diameter_m: 0.12\n",
+                                                 "  suction_pipe_diameter_m: 0.14\n"};
+  EXPECT_EQ(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"}, pipe}), ""); // the neck
+  EXPECT_NE(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"},
+                        {"    wear_ring_clearance_m: 0.002\n", "    wear_ring_clearance_m: 0.0005\n"}, pipe})
                 .find("below the 0.001000 m running clearance"),
             std::string::npos);
-  EXPECT_NE(load_error("    neck_length_m: 0.02\n", "    neck_length_m: 0.005\n")
+  EXPECT_NE(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.005\n"}, pipe})
                 .find("does not reach past the impeller chamber's floor"),
             std::string::npos);
+  EXPECT_NE(load_error("    neck_length_m: 0\n", "    neck_length_m: 0.02\n").find("the wear-ring neck's wall"),
+            std::string::npos); // the pipe no wider than the eye: no room for the neck
   EXPECT_NE(load_error("  hub_diameter_m: 0.024\n", "  hub_diameter_m: 0.024\n  n_blades: 1\n")
                 .find("is a key of bladed impellers"),
             std::string::npos);

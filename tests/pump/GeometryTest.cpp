@@ -45,8 +45,11 @@ const Built &built(Variant variant) {
   auto found = cache.find(variant);
   if (found == cache.end()) {
     Built b;
-    if (variant == Variant::single_channel)
+    if (variant == Variant::single_channel) { // the shipped design, with the wear-ring neck
       b.design = PumpDesign::load(std::string(FSI_SOURCE_DIR) + "/pump/designs/single-channel.yaml");
+      b.design.impeller.single_channel->neck_length_m = 0.02;
+      b.design.inlet.suction_pipe_diameter_m = 0.14;
+    }
     b.design.impeller.n_blades = variant == Variant::two_blades ? 2 : 1;
     if (variant == Variant::single_blade_with_sump) {
       b.design.inlet.sump_diameter_m = 0.2;
