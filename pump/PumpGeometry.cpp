@@ -83,13 +83,15 @@ PumpGeometry PumpGeometry::build(const PumpDesign &design, const GeometryOptions
   const auto start = std::chrono::steady_clock::now();
   PumpGeometry geometry;
   GmshSession session;
-  if (design.impeller.single_channel) {
-    session.new_model("impeller");
-    ChannelImpellerSolid solid(design);
-    const int volume = solid.build();
+  session.new_model("impeller");
+  const auto mesh_impeller = [&](const auto &solid, int volume) {
     geometry.impeller.surface = mesh_solid("impeller", volume, options.impeller, ImpellerSolid::region_names(),
                                            [&](const CadFace &face) { return solid.classify(face); });
     geometry.impeller.cad_volume_m3 = solid.cad_volume_m3();
+  };
+  if (design.impeller.single_channel) {
+    ChannelImpellerSolid solid(design);
+    mesh_impeller(solid, solid.build());
     BuiltChannel channel;
     const ChannelLayout &layout = solid.layout();
     channel.channel_volume_m3 = solid.channel_volume_m3();
@@ -100,16 +102,13 @@ PumpGeometry PumpGeometry::build(const PumpDesign &design, const GeometryOptions
     channel.smallest_section_side_m = layout.smallest_section_side_m();
     geometry.channel = channel;
   } else {
-    session.new_model("impeller");
     ImpellerSolid solid(design);
     const int volume = solid.build();
     geometry.blade = gmsh_step("impeller", "measuring the camber line", [&] {
       gmsh::model::occ::synchronize();
       return measure_camber(solid.camber_curve_tag());
     });
-    geometry.impeller.surface = mesh_solid("impeller", volume, options.impeller, ImpellerSolid::region_names(),
-                                           [&](const CadFace &face) { return solid.classify(face); });
-    geometry.impeller.cad_volume_m3 = solid.cad_volume_m3();
+    mesh_impeller(solid, volume);
     geometry.blade.wrap_on_mesh_deg = wrap_on_mesh_deg(geometry.impeller.surface, solid);
   }
   {

@@ -6,6 +6,7 @@
 #include "pump/ChannelLayout.hpp"
 
 #include "common/ConfigError.hpp"
+#include "tests/support/TempPath.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,7 +36,7 @@ std::string load_error(const std::vector<std::pair<std::string, std::string>> &e
       return "the test's text '" + find + "' is not in " + shipped;
     yaml.replace(at, find.size(), replace);
   }
-  const std::string file = ::testing::TempDir() + "/single-channel-edit.yaml";
+  const auto file = fsi::test_support::temp_path("fsi-single-channel-", ".yaml");
   std::ofstream(file) << yaml;
   try {
     PumpDesign::load(file);
