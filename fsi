@@ -39,6 +39,9 @@
 #                             impeller penalized, body-fitted (AMI) or both: pump_curve.csv and .png
 #   ./fsi coupling-study [--only laws|implicit]  the coupling laws at equal cost and implicit coupling
 #                             against explicit on real runs (study/coupling/COUPLING.md; docs/coupling.md)
+#   ./fsi disc-study [--only laminar|turbulent] [--levels 2] [--jobs 2] [-o DIR]
+#                             the rotating disc (cases/rotating-disc) penalized and body-fitted on the
+#                             same meshes against the analytic and Daily & Nece torques (study/rotating-disc/DISC.md)
 #   ./fsi rag-ensemble [--runs 8] [--seed 1] [--flow-fraction 1.0] [--sizes LxW,...] [--jobs N]
 #                      [--resolution NAME] [--end-time S] [-o DIR] CASE_DIR
 #                             rag releases into a pump case (cases/rag-in-pump): P(hang-up) with its
@@ -313,6 +316,8 @@ case "${1:-help}" in
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.rag_ensemble --bin-dir "$BUILD/bin" "$@" ;;
   coupling-study)
     shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.coupling_study --bin-dir "$BUILD/bin" "$@" ;;
+  disc-study)
+    shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.disc_study --bin-dir "$BUILD/bin" "$@" ;;
   fuzz) shift; cmd_fuzz "$@" ;;
   submit)
     shift; [ $# -ge 1 ] || die "usage: ./fsi submit [--partition P] [--time T] [--fluid-nodes N] [--dry-run] CASE_DIR [CASE_DIR ...]"
@@ -321,5 +326,5 @@ case "${1:-help}" in
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
   help|-h|--help) sed -n '2,/^set -euo/p' "$0" | grep '^#' | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, coupling-study, build, help)" ;;
+  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, coupling-study, disc-study, build, help)" ;;
 esac

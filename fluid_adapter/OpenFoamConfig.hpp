@@ -13,6 +13,7 @@ enum class InterpolationChoice { kernel, closest_cell_linear };
 enum class InterfaceFlux { interpolated, body_normal };
 enum class BodyIndicatorChoice { sharp, inside_smoothed };
 enum class ViscousLimitChoice { refuse, warn };
+enum class ImmersedWallModelChoice { none, spalding };
 
 struct OpenFoamConfig {
   std::string case_directory = "openfoam";
@@ -29,6 +30,7 @@ struct OpenFoamConfig {
   double body_indicator_depth_cells = 1.0;
   std::optional<OperatingPoint> operating_point;
   ViscousLimitChoice viscous_limit = ViscousLimitChoice::refuse;
+  ImmersedWallModelChoice immersed_wall_model = ImmersedWallModelChoice::none;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -93,6 +95,15 @@ struct OpenFoamConfig {
              "docs/verification.md): refuse (the run stops before its first step, naming the largest stable time "
              "step and the settings without the limit) or warn (it runs; the divergence checks stop it when its "
              "velocity or a body's load runs away).");
+    v.choice("immersed_wall_model", immersed_wall_model,
+             {{"none", ImmersedWallModelChoice::none}, {"spalding", ImmersedWallModelChoice::spalding}},
+             "Rigid bodies in a turbulent flow (Spalart-Allmaras RAS/DES/DDES): the shear of their walls. none (the "
+             "paper's): nut = 0 inside the bodies, so the shear is the resolved gradient between the first free cell "
+             "and the body's cell, too low wherever that cell is not in the viscous sublayer. spalding: the wall "
+             "function of the mesh's walls (Spalding's law, as nutUSpaldingWallFunction) at the immersed ones: after "
+             "each turbulence update the penalized cells next to free ones get the eddy viscosity that makes the "
+             "viscous flux across their shared faces the law's wall shear, for the free cell's speed relative to the "
+             "body at its distance from the true surface (docs/model.md). Faces between MPI ranks keep nut = 0.");
     v.optional_section("operating_point", operating_point,
                        "The inlet's volume flow rate, for an OpenFOAM case whose 0/U takes it from "
                        "constant/operatingPoint (the pump cases): required there, refused elsewhere.");

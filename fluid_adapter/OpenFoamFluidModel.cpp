@@ -52,8 +52,18 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
       bodies.push_back(b.get());
     wall_distance_ = std::make_unique<rigid::ImmersedWallDistance>(bodies, cells_.centres_m(), margin);
     spdlog::info("turbulence: immersed bodies are walls (nuTilda = 0 inside, wall distance measured in {} cells "
-                 "within {:.3g} m)",
-                 wall_distance_->n_measured_cells(), margin);
+                 "within {:.3g} m){}",
+                 wall_distance_->n_measured_cells(), margin,
+                 config_.immersed_wall_model == ImmersedWallModelChoice::spalding
+                     ? ", their shear by Spalding's law (immersed_wall_model: spalding)"
+                     : "");
+  }
+  if (config_.immersed_wall_model == ImmersedWallModelChoice::spalding) {
+    if (!flow_.uses_wall_distance())
+      throw std::runtime_error("fluid.openfoam.immersed_wall_model: spalding needs a turbulence model that uses the "
+                               "wall distance (Spalart-Allmaras RAS, DES or DDES in constant/turbulenceProperties); "
+                               "this case's has none. Use none, or such a model.");
+    flow_.use_immersed_wall_function(true);
   }
 }
 

@@ -6,6 +6,8 @@
 
 #include "InterfaceFaces.H"
 
+#include "fluid_adapter/rigid/SpaldingLaw.hpp"
+
 namespace fsi::fluid {
 
 void OpenFoamFlow::set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib) {
@@ -88,6 +90,7 @@ bool OpenFoamFlow::uses_wall_distance() const {
 }
 
 void OpenFoamFlow::set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) {
+  immersedWallDistance_ = wall_distance_m;
   insideCells_.clear();
   for (Eigen::Index c = 0; c < inside_fraction.size(); ++c)
     if (inside_fraction[c] >= 0.5)
@@ -114,6 +117,50 @@ void OpenFoamFlow::zero_turbulence_inside_bodies() {
       values[c] = 0.0;
     field.correctBoundaryConditions();
   }
+}
+
+void OpenFoamFlow::apply_immersed_wall_function() {
+  using namespace Foam;
+  if (!immersedWallFunction_ || !penalizationRate_ || !mesh_->thisDb().foundObject<volScalarField>("nut"))
+    return;
+  auto &nut_field = mesh_->thisDb().lookupObjectRef<volScalarField>("nut");
+  auto &nut = nut_field.primitiveFieldRef();
+  const tmp<volScalarField> tnu = laminarTransport_->nu();
+  const auto &nu = tnu().primitiveField();
+  const auto &rate = penalizationRate_->primitiveField();
+  const auto &u = U_->primitiveField();
+  const auto &u_rib = rigidVelocity_->primitiveField();
+  const auto &weights = mesh_->weights().primitiveField();       // the owner's share of a face value
+  const auto &delta = mesh_->nonOrthDeltaCoeffs().primitiveField(); // 1 / the centres' distance along Sf
+  const auto &sf = mesh_->Sf().primitiveField();
+  const rigid::SpaldingLaw law;
+  // Each body cell's eddy viscosity, the mean over its faces with free cells.
+  std::vector<std::pair<Foam::label, double>> wanted;
+  for_each_interface_face(*mesh_, rate, [&](label f, label body, label free, bool body_is_owner) {
+    const double y = immersedWallDistance_.size() > free ? immersedWallDistance_[free] : 0.0;
+    if (!(y > 0.0) || !std::isfinite(y))
+      return;
+    const vector n = sf[f] / mag(sf[f]);
+    vector slip = u[free] - u_rib[body];
+    slip -= (slip & n) * n;
+    const double speed = mag(slip);
+    const double nu_face = nu[free];
+    // The face's nu_eff for which nu_eff |slip| delta = tau_w; the sublayer's nu y-free: nu / (y delta).
+    const double nu_eff = speed > 0.0 ? law.wall_shear_per_density(speed, y, nu_face) / (speed * delta[f])
+                                      : nu_face / (y * delta[f]);
+    // nu_eff at the face is linear between the cells: w_free nu_eff,free + (1 - w_free) nu_eff,body.
+    const double w_free = body_is_owner ? 1.0 - weights[f] : weights[f];
+    const double nut_body = (nu_eff - w_free * (nu_face + nut[free])) / (1.0 - w_free) - nu[body];
+    wanted.emplace_back(body, std::max(0.0, nut_body));
+  });
+  std::vector<double> sum(nut.size(), 0.0);
+  std::vector<int> count(nut.size(), 0);
+  for (const auto &[cell, value] : wanted) {
+    sum[cell] += value;
+    ++count[cell];
+  }
+  forAll(nut, c) if (count[c] > 0) nut[c] = sum[c] / count[c];
+  nut_field.correctBoundaryConditions();
 }
 
 } // namespace fsi::fluid

@@ -17,6 +17,7 @@ void OpenFoamFlow::step(double dt_s) {
       laminarTransport_->correct();
       turbulence_->correct();
       zero_turbulence_inside_bodies();
+      apply_immersed_wall_function();
     }
   }
 }

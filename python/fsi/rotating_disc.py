@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from fsi.foam_case import cylinder_stl, foam_header
 
 WEDGE_DEG = 5.0      # the wedge's opening angle (both methods; loads are scaled by 360 / WEDGE_DEG)
-STL_FACETS = 2048    # around the disc: the polygon misses the circle by (pi / n)^2 R / 2 = 1.2e-7 m
+STL_FACETS = 512     # around the disc: the polygon misses the circle by (pi / n)^2 R / 2 = 1.9e-6 m (h/260 at the finest)
 
 
 @dataclass(frozen=True)
@@ -404,3 +404,48 @@ def profile_error(eta, swirl, gap_reynolds):
     import numpy as np
     exact = similarity_solution(gap_reynolds)(eta)[4]
     return float(np.sqrt(np.sum((swirl - exact) ** 2) / np.sum(exact ** 2)))
+
+
+def disc_of_run(out_dir):
+    """The Disc of a finished run (its speed from config.effective.yaml, its viscosity from the
+    run's openfoam/constant/transportProperties; the geometry is the module's)."""
+    import yaml
+    from fsi.foam_case import foam_entry
+    with open(os.path.join(out_dir, "config.effective.yaml")) as f:
+        config = yaml.safe_load(f)
+    rate = config["collisions"]["surfaces"][0]["motion"]["rotation"]["rate_rad_per_s"]
+    nu = float(foam_entry(os.path.join(out_dir, "openfoam", "constant", "transportProperties"), "nu").split()[-1])
+    return Disc(omega_rad_per_s=float(rate), nu_m2_per_s=nu,
+                rho_kg_per_m3=float(config["fluid"]["openfoam"]["density_kg_per_m3"])), config
+
+
+def window_mean(history, fraction=0.2):
+    """Mean and standard deviation of [(t, value)] over the last `fraction` of the run's time."""
+    import numpy as np
+    t = np.array([h[0] for h in history])
+    v = np.array([h[1] for h in history])
+    keep = t >= t[-1] - fraction * (t[-1] - t[0])
+    return float(v[keep].mean()), float(v[keep].std())
+
+
+def penalized_torque(out_dir):
+    """The torque of the fluid on the penalized disc over the whole disc (N m, about +z; negative:
+    it brakes the disc), per step, from the run's forces.csv (body0, per wedge)."""
+    import csv
+    with open(os.path.join(out_dir, "forces.csv")) as f:
+        rows = list(csv.DictReader(f))
+    scale = 360.0 / WEDGE_DEG
+    return [(float(r["time_s"]), scale * float(r["body0.tz_n_m"])) for r in rows]
+
+
+def references(disc):
+    """The C_M references of a disc: the laminar ones when Re < 1e4 (Daily & Nece's regime I/II
+    boundary lies above it at G = 0.05), else regimes III and IV."""
+    if disc.reynolds < 1.0e4:
+        lam = laminar_reference(disc)
+        return {"regime": "laminar (Daily & Nece I)", "cm_regime_I": lam["cm_regime_I"],
+                "cm_faces_similarity": lam["cm_faces_similarity"], "cm_rim_couette": lam["cm_rim"],
+                "cm_faces_and_rim": lam["cm_faces_similarity"] + lam["cm_rim"]}
+    return {"regime": "turbulent (Daily & Nece IV)",
+            "cm_regime_IV": daily_nece_moment_coefficient("IV", disc.gap_ratio, disc.reynolds),
+            "cm_regime_III": daily_nece_moment_coefficient("III", disc.gap_ratio, disc.reynolds)}
