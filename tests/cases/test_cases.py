@@ -480,8 +480,14 @@ class RotatingDisc(CaseTest):
         need_openfoam(self)
         _folder, disc, per_gap, dt, end, _turbulent = disc_case.RESOLUTIONS[0]
         h = disc.axial_gap_m / per_gap
-        out = os.path.join(self.tmp, "penalized")
-        penalized = -rotating_disc.window_mean(self.run_penalized(out, "coarse"))[0]
+        # The suite's run of the case (ctest fixture ran.rotating-disc, case_run.rotating-disc);
+        # alone, the test runs it.
+        out = os.path.join(os.environ.get("FSI_CASE_RESULTS", ""), "rotating-disc")
+        if os.environ.get("FSI_CASE_RESULTS") and os.path.exists(os.path.join(out, "openfoam", "4", "U")):
+            penalized = -rotating_disc.window_mean(rotating_disc.penalized_torque(out))[0]
+        else:
+            out = os.path.join(self.tmp, "penalized")
+            penalized = -rotating_disc.window_mean(self.run_penalized(out, "coarse"))[0]
         folder, fitted = self.run_body_fitted("body-fitted", disc, h, end, dt, False)
         fitted_total = -(fitted["faces_n_m"] + fitted["rim_n_m"])
         reference = rotating_disc.laminar_reference(disc)
