@@ -67,11 +67,11 @@ public:
   /// and after each turbulence update nuTilda and nut are set to 0 in cells with
   /// inside_fraction >= 0.5 (the condition nuTilda = 0 at immersed walls). Laminar: no effect.
   virtual void set_immersed_walls(const Eigen::VectorXd &wall_distance_m, const Eigen::VectorXd &inside_fraction) = 0;
-  /// The immersed walls' shear by Spalding's law (OpenFoamConfig::immersed_wall_model): after
-  /// each turbulence update (and after the zeroing above) every penalized cell next to a free
-  /// one gets the eddy viscosity that makes the viscous flux across their shared faces the law's
-  /// wall shear, for the free cell's velocity relative to the body's, tangential to the face,
-  /// at the free cell's wall distance (set_immersed_walls). Needs uses_wall_distance().
+  /// The immersed walls' shear by Spalding's law (OpenFoamConfig::immersed_wall_model): each
+  /// momentum equation adds, on every face between a penalized and a free cell, the viscosity
+  /// that makes the face's viscous flux the law's wall shear for the free cell's velocity
+  /// relative to the body's, tangential to the face, at the free cell's distance to the
+  /// immersed surface (set_immersed_walls, which must then be given that distance).
   virtual void use_immersed_wall_function(bool on) = 0;
   /// The PIMPLE settings of system/fvSolution that decide the time-step limit (PisoLimit).
   virtual PisoSettings piso_settings() const = 0;

@@ -97,13 +97,14 @@ struct OpenFoamConfig {
              "velocity or a body's load runs away).");
     v.choice("immersed_wall_model", immersed_wall_model,
              {{"none", ImmersedWallModelChoice::none}, {"spalding", ImmersedWallModelChoice::spalding}},
-             "Rigid bodies in a turbulent flow (Spalart-Allmaras RAS/DES/DDES): the shear of their walls. none (the "
-             "paper's): nut = 0 inside the bodies, so the shear is the resolved gradient between the first free cell "
-             "and the body's cell, too low wherever that cell is not in the viscous sublayer. spalding: the wall "
-             "function of the mesh's walls (Spalding's law, as nutUSpaldingWallFunction) at the immersed ones: after "
-             "each turbulence update the penalized cells next to free ones get the eddy viscosity that makes the "
-             "viscous flux across their shared faces the law's wall shear, for the free cell's speed relative to the "
-             "body at its distance from the true surface (docs/model.md). Faces between MPI ranks keep nut = 0.");
+             "Rigid bodies: the shear of their walls. none (the paper's): the resolved velocity difference between "
+             "the first free cell and the body's cell, i.e. a wall at the body's last cell centre, and in a "
+             "turbulent flow far too little shear wherever that free cell is not in the viscous sublayer (nut = 0 "
+             "inside the bodies). spalding: the mesh walls' wall function at the immersed ones: every face between a "
+             "body cell and a free one gets the viscosity that makes its viscous flux the wall shear of Spalding's "
+             "law (as nutUSpaldingWallFunction) for the free cell's velocity relative to the body, tangential to the "
+             "face, at its distance from the true surface; laminar or turbulent (docs/model.md). Faces between MPI "
+             "ranks keep the resolved shear.");
     v.optional_section("operating_point", operating_point,
                        "The inlet's volume flow rate, for an OpenFOAM case whose 0/U takes it from "
                        "constant/operatingPoint (the pump cases): required there, refused elsewhere.");

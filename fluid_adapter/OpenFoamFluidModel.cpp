@@ -42,28 +42,27 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
                      ? std::string("sharp")
                      : fmt::format("inside_smoothed over {:g} cells", config_.body_indicator_depth_cells));
   }
-  if (!bodies_.empty() && flow_.uses_wall_distance()) {
+  const bool wall_model = config_.immersed_wall_model == ImmersedWallModelChoice::spalding;
+  if (!bodies_.empty() && (flow_.uses_wall_distance() || wall_model)) {
     // Section 2.6: immersed bodies are walls for Spalart-Allmaras. Beyond C_DES Delta from every
-    // wall, DES runs in LES mode whatever the distance, so measure within twice that.
+    // wall, DES runs in LES mode whatever the distance, so measure within twice that. The wall
+    // model alone needs the distance of the free cells next to the bodies: within two cells.
     constexpr double c_des = 0.65;
-    const double margin = 2.0 * c_des * (cells_.n_cells() > 0 ? cells_.sizes_m().maxCoeff() : 0.0);
+    const double largest_cell = cells_.n_cells() > 0 ? cells_.sizes_m().maxCoeff() : 0.0;
+    const double margin = (flow_.uses_wall_distance() ? 2.0 * c_des : 2.0) * largest_cell;
     std::vector<const rigid::RigidBody *> bodies;
     for (const auto &b : bodies_)
       bodies.push_back(b.get());
     wall_distance_ = std::make_unique<rigid::ImmersedWallDistance>(bodies, cells_.centres_m(), margin);
-    spdlog::info("turbulence: immersed bodies are walls (nuTilda = 0 inside, wall distance measured in {} cells "
-                 "within {:.3g} m){}",
-                 wall_distance_->n_measured_cells(), margin,
-                 config_.immersed_wall_model == ImmersedWallModelChoice::spalding
-                     ? ", their shear by Spalding's law (immersed_wall_model: spalding)"
-                     : "");
-  }
-  if (config_.immersed_wall_model == ImmersedWallModelChoice::spalding) {
-    if (!flow_.uses_wall_distance())
-      throw std::runtime_error("fluid.openfoam.immersed_wall_model: spalding needs a turbulence model that uses the "
-                               "wall distance (Spalart-Allmaras RAS, DES or DDES in constant/turbulenceProperties); "
-                               "this case's has none. Use none, or such a model.");
-    flow_.use_immersed_wall_function(true);
+    if (flow_.uses_wall_distance())
+      spdlog::info("turbulence: immersed bodies are walls (nuTilda = 0 inside, wall distance measured in {} cells "
+                   "within {:.3g} m)",
+                   wall_distance_->n_measured_cells(), margin);
+    if (wall_model) {
+      spdlog::info("immersed walls: their shear by Spalding's law on the faces between body and free cells "
+                   "(immersed_wall_model: spalding)");
+      flow_.use_immersed_wall_function(true);
+    }
   }
 }
 

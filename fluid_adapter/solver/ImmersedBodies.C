@@ -119,12 +119,16 @@ void OpenFoamFlow::zero_turbulence_inside_bodies() {
   }
 }
 
-void OpenFoamFlow::apply_immersed_wall_function() {
+void OpenFoamFlow::update_immersed_wall_viscosity() {
   using namespace Foam;
-  if (!immersedWallFunction_ || !penalizationRate_ || !mesh_->thisDb().foundObject<volScalarField>("nut"))
-    return;
-  auto &nut_field = mesh_->thisDb().lookupObjectRef<volScalarField>("nut");
-  auto &nut = nut_field.primitiveFieldRef();
+  if (!immersedWallViscosity_)
+    immersedWallViscosity_ = std::make_unique<surfaceScalarField>(
+        IOobject("immersedWallViscosity", runTime_->timeName(), *mesh_, IOobject::NO_READ, IOobject::NO_WRITE), *mesh_,
+        dimensionedScalar(dimViscosity, Zero));
+  auto &extra = immersedWallViscosity_->primitiveFieldRef();
+  extra = 0.0;
+  const tmp<volScalarField> tnu_eff = turbulence_->nuEff();
+  const auto &nu_eff = tnu_eff().primitiveField();
   const tmp<volScalarField> tnu = laminarTransport_->nu();
   const auto &nu = tnu().primitiveField();
   const auto &rate = penalizationRate_->primitiveField();
@@ -134,33 +138,23 @@ void OpenFoamFlow::apply_immersed_wall_function() {
   const auto &delta = mesh_->nonOrthDeltaCoeffs().primitiveField(); // 1 / the centres' distance along Sf
   const auto &sf = mesh_->Sf().primitiveField();
   const rigid::SpaldingLaw law;
-  // Each body cell's eddy viscosity, the mean over its faces with free cells.
-  std::vector<std::pair<Foam::label, double>> wanted;
   for_each_interface_face(*mesh_, rate, [&](label f, label body, label free, bool body_is_owner) {
-    const double y = immersedWallDistance_.size() > free ? immersedWallDistance_[free] : 0.0;
+    const double y = free < immersedWallDistance_.size() ? immersedWallDistance_[free] : 0.0;
     if (!(y > 0.0) || !std::isfinite(y))
       return;
     const vector n = sf[f] / mag(sf[f]);
     vector slip = u[free] - u_rib[body];
     slip -= (slip & n) * n;
     const double speed = mag(slip);
-    const double nu_face = nu[free];
-    // The face's nu_eff for which nu_eff |slip| delta = tau_w; the sublayer's nu y-free: nu / (y delta).
-    const double nu_eff = speed > 0.0 ? law.wall_shear_per_density(speed, y, nu_face) / (speed * delta[f])
-                                      : nu_face / (y * delta[f]);
-    // nu_eff at the face is linear between the cells: w_free nu_eff,free + (1 - w_free) nu_eff,body.
-    const double w_free = body_is_owner ? 1.0 - weights[f] : weights[f];
-    const double nut_body = (nu_eff - w_free * (nu_face + nut[free])) / (1.0 - w_free) - nu[body];
-    wanted.emplace_back(body, std::max(0.0, nut_body));
+    // The face's nu_eff for which nu_eff |slip| delta = tau_w (in the sublayer nu / (y delta)),
+    // less what the laplacian of divDevReff already has there (linear between the two cells).
+    const double wanted = speed > 0.0 ? law.wall_shear_per_density(speed, y, nu[free]) / (speed * delta[f])
+                                      : nu[free] / (y * delta[f]);
+    const double w_owner = weights[f];
+    const double resolved = w_owner * nu_eff[body_is_owner ? body : free] +
+                            (1.0 - w_owner) * nu_eff[body_is_owner ? free : body];
+    extra[f] = wanted - resolved;
   });
-  std::vector<double> sum(nut.size(), 0.0);
-  std::vector<int> count(nut.size(), 0);
-  for (const auto &[cell, value] : wanted) {
-    sum[cell] += value;
-    ++count[cell];
-  }
-  forAll(nut, c) if (count[c] > 0) nut[c] = sum[c] / count[c];
-  nut_field.correctBoundaryConditions();
 }
 
 } // namespace fsi::fluid

@@ -17,7 +17,6 @@ void OpenFoamFlow::step(double dt_s) {
       laminarTransport_->correct();
       turbulence_->correct();
       zero_turbulence_inside_bodies();
-      apply_immersed_wall_function();
     }
   }
 }
@@ -38,6 +37,10 @@ Foam::tmp<Foam::fvVectorMatrix> OpenFoamFlow::momentum_equation() {
   // the penalization of Eq. (9), f_ibm / rho_f = -chi (u - u_rib) / tau, implicit in u (its
   // diagonal enters A(), so a tiny tau does not limit the time step).
   tmp<fvVectorMatrix> tUEqn(fvm::ddt(U) + fvm::div(phi, U) + turbulence_->divDevReff(U) == *fsiAcceleration_);
+  if (immersedWallFunction_ && penalizationRate_) {
+    update_immersed_wall_viscosity();
+    tUEqn.ref() -= fvm::laplacian(*immersedWallViscosity_, U);
+  }
   if (penalizationRate_)
     tUEqn.ref() += fvm::Sp(*penalizationRate_, U) - (*penalizationRate_) * (*rigidVelocity_);
   fvVectorMatrix &UEqn = tUEqn.ref();

@@ -6,8 +6,9 @@ part 4): the penalized disc (our fluid, through the launcher) and the disc as a 
     ./fsi disc-study [--only laminar|turbulent] [--levels N] [--jobs N] [-o DIR]
 
 - laminar (Re = 400, G = 0.05, Daily & Nece's regime I): the swirl across the gap at r = R/2
-  against the similarity solution (relative L2 error), and the torque of both methods against
-  each other and against the similarity solution's faces plus the rim's Couette flow.
+  against the similarity solution (relative L2 error), and the torque of the penalized disc
+  without and with the immersed wall model and of the body-fitted disc, against each other and
+  against the similarity solution's faces plus the rim's Couette flow.
 - turbulent (Re = 1.5e6, Spalart-Allmaras): the torque of the penalized disc without and with the
   immersed wall model (fluid.openfoam.immersed_wall_model) and of the body-fitted disc (Spalding's
   wall function), against Daily & Nece's regime IV correlation (and III).
@@ -68,7 +69,7 @@ class Run:
     def __init__(self, regime, preset, folder, method, wall_model, out):
         self.regime, self.preset, self.folder, self.method, self.wall_model = regime, preset, folder, method, wall_model
         self.disc, self.h, self.dt, self.end, self.turbulent = resolution(folder)
-        self.name = "%s-%s%s" % (preset, method, "-" + wall_model if method == "penalized" and self.turbulent else "")
+        self.name = "%s-%s%s" % (preset, method, "-" + wall_model if method == "penalized" else "")
         self.out = os.path.join(out, "runs", self.name)
         self.result = None
 
@@ -90,8 +91,7 @@ def run_one(run, args, fingerprint):
         say("%s: running (%d cells, %d steps)" % (run.name, run.cells(), round(run.end / run.dt)))
         if run.method == "penalized":
             command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", run.out, "--resolution", run.preset]
-            if run.turbulent:
-                command += ["--set", "fluid.openfoam.immersed_wall_model=%s" % run.wall_model]
+            command += ["--set", "fluid.openfoam.immersed_wall_model=%s" % run.wall_model]
             with open(os.path.join(run.out, "study.log"), "w") as log:
                 code = subprocess.call(command + [CASE], stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
             if code != 0:
@@ -140,13 +140,9 @@ def plan(args):
         if args.only and args.only != regime:
             continue
         for preset, folder in LEVELS[regime][:args.levels]:
-            if regime == "laminar":
-                runs += [Run(regime, preset, folder, "penalized", "none", args.out),
-                         Run(regime, preset, folder, "body-fitted", "", args.out)]
-            else:
-                runs += [Run(regime, preset, folder, "penalized", "none", args.out),
-                         Run(regime, preset, folder, "penalized", "spalding", args.out),
-                         Run(regime, preset, folder, "body-fitted", "", args.out)]
+            runs += [Run(regime, preset, folder, "penalized", "none", args.out),
+                     Run(regime, preset, folder, "penalized", "spalding", args.out),
+                     Run(regime, preset, folder, "body-fitted", "", args.out)]
     return runs
 
 
@@ -177,7 +173,7 @@ def report(runs, out):
         for r in chosen:
             fitted = next(x for x in chosen if x.preset == r.preset and x.method == "body-fitted")
             res = r.result
-            label = r.method + (" (" + r.wall_model + ")" if r.method == "penalized" and r.turbulent else "")
+            label = r.method + (" (" + r.wall_model + ")" if r.method == "penalized" else "")
             faces = ("%.5f (%+.1f %%)" % (res["cm_faces"], 100.0 * (res["cm_faces"] / (
                 refs["cm_regime_IV"] if r.turbulent else rotating_disc.laminar_reference(disc)["cm_faces_similarity"]) - 1.0))
                 if "cm_faces" in res else "")
@@ -215,7 +211,8 @@ def draw(runs, path):
         for r in laminar:
             e, s = r.result["profile"]
             ax.plot(s, e, "o" if r.method == "penalized" else "s", ms=3, mfc="none",
-                    label="%s, h = s/%d" % (r.method, round(disc.axial_gap_m / r.h)))
+                    label="%s%s, h = s/%d" % (r.method, " (%s)" % r.wall_model if r.wall_model else "",
+                                              round(disc.axial_gap_m / r.h)))
         ax.set_xlabel("u_theta / (r omega) at r = R/2")
         ax.set_ylabel("(z - t/2) / s (disc at 0, housing at 1)")
         ax.set_title("Laminar, Re = %.0f: swirl across the gap" % disc.reynolds)
@@ -229,7 +226,7 @@ def draw(runs, path):
         refs = rotating_disc.references(disc)
         series = {}
         for r in chosen:
-            key = r.method + (" (%s)" % r.wall_model if r.method == "penalized" and r.turbulent else "")
+            key = r.method + (" (%s)" % r.wall_model if r.method == "penalized" else "")
             series.setdefault(key, []).append((disc.axial_gap_m / r.h, r.result["cm"]))
         for key, points in series.items():
             points.sort()
