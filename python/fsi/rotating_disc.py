@@ -323,14 +323,11 @@ def read_moments(foam_case, name):
     """[(t, moment about z of the fluid on the patch group, N m per wedge)] of the forces function
     object `name` (postProcessing/<name>/<start>/moment.dat; total = pressure + viscous)."""
     import glob
+    from fsi.pump_ami_run import read_foam_vectors
     rows = []
     for start in sorted(glob.glob(os.path.join(foam_case, "postProcessing", name, "*")),
                         key=lambda p: float(os.path.basename(p))):
-        with open(os.path.join(start, "moment.dat")) as f:
-            for line in f:
-                if line.strip() and not line.startswith("#"):
-                    words = [float(w) for w in line.replace("(", " ").replace(")", " ").split()]
-                    rows.append((words[0], words[3]))
+        rows += [(row[0], row[3]) for row in read_foam_vectors(os.path.join(start, "moment.dat"))]
     return rows
 
 
