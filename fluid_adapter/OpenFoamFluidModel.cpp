@@ -531,7 +531,37 @@ rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s
   flow_.sum_over_ranks(sums, 6); // each rank has the part of the body in its cells
   load.force_n = Vec3(sums[0], sums[1], sums[2]);
   load.torque_n_m = Vec3(sums[3], sums[4], sums[5]);
+  if (b < part_splitters_.size() && part_splitters_[b]) {
+    auto &parts = part_loads_[b];
+    parts = part_splitters_[b]->from_source_on_fluid(*indicators_[b], cells_.centres_m(), penalization_force_,
+                                                    cells_.volumes_m3(), centre, time_s);
+    std::vector<double> part_sums;
+    for (const auto &part : parts)
+      for (int k = 0; k < 3; ++k) {
+        part_sums.push_back(part.force_n(k));
+        part_sums.push_back(part.torque_n_m(k));
+      }
+    flow_.sum_over_ranks(part_sums.data(), part_sums.size());
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      for (int k = 0; k < 3; ++k) {
+        parts[p].force_n(k) = part_sums[6 * p + 2 * static_cast<std::size_t>(k)];
+        parts[p].torque_n_m(k) = part_sums[6 * p + 2 * static_cast<std::size_t>(k) + 1];
+      }
+  }
   return load;
+}
+
+void OpenFoamFluidModel::split_loads_by_part() {
+  part_splitters_.clear();
+  part_loads_.assign(bodies_.size(), {});
+  for (const auto &body : bodies_)
+    part_splitters_.push_back(body->part_names().size() >= 2 ? std::make_unique<rigid::BodyPartLoads>(*body)
+                                                             : nullptr);
+}
+
+const std::vector<std::string> &OpenFoamFluidModel::part_names(std::size_t body) const {
+  static const std::vector<std::string> none;
+  return body < part_splitters_.size() && part_splitters_[body] ? part_splitters_[body]->part_names() : none;
 }
 
 } // namespace fsi::fluid

@@ -20,6 +20,7 @@
 #include "fluid_adapter/ibm/NearestCells.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"
 #include "fluid_adapter/rigid/BodyLoads.hpp"
+#include "fluid_adapter/rigid/BodyPartLoads.hpp"
 #include "fluid_adapter/rigid/ImmersedWallDistance.hpp"
 #include "fluid_adapter/rigid/RigidBody.hpp"
 #include "fluid_adapter/rigid/RunawayLoadCheck.hpp"
@@ -89,6 +90,12 @@ public:
   const FlowStepTimings &last_step_timings() const { return timings_; }
   /// The cells the rigid bodies switched in the last step (collective over the ranks).
   const PenalizationSwitching &last_step_switching() const { return switching_; }
+  /// From the next step on, the loads of each body with named parts (its STL's `solid NAME`
+  /// blocks, at least two) are also split by part (BodyPartLoads). Call on every rank.
+  void split_loads_by_part();
+  /// Per body: its part names (empty for a body not split) and the last step's load of each.
+  const std::vector<std::string> &part_names(std::size_t body) const;
+  const std::vector<std::vector<rigid::BodyLoad>> &last_step_part_loads() const { return part_loads_; }
 
 private:
   FlowStepTimings timings_;
@@ -147,6 +154,8 @@ private:
   rigid::RunawayLoadCheck runaway_loads_;
   double checked_dt_s_ = -1.0;
   std::vector<std::unique_ptr<rigid::BodyIndicator>> indicators_;
+  std::vector<std::unique_ptr<rigid::BodyPartLoads>> part_splitters_; ///< per body; null: not split
+  std::vector<std::vector<rigid::BodyLoad>> part_loads_;              ///< per body, per part
   std::unique_ptr<rigid::ImmersedWallDistance> wall_distance_; ///< only with a wall-distance turbulence model
   Eigen::VectorXd penalization_rate_;
   PointArray rigid_velocity_, penalization_acceleration_, penalization_force_;

@@ -35,6 +35,23 @@ void write_header(std::ofstream &forces, std::size_t n_bodies) {
   forces << "\n";
 }
 
+/// The torque of each named part of each body split by part (OpenFoamFluidModel::split_loads_by_part).
+void write_parts_header(std::ofstream &parts, const fluid::OpenFoamFluidModel &model, std::size_t n_bodies) {
+  parts << "time_s";
+  for (std::size_t b = 0; b < n_bodies; ++b)
+    for (const auto &part : model.part_names(b))
+      for (const char *q : {"tx_n_m", "ty_n_m", "tz_n_m"})
+        parts << ",body" << b << "." << part << "." << q;
+  parts << "\n";
+}
+
+bool has_parts(const fluid::OpenFoamFluidModel &model, std::size_t n_bodies) {
+  for (std::size_t b = 0; b < n_bodies; ++b)
+    if (!model.part_names(b).empty())
+      return true;
+  return false;
+}
+
 } // namespace
 
 int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, const FlowAloneSchedule &schedule) {
@@ -44,7 +61,8 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
   double end = 0.0;
   for (const double dt : steps)
     end += dt;
-  std::ofstream forces, timings, switching;
+  std::ofstream forces, timings, switching, parts;
+  model.split_loads_by_part(); // every rank: the split is collective
   const auto start = Clock::now();
   auto last_report = start;
   double t = 0.0;
@@ -69,6 +87,10 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
     if (step == 0 && !loads.empty()) {
       forces.open(schedule.folder / "forces.csv");
       write_header(forces, loads.size());
+      if (has_parts(model, loads.size())) {
+        parts.open(schedule.folder / "parts.csv");
+        write_parts_header(parts, model, loads.size());
+      }
     }
     if (step == 0) {
       timings.open(schedule.folder / "timings.csv");
@@ -88,6 +110,13 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
         forces << "," << load.force_n.x() << "," << load.force_n.y() << "," << load.force_n.z() << ","
                << load.torque_n_m.x() << "," << load.torque_n_m.y() << "," << load.torque_n_m.z();
       forces << "\n";
+      if (parts.is_open()) {
+        parts << flow.time_s();
+        for (const auto &body_parts : model.last_step_part_loads())
+          for (const auto &part : body_parts)
+            parts << "," << part.torque_n_m.x() << "," << part.torque_n_m.y() << "," << part.torque_n_m.z();
+        parts << "\n";
+      }
       const auto &sw = model.last_step_switching();
       switching << flow.time_s() << "," << sw.cells_switched_on << "," << sw.cells_switched_off << "," << sw.power_w
                 << "," << sw.transpiration_m3_per_s << "," << sw.transpiration_power_w << "\n";
@@ -98,6 +127,7 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
       forces.flush();
       timings.flush();
       switching.flush();
+      parts.flush();
       const double wall = std::chrono::duration<double>(now - start).count();
       const double eta = wall / static_cast<double>(step + 1) * static_cast<double>(n_steps - step - 1);
       spdlog::info("{}: t = {:.4g} of {:.4g} s, step {}/{}, {:.1f} ms/step, ETA {}", schedule.label, flow.time_s(), end,

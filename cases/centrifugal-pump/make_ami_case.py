@@ -188,7 +188,7 @@ FUNCTIONS_MORE = """    // The fluid's force (N) and torque (N m, about the orig
         writeInterval   1;
         log             false;
     }
-    // The sums of the AMI weights (1 where the two sides overlap fully), min/max/average.
+%(part_forces)s    // The sums of the AMI weights (1 where the two sides overlap fully), min/max/average.
     AMIWeights
     {
         type            AMIWeights;
@@ -236,12 +236,31 @@ def rotor_cylinder(design, impeller):
     return 0.5 * (r_tip + volute["base_radius_m"]), 0.5 * (chamber[0] + lo[2]), 0.5 * (chamber[1] + hi[2])
 
 
+PART_FORCES = """    // The same on each part of the impeller (its STL's regions, one patch each): the torque by
+    // part, python/fsi/pump_ami_run.py writes parts.csv (the penalized runs' format).
+    forces_%(part)s
+    {
+        type            forces;
+        libs            ("libforces.so");
+        patches         (%(part)s);
+        rho             rhoInf;
+        rhoInf          %(rho)r;
+        CofR            (0 0 0);
+        writeControl    timeStep;
+        writeInterval   1;
+        log             false;
+    }
+"""
+
+
 def write_ami_case(folder, design, case, h, casing, impeller, dt):
     blade = make_case.stl_regions(impeller)
     # controlDict: pimpleFoam, the time step, the penalized case's function objects + forces.
     control = {"comment": "// make_ami_case.py: deltaT of case.yaml (scaled with h), endTime set by pump_ami_run.py.",
                "application": "pimpleFoam", "delta_t": repr(dt), "end_time": repr(case["run"]["end_time_s"]),
-               "more_functions": FUNCTIONS_MORE % {"patches": " ".join(blade), "rho": make_case.RHO}}
+               "more_functions": FUNCTIONS_MORE % {
+                   "patches": " ".join(blade), "rho": make_case.RHO,
+                   "part_forces": "".join(PART_FORCES % {"part": part, "rho": make_case.RHO} for part in blade)}}
     # fvSolution: the penalized case's + pcorr and the moving-mesh PIMPLE controls. The
     # body-fitted mesh has no holes in its pressure equation: GAMG alone, as it was measured.
     # The rotor's cells at the gaps are 2 mm: the mesh moves up to 2 cells per step there

@@ -3,6 +3,7 @@
 #include "geometry/StlIo.hpp"
 
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace fsi::fluid::rigid {
@@ -21,6 +22,7 @@ RigidBody::RigidBody(std::string name, Soup soup, std::unique_ptr<Surface> surfa
       motion_(std::move(motion)) {
   if (!motion_)
     throw std::invalid_argument("rigid body '" + name_ + "': no motion given (use StaticPose)");
+  part_of_triangle_.assign(static_cast<std::size_t>(soup_.triangles.rows()), 0);
   for (Eigen::Index v = 0; v < soup_.vertices_m.rows(); ++v)
     body_box_m_.extend(Vec3(soup_.vertices_m.row(v).transpose()));
   surface_->prepare_culling(kCullingFraction * body_box_m_.diagonal().norm());
@@ -39,11 +41,28 @@ motion::CoupledMotion &RigidBody::take_poses_from_coupler() {
 
 std::unique_ptr<RigidBody> RigidBody::from_stl(const std::string &name, const std::string &stl_path,
                                                std::shared_ptr<const motion::RigidMotion> motion) {
-  Soup soup = geometry::read_stl(stl_path);
-  auto surface = Surface::from_triangles(soup.vertices_m, soup.triangles,
+  geometry::RegionSoup regions = geometry::read_stl_regions(stl_path);
+  auto surface = Surface::from_triangles(regions.soup.vertices_m, regions.soup.triangles,
                                          Surface::FluidSide::outside, stl_path);
-  return std::unique_ptr<RigidBody>(
-      new RigidBody(name, std::move(soup), std::move(surface), std::move(motion)));
+  std::unique_ptr<RigidBody> body(new RigidBody(name, std::move(regions.soup), std::move(surface), std::move(motion)));
+  body->part_names_ = std::move(regions.region_names);
+  body->part_of_triangle_ = std::move(regions.region_of_triangle);
+  return body;
+}
+
+std::unique_ptr<RigidBody> RigidBody::from_region_soup(const std::string &name, const geometry::RegionSoup &regions,
+                                                       std::shared_ptr<const motion::RigidMotion> motion) {
+  if (regions.region_of_triangle.size() != static_cast<std::size_t>(regions.soup.triangles.rows()))
+    throw std::invalid_argument("rigid body '" + name + "': " + std::to_string(regions.region_of_triangle.size()) +
+                                " region indices for " + std::to_string(regions.soup.triangles.rows()) + " triangles");
+  for (const int r : regions.region_of_triangle)
+    if (r < 0 || static_cast<std::size_t>(r) >= regions.region_names.size())
+      throw std::invalid_argument("rigid body '" + name + "': region index " + std::to_string(r) + " of " +
+                                  std::to_string(regions.region_names.size()) + " regions");
+  auto body = from_soup(name, regions.soup, std::move(motion));
+  body->part_names_ = regions.region_names;
+  body->part_of_triangle_ = regions.region_of_triangle;
+  return body;
 }
 
 std::unique_ptr<RigidBody> RigidBody::from_soup(const std::string &name, const Soup &soup,

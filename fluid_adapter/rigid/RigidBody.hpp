@@ -8,6 +8,7 @@
 #include "motion/CoupledMotion.hpp"
 #include "motion/RigidMotion.hpp"
 #include "common/Types.hpp"
+#include "geometry/RegionSoup.hpp"
 #include "geometry/TriangleMeshSurface.hpp"
 #include "geometry/TriangleSoup.hpp"
 
@@ -15,6 +16,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace fsi::fluid::rigid {
 
@@ -23,13 +25,17 @@ public:
   using Soup = geometry::TriangleSoup;
   using Surface = geometry::TriangleMeshSurface;
 
-  /// Loads a closed STL surface (body frame, metres). Throws a geometry::MeshError naming
-  /// the file when it is missing, unreadable, open or degenerate.
+  /// Loads a closed STL surface (body frame, metres); its `solid NAME` blocks are the body's
+  /// parts. Throws a geometry::MeshError naming the file when it is missing, unreadable, open
+  /// or degenerate.
   static std::unique_ptr<RigidBody> from_stl(const std::string &name, const std::string &stl_path,
                                              std::shared_ptr<const motion::RigidMotion> motion);
-  /// Same from arrays (generated meshes, tests).
+  /// Same from arrays (generated meshes, tests): one part named "".
   static std::unique_ptr<RigidBody> from_soup(const std::string &name, const Soup &soup,
                                               std::shared_ptr<const motion::RigidMotion> motion);
+  /// Same with named parts (the soup's regions).
+  static std::unique_ptr<RigidBody> from_region_soup(const std::string &name, const geometry::RegionSoup &regions,
+                                                     std::shared_ptr<const motion::RigidMotion> motion);
 
   const std::string &name() const { return name_; }
   /// Where the body is: its declared motion, or in a coupled run the poses the coupler sends.
@@ -45,6 +51,10 @@ public:
   const Surface &surface() const { return *surface_; }
   /// Vertices and triangles in the body frame (for the swept-region bounds).
   const Soup &soup() const { return soup_; }
+  /// The surface's parts: the names of the STL's `solid NAME` blocks (one "" for a file or
+  /// soup without names), and the part of each triangle of soup().
+  const std::vector<std::string> &part_names() const { return part_names_; }
+  const std::vector<int> &part_of_triangle() const { return part_of_triangle_; }
   /// Axis-aligned bounding box of the surface in the body frame (m).
   const Eigen::AlignedBox3d &body_box_m() const { return body_box_m_; }
 
@@ -59,6 +69,8 @@ private:
 
   std::string name_;
   Soup soup_;
+  std::vector<std::string> part_names_{""};
+  std::vector<int> part_of_triangle_;
   std::unique_ptr<Surface> surface_;
   std::shared_ptr<const motion::RigidMotion> motion_;
   std::shared_ptr<const motion::RigidMotion> declared_motion_; ///< set once the coupler moves the body

@@ -81,17 +81,27 @@ def set_foam_entry(path, key, value):
         raise ValueError("%s: cannot set %s (foamDictionary: %s)" % (path, key, done.stderr.strip()[-300:]))
 
 
-def cylinder_stl(radius, z0, z1, n, centre=(0.0, 0.0), name="cylinder"):
+def cylinder_stl(radius, z0, z1, n, centre=(0.0, 0.0), name="cylinder", parts=None):
     """Closed solid cylinder along z through centre = (x, y) (outward normals): side, and caps
-    fanned from the axis. n facets around; the polygon misses the circle by about (pi/n)^2 R / 2."""
+    fanned from the axis. n facets around; the polygon misses the circle by about (pi/n)^2 R / 2.
+    parts = (caps, side): two `solid` blocks of these names instead of one named `name` (the
+    parts whose loads the penalized runs split, parts.csv)."""
     cx, cy = centre
     ring = [(cx + radius * math.cos(2 * math.pi * i / n), cy + radius * math.sin(2 * math.pi * i / n))
             for i in range(n)]
-    tris = []
+    side, caps = [], []
     for i in range(n):
         (xa, ya), (xb, yb) = ring[i], ring[(i + 1) % n]
         a0, b0, a1, b1 = (xa, ya, z0), (xb, yb, z0), (xa, ya, z1), (xb, yb, z1)
-        tris += [(a0, b0, b1), (a0, b1, a1), ((cx, cy, z0), b0, a0), ((cx, cy, z1), a1, b1)]
+        side += [(a0, b0, b1), (a0, b1, a1)]
+        caps += [((cx, cy, z0), b0, a0), ((cx, cy, z1), a1, b1)]
+    if parts is None:
+        return _stl_solid(name, [t for i in range(n) for t in (side[2 * i], side[2 * i + 1], caps[2 * i], caps[2 * i + 1])])
+    return _stl_solid(parts[0], caps) + _stl_solid(parts[1], side)
+
+
+def _stl_solid(name, tris):
+    """One `solid NAME` block of triangles (outward normals from the vertex order)."""
     lines = ["solid %s" % name]
     for a, b, c in tris:
         e1 = [b[k] - a[k] for k in range(3)]

@@ -195,6 +195,29 @@ def write_forces_csv(foam_case, out_dir):
     return len(rows)
 
 
+def write_parts_csv(foam_case, out_dir):
+    """OUT/parts.csv from postProcessing/forces_<part>/<start>/moment.dat (make_ami_case.py's
+    function object per impeller patch): the torque (N m, pressure + viscous) of each part, in the
+    penalized runs' format (time_s,body0.<part>.tx_n_m,...). Returns the parts (none: no file)."""
+    parts = sorted(os.path.basename(p)[len("forces_"):]
+                   for p in glob.glob(os.path.join(foam_case, "postProcessing", "forces_*")))
+    rows = {}
+    for k, part in enumerate(parts):
+        starts = sorted(glob.glob(os.path.join(foam_case, "postProcessing", "forces_" + part, "*")),
+                        key=lambda p: float(os.path.basename(p)))
+        for start in starts:
+            for m in read_foam_vectors(os.path.join(start, "moment.dat")):
+                rows.setdefault(m[0], [None] * len(parts))[k] = m[1:4]
+    complete = {t: r for t, r in rows.items() if all(v is not None for v in r)}
+    if not complete:
+        return []
+    with open(os.path.join(out_dir, "parts.csv"), "w") as f:
+        f.write(",".join(["time_s"] + ["body0.%s.t%s_n_m" % (p, c) for p in parts for c in "xyz"]) + "\n")
+        for t in sorted(complete):
+            f.write("%.9g,%s\n" % (t, ",".join("%.9g" % v for r in complete[t] for v in r)))
+    return parts
+
+
 def ami_weights(foam_case):
     """min/max of the AMI weights' sums over the run, per patch, from the AMIWeights output."""
     result = {}
@@ -352,6 +375,7 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
     cells = int(re.search(r"^\s+cells:\s+(\d+)", check, re.M).group(1))
     exec_times, wall = run_pimple(foam_case, logs, end_time, dt)
     n = write_forces_csv(foam_case, out_dir)
+    write_parts_csv(foam_case, out_dir)
     steps = len(exec_times)
     per_step = [b - a for a, b in zip([0.0] + exec_times[:-1], exec_times)]
     steady = per_step[min(5, steps - 1):] if steps else [float("nan")]

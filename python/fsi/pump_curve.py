@@ -288,6 +288,10 @@ def comparison(points):
                 p.fraction, p.result["head_m"], ref["head_m"], 100 * (p.result["head_m"] / ref["head_m"] - 1),
                 p.result["shaft_torque_n_m"], ref["shaft_torque_n_m"],
                 100 * (p.result["shaft_torque_n_m"] / ref["shaft_torque_n_m"] - 1)))
+            ours, theirs = p.result.get("torque_by_part_n_m"), ref.get("torque_by_part_n_m")
+            if ours and theirs:
+                lines.append("  torque by part (N m, ours vs AMI): " + ", ".join(
+                    "%s %.3g vs %.3g" % (part, ours[part], theirs[part]) for part in sorted(ours) if part in theirs))
     return lines
 
 

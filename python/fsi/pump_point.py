@@ -7,6 +7,10 @@ and python/fsi/pump_curve.py. Inputs, all in the run's output folder:
   openfoam/postProcessing/{inlet,outlet}TotalPressure/*/surfaceFieldValue.dat
                         the mass-flow-averaged total pressure p + rho |U|^2 / 2 (Pa) of the patches
   openfoam/postProcessing/outletFlowRate/*/surfaceFieldValue.dat   sum(phi) on the outlet (m^3/s)
+  parts.csv             (optional) the torque of each part of the impeller (its STL's regions:
+                        hub, shroud, blade sides, eye), columns body0.<part>.t{x,y,z}_n_m; the
+                        penalized runs count each cell for the part closest to it, the AMI
+                        runs integrate each patch: torque_by_part_n_m, the shaft's share of each
   penalization.csv      (penalized runs) the kinetic energy per second the moving impeller
                         destroys in the cells it newly covers (W): switching_power_w, its mean;
                         and the water its cells swallow through their faces with free cells
@@ -104,6 +108,19 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
             switching = float(np.mean(window(data[:, 0], data[:, 3])[1]))
             if data.shape[1] >= 6:
                 transpiration = [float(np.mean(window(data[:, 0], data[:, k])[1])) for k in (4, 5)]
+    by_part = None
+    path = os.path.join(folder, "parts.csv")
+    if os.path.isfile(path):
+        with open(path) as f:
+            header = f.readline().strip().split(",")
+        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        a = np.asarray(axis, float) / np.linalg.norm(axis)
+        by_part = {}
+        for k, name in enumerate(header):
+            if name.startswith("body0.") and name.endswith(".tx_n_m"):
+                part = name[len("body0."):-len(".tx_n_m")]
+                shaft_part = -(data[:, k:k + 3] @ a)
+                by_part[part] = float(np.mean(window(data[:, 0], shaft_part)[1]))
     power = torque_mean * omega
     u2 = omega * radius_m
     point = {
@@ -127,7 +144,10 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         "revolutions_averaged": n_avg,
         "revolutions_run": n_rev,
     }
-    return {k: (None if v is None else int(v) if isinstance(v, int) else float(v)) for k, v in point.items()}
+    point = {k: (None if v is None else int(v) if isinstance(v, int) else float(v)) for k, v in point.items()}
+    if by_part is not None:
+        point["torque_by_part_n_m"] = by_part
+    return point
 
 
 def histories(folder, omega, axis, rho=1000.0):

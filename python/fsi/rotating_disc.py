@@ -231,8 +231,10 @@ mergePatchPairs ();
 
 
 def disc_stl(disc):
-    """The closed solid disc (STL text), centred at the origin, axis z."""
-    return cylinder_stl(disc.radius_m, -0.5 * disc.thickness_m, 0.5 * disc.thickness_m, STL_FACETS, name="disc")
+    """The closed solid disc (STL text), centred at the origin, axis z; its parts `faces` and
+    `rim` (the body-fitted disc's patches disc_faces and disc_rim)."""
+    return cylinder_stl(disc.radius_m, -0.5 * disc.thickness_m, 0.5 * disc.thickness_m, STL_FACETS,
+                        parts=("faces", "rim"))
 
 
 def velocity_field(disc, body_fitted):
@@ -433,6 +435,18 @@ def penalized_torque(out_dir):
         rows = list(csv.DictReader(f))
     scale = 360.0 / WEDGE_DEG
     return [(float(r["time_s"]), scale * float(r["body0.tz_n_m"])) for r in rows]
+
+
+def penalized_part_torques(out_dir):
+    """{part: [(t, torque N m about +z over the whole disc)]} of the penalized disc's parts
+    (`faces`, `rim`), from the run's parts.csv (body0; the torque of each penalized cell counts for
+    the part of the surface closest to it)."""
+    import csv
+    with open(os.path.join(out_dir, "parts.csv")) as f:
+        rows = list(csv.DictReader(f))
+    scale = 360.0 / WEDGE_DEG
+    parts = [k[len("body0."):-len(".tz_n_m")] for k in rows[0] if k.startswith("body0.") and k.endswith(".tz_n_m")]
+    return {p: [(float(r["time_s"]), scale * float(r["body0.%s.tz_n_m" % p])) for r in rows] for p in parts}
 
 
 def references(disc):

@@ -123,7 +123,7 @@ class CentrifugalPump(CaseTest):
     patches, the mesh is cached and reused, the imposed flow rate leaves through the outlet
     (mass conservation to 1e-6 of Q: the outlet sum of phi against constant/operatingPoint),
     and forces.csv has the fluid's torque on the impeller every step, opposing the rotation
-    (positive shaft torque) and finite; a warm start from the run's last fields
+    (positive shaft torque) and finite, parts.csv the same split among the impeller's parts; a warm start from the run's last fields
     (fluid.openfoam.initial_fields_from, mapFields) continues that flow: its first torque is
     nearer the source's last than a start from rest's. The operating point itself needs revolutions: ./fsi
     pump-curve and ./fsi report, not the suite."""
@@ -155,6 +155,17 @@ class CentrifugalPump(CaseTest):
             axis = np.array(config["collisions"]["surfaces"][0]["motion"]["rotation"]["axis_direction"], float)
             shaft = -(data[:, 4:7] @ axis)
             self.assertGreater(np.mean(shaft[-4:]), 0.0)
+            # parts.csv: the torque split among the impeller's STL regions (each penalized cell
+            # counts for the closest part): every region a column, and they sum to the total.
+            with open(os.path.join(out, "parts.csv")) as f:
+                header = f.readline().strip().split(",")
+            parts = [c[len("body0."):-len(".tz_n_m")] for c in header if c.endswith(".tz_n_m")]
+            self.assertEqual(sorted(parts), ["blade_leading_edge", "blade_pressure_side", "blade_suction_side",
+                                             "blade_trailing_edge", "eye", "hub", "shroud"])
+            by_part = np.loadtxt(os.path.join(out, "parts.csv"), delimiter=",", skiprows=1, ndmin=2)
+            self.assertEqual(by_part.shape, (self.STEPS, 1 + 3 * len(parts)))
+            summed = sum(by_part[:, 1 + 3 * k:4 + 3 * k] for k in range(len(parts)))
+            self.assertLess(np.max(np.abs(summed - data[:, 4:7])), 1e-4 * np.max(np.abs(data[:, 4:7])))
             # penalization.csv: the cells the turning impeller covers and uncovers every step, the
             # kinetic energy it destroys in those it covers (W), and the water its staircase swallows
             # through its faces (m^3/s) with the energy destroyed there (W): finite and >= 0.
@@ -500,6 +511,19 @@ class RotatingDisc(CaseTest):
             eta, swirl, _r = rotating_disc.gap_profile(case, "4", disc, 0.5 * disc.radius_m)
             self.assertEqual(len(eta), per_gap)
             errors[name] = rotating_disc.profile_error(eta, swirl, disc.gap_reynolds)
+        # The torque split by part (parts.csv: each penalized cell counts for the part of the surface
+        # closest to it) against the body-fitted disc's patches. The rim's corner cells (2 of its 8
+        # across the thickness at h = s/10) lie as near the faces and count for them, so the faces
+        # take a part of the rim's torque (measured with the wall model: faces +4.7 %, rim -33 %;
+        # the body-fitted rim takes 12 % of the torque, its corners' share included).
+        parts = {p: -rotating_disc.window_mean(h)[0]
+                 for p, h in rotating_disc.penalized_part_torques(modelled_out).items()}
+        self.assertEqual(sorted(parts), ["faces", "rim"])
+        self.assertAlmostEqual(parts["faces"] + parts["rim"], modelled, delta=1e-4 * abs(modelled))  # 6 digits each
+        self.assertAlmostEqual(parts["faces"] / -fitted["faces_n_m"], 1.0, delta=0.06)
+        self.assertAlmostEqual(parts["rim"] / -fitted["rim_n_m"], 1.0, delta=0.4)
+        print("rotating disc, laminar, by part with the immersed wall model: faces %.5g N m (body-fitted %.5g), "
+              "rim %.5g N m (body-fitted %.5g)" % (parts["faces"], -fitted["faces_n_m"], parts["rim"], -fitted["rim_n_m"]))
         print("rotating disc, laminar, h = s/%d: swirl at R/2, L2 against the similarity solution: penalized %.3g, "
               "with the immersed wall model %.3g, body-fitted %.3g; torque penalized %.5g N m, with the wall model "
               "%.5g N m, body-fitted %.5g N m (faces %.5g, similarity %.5g)"
