@@ -25,7 +25,7 @@ std::vector<BodyLoad> BodyPartLoads::from_source_on_fluid(const BodyIndicator &i
                                                           const PointArray &cell_centres_m,
                                                           const PointArray &force_on_fluid_n_per_m3,
                                                           const Eigen::VectorXd &cell_volumes_m3,
-                                                          const Vec3 &torque_point_m, double time_s) const {
+                                                          const Vec3 &torque_point_m, double time_s) {
   if (&indicator.body() != &body_)
     throw std::invalid_argument("body parts of '" + body_.name() + "' asked for the cells of body '" +
                                 indicator.body().name() + "'");
@@ -37,11 +37,13 @@ std::vector<BodyLoad> BodyPartLoads::from_source_on_fluid(const BodyIndicator &i
     load.torque_point_m = torque_point_m;
   const Eigen::Isometry3d to_body = body_.motion().pose_at(time_s).inverse();
   const auto &part_of = body_.part_of_triangle();
-  std::int32_t hint = -1; // neighbouring cells (ascending indices) are near the same triangles
+  last_face_.resize(indicator.n_cells(), -1);
+  std::int32_t previous = -1; // else the previous cell's: neighbouring indices are often neighbours
   for (const std::int32_t cell : indicator.inside_cells()) {
     const Vec3 centre_m = cell_centres_m.row(cell).transpose();
-    const auto nearest = bvh_.nearest(to_body * centre_m, hint);
-    hint = nearest.face;
+    std::int32_t &last = last_face_[static_cast<std::size_t>(cell)];
+    const auto nearest = bvh_.nearest(to_body * centre_m, last >= 0 ? last : previous);
+    last = previous = nearest.face;
     BodyLoad &load = loads[static_cast<std::size_t>(part_of[static_cast<std::size_t>(nearest.face)])];
     const Vec3 on_body_n = -cell_volumes_m3(cell) * force_on_fluid_n_per_m3.row(cell).transpose();
     load.force_n += on_body_n;

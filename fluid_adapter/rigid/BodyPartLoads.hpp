@@ -32,11 +32,14 @@ public:
   std::vector<BodyLoad> from_source_on_fluid(const BodyIndicator &indicator, const PointArray &cell_centres_m,
                                              const PointArray &force_on_fluid_n_per_m3,
                                              const Eigen::VectorXd &cell_volumes_m3, const Vec3 &torque_point_m,
-                                             double time_s) const;
+                                             double time_s);
 
 private:
   const RigidBody &body_;
   geometry::TriangleBvh bvh_; ///< the body-frame triangles
+  /// Per cell, its closest triangle at the last call (-1: none yet): a moving body has moved
+  /// a fraction of a cell since, so it bounds the next search tightly.
+  std::vector<std::int32_t> last_face_;
 };
 
 } // namespace fsi::fluid::rigid

@@ -3,8 +3,10 @@
 p_t = p + rho |U|^2 / 2 (absolute frame) at stations along the flow path of one OpenFOAM time
 of a pump run: the suction pipe's middle (plane normal to the axis), the impeller's outlet (the
 cylinder halfway between D2 / 2 and the volute's base circle), the volute (the cylinder at 1.1
-times the base radius) and the discharge pipe's middle (plane normal to x). Each is the slab of
-cells within half a cell of the section, weighted by u_n V / h (its volume flow): an estimate,
+times the base radius) and the discharge pipe's middle (plane normal to x); and the front side
+space (the cylinder halfway between the eye's rim and D2 / 2, below the shroud: the leak from
+the volute back to the eye, inwards positive). Each is the slab of cells within half their own
+size of the section, weighted by u_n V / h (its volume flow, h = V^(1/3)): an estimate,
 not an exact surface integral, which the flow rate it finds (beside the imposed one) shows.
 It is the budget of one instant, not a time average: where the suction side's pressure swings
 from step to step (on the pump with body_normal interfaces by +-31 kPa at the inlet, with the
@@ -65,22 +67,25 @@ def head_budget(foam_case, design, time=None):
     time = time or latest_time(foam_case)
     x, u, p, vol = cell_fields(foam_case, time)
     pt = RHO * (p + 0.5 * (u ** 2).sum(1))
-    h = float(np.cbrt(np.median(vol)))
+    h = np.cbrt(vol)  # each cell's own size: a graded mesh (the AMI's 2 mm gaps in 8 mm cubes) has several
     r = np.hypot(x[:, 0], x[:, 1])
     u_r = (u[:, 0] * x[:, 0] + u[:, 1] * x[:, 1]) / np.maximum(r, 1e-12)
     imp, vol_, inlet = design["impeller"], design["volute"], design["inlet"]
     r2, r3 = 0.5 * imp["outer_diameter_m"], vol_["base_radius_m"]
     z_lo, z_hi = 0.5 * (imp["outlet_width_m"] - vol_["base_width_m"]), 0.5 * (imp["outlet_width_m"] + vol_["base_width_m"])
     in_chamber = (x[:, 2] > z_lo) & (x[:, 2] < z_hi)
+    r_side = 0.5 * (0.5 * imp["eye_diameter_m"] + r2)
     stations = [
         ("suction pipe", np.abs(x[:, 2] - (z_lo - 0.5 * inlet["suction_pipe_length_m"])) < 0.5 * h, u[:, 2]),
         ("impeller outlet", (np.abs(r - 0.5 * (r2 + r3)) < 0.5 * h) & in_chamber, u_r),
         ("volute", (np.abs(r - 1.1 * r3) < 0.5 * h) & in_chamber, u_r),
         ("discharge pipe", np.abs(x[:, 0] - (x[:, 0].max() - 0.5 * vol_["discharge_length_m"])) < 0.5 * h, u[:, 0]),
+        # The leak back to the eye between the shroud (z < 0) and the casing: inwards positive.
+        ("front side space", (np.abs(r - r_side) < 0.5 * h) & (x[:, 2] < 0) & (x[:, 2] > z_lo - 0.5 * h), -u_r),
     ]
     rows = []
     for name, mask, normal in stations:
-        flux = normal[mask] * vol[mask] / h
+        flux = normal[mask] * vol[mask] / h[mask]
         q = float(flux.sum())
         rows.append({"station": name, "flow_rate_m3_per_s": q,
                      "total_pressure_pa": float((pt[mask] * flux).sum() / q) if q else float("nan")})

@@ -52,7 +52,7 @@ TEST_F(HalvedSphere, PartsSumToTheBodyAndTakeTheirOwnCells) {
   ASSERT_EQ(body->part_names(), (std::vector<std::string>{"base", "cap"}));
   BodyIndicator indicator{*body, centres};
   indicator.update(0.0);
-  const BodyPartLoads split(*body);
+  BodyPartLoads split(*body);
   const Vec3 point_m(0.1, -0.2, 0.3);
   PointArray everywhere = PointArray::Zero(centres.rows(), 3);
   for (Eigen::Index c = 0; c < centres.rows(); ++c) // a swirl: every cell a different load
@@ -80,7 +80,7 @@ TEST_F(HalvedSphere, CellsGoToThePartsOfTheBodyFrame) {
   const auto body = RigidBody::from_region_soup("ball", two_halves(), std::make_shared<motion::StaticPose>(flipped));
   BodyIndicator indicator{*body, centres};
   indicator.update(0.0);
-  const BodyPartLoads split(*body);
+  BodyPartLoads split(*body);
   const auto lower = split.from_source_on_fluid(indicator, centres, source_on_side(false), volumes, Vec3::Zero(), 0.0);
   EXPECT_LT(lower[1].force_n.x(), 0.0);
   EXPECT_EQ(lower[0].force_n.norm(), 0.0);
