@@ -22,6 +22,11 @@ The gaps between impeller and casing (5 mm radially and axially) are thinner tha
 cell (8 mm): the cells within GAP_BAND of the rotor cylinder are refined to GAP_CELL (2 mm, the
 paper's cell size) so that each half-gap has a cell between wall and interface; elsewhere the
 cells are the penalized mesh's h (the impeller surface one level finer, IMPELLER_LEVELS).
+It also writes openfoam-coarse-ami-mesh, the penalized case (preset coarse-ami-mesh) meshed by
+the same snappyHexMeshDict except for the impeller, kept and refined as a region (IMPELLER_REGION):
+the same background cells and the same 2 mm band in the gaps as the AMI mesh, the impeller's
+surroundings one level finer in both (measured on the single blade: 177,626 cells, the AMI mesh
+183,412 with the impeller cut out: its surface refinement reaches a little farther).
 """
 
 import argparse
@@ -253,6 +258,51 @@ PART_FORCES = """    // The same on each part of the impeller (its STL's regions
 """
 
 
+# The penalized impeller on the AMI reference's mesh (the fair comparison of issue 30): the same
+# snappyHexMeshDict, except that the impeller is a refinement region, not a surface: its cells are
+# kept and not snapped (snapped to a zone of the impeller, the turning penalized impeller diverged
+# in 6 steps in the skewed cells at its tip). The region refines the cells whose centres lie within
+# half a cell's diagonal of the impeller, those the AMI mesh refines as cut by its surface and a
+# few more; the rest, the gaps' band included, is the same.
+IMPELLER_AS_HOLE = """        impeller
+        {
+            level (%(imp)d %(imp)d);
+            patchInfo { type wall; inGroups (impeller); }
+        }
+"""
+AMI_REGIONS = """        rotor { mode distance; levels ((%(band)r %(gap)d)); }
+"""
+IMPELLER_REGION = """        impeller { mode distance; levels ((%(cut)r %(imp)d)); }   // penalized: kept, not snapped
+"""
+
+
+def snappy_dict(design, h, casing, impeller, penalized=False):
+    """The AMI case's snappyHexMeshDict at cell size h (penalized: the impeller kept as a cell zone)."""
+    r, z0, z1 = rotor_cylinder(design, impeller)
+    gap = max(0, int(round(math.log2(h / GAP_CELL))))
+    regions = lambda path: "\n".join("            %s { name %s; }" % (n, n) for n in make_case.stl_regions(path))
+    lo, hi = make_case.stl_bounds(casing)
+    inside = (0.0131, 0.0173, lo[2] + 0.05 * (hi[2] - lo[2]) + 0.37 * h)   # as make_case.py
+    template = SNAPPY
+    if penalized:
+        assert IMPELLER_AS_HOLE in SNAPPY and AMI_REGIONS in SNAPPY
+        template = SNAPPY.replace(IMPELLER_AS_HOLE, "").replace(AMI_REGIONS, AMI_REGIONS + IMPELLER_REGION)
+    text = template % {
+        "h": h, "imp": IMPELLER_LEVELS, "gap": gap, "gapcell": h / 2 ** gap, "band": GAP_BAND,
+        "cut": round(0.5 * math.sqrt(3.0) * h, 6),
+        "casing_regions": regions(casing), "impeller_regions": regions(impeller),
+        "z0": round(z0, 6), "z1": round(z1, 6), "r": round(r, 6), "inside": "%r %r %r" % inside}
+    return text, (r, z0, z1), gap
+
+
+def write_penalized_case(folder, design, h, casing, impeller):
+    """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
+    solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
+    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True)
+    text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True)
+    write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
+
+
 def write_ami_case(folder, design, case, h, casing, impeller, dt):
     blade = make_case.stl_regions(impeller)
     # controlDict: pimpleFoam, the time step, the penalized case's function objects + forces.
@@ -272,15 +322,8 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt):
                 "more_pimple": MOVING}
     box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution)
     link(folder, "impeller.stl", impeller)
-    r, z0, z1 = rotor_cylinder(design, impeller)
-    gap = max(0, int(round(math.log2(h / GAP_CELL))))
-    regions = lambda path: "\n".join("            %s { name %s; }" % (n, n) for n in make_case.stl_regions(path))
-    lo, hi = make_case.stl_bounds(casing)
-    inside = (0.0131, 0.0173, lo[2] + 0.05 * (hi[2] - lo[2]) + 0.37 * h)   # as make_case.py
-    write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", SNAPPY % {
-        "h": h, "imp": IMPELLER_LEVELS, "gap": gap, "gapcell": h / 2 ** gap, "band": GAP_BAND,
-        "casing_regions": regions(casing), "impeller_regions": regions(impeller),
-        "z0": round(z0, 6), "z1": round(z1, 6), "r": round(r, 6), "inside": "%r %r %r" % inside})
+    text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller)
+    write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
     write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
     rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
     write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
@@ -323,6 +366,10 @@ def main(argv):
                                                 design, case, h, casing, impeller, dt)
         print("openfoam-ami-%s: h = %.4g m (gaps %.4g m), background %d cells, rotor r <= %.4g m, "
               "z in [%.4g, %.4g] m, dt = %.3g s" % (name, h, h / 2 ** gap, box["nc"], r, z0, z1, dt))
+    # The penalized impeller on the coarse AMI mesh (preset coarse-ami-mesh).
+    write_penalized_case(os.path.join(args.output, "openfoam-coarse-ami-mesh"), design, d2 / RESOLUTIONS["coarse"],
+                         casing, impeller)
+    print("openfoam-coarse-ami-mesh: the penalized case on openfoam-ami-coarse's mesh")
 
 
 if __name__ == "__main__":

@@ -308,8 +308,12 @@ def solver_split(log):
 
 
 def case_folder(case_dir, resolution):
+    """The AMI case of a resolution; a preset <res>-ami-mesh (the penalized impeller on the AMI
+    mesh) pairs with openfoam-ami-<res>."""
     if os.path.isdir(os.path.join(case_dir, "system")):
         return case_dir
+    if resolution.endswith("-ami-mesh"):
+        resolution = resolution[:-len("-ami-mesh")]
     return os.path.join(case_dir, "openfoam-ami-" + resolution)
 
 
