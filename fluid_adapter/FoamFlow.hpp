@@ -45,6 +45,14 @@ public:
   virtual void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib_m_per_s) = 0;
   /// After advance(): the penalization source per unit density, -rate (u - u_rib) (m/s^2).
   virtual void penalization_acceleration(PointArray &a_m_per_s2) const = 0;
+  /// Per penalized cell, the part of its pressure gradient that its faces with other penalized
+  /// cells make, sum p_f S_f / V over those faces (m/s^2, p kinematic, p_f the linear face
+  /// value); 0 elsewhere. Over a body it cancels face by face; cell by cell it is the pressure
+  /// inside the body (solved, or extrapolated into holes), which a load split by part takes off
+  /// each cell before giving it to the part of the surface closest to it. `couple_m2_per_s2`:
+  /// per cell, sum (x_f - x_c) x (+-p_f S_f) / V, the torque (per unit density and volume) of
+  /// moving those face forces to the cell centre, so that the torques cancel too.
+  virtual void interior_pressure_acceleration(PointArray &a_m_per_s2, PointArray &couple_m2_per_s2) const = 0;
   /// InterfaceFlux::body_normal: per cell the velocity whose flux the faces of a penalized cell
   /// with free cells carry (m/s: the body velocity's component along its surface normal); the
   /// penalized cells become holes of the pressure equation (their pressure extrapolated from the

@@ -533,8 +533,13 @@ rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s
   load.torque_n_m = Vec3(sums[3], sums[4], sums[5]);
   if (b < part_splitters_.size() && part_splitters_[b]) {
     auto &parts = part_loads_[b];
-    parts = part_splitters_[b]->from_source_on_fluid(*indicators_[b], cells_.centres_m(), penalization_force_,
-                                                    cells_.volumes_m3(), centre, time_s);
+    // The pressure inside the body pushes its cells against each other: taken off each cell (the
+    // total is unchanged), the closest part gets only what crosses the body's surface.
+    flow_.interior_pressure_acceleration(interior_pressure_, interior_couple_);
+    across_surface_ = penalization_force_ - config_.density_kg_per_m3 * interior_pressure_;
+    interior_couple_ *= -config_.density_kg_per_m3; // the couple of the removed forces, taken off too
+    parts = part_splitters_[b]->from_source_on_fluid(*indicators_[b], cells_.centres_m(), across_surface_,
+                                                    cells_.volumes_m3(), centre, time_s, interior_couple_);
     std::vector<double> part_sums;
     for (const auto &part : parts)
       for (int k = 0; k < 3; ++k) {

@@ -156,6 +156,8 @@ private:
   std::vector<std::unique_ptr<rigid::BodyIndicator>> indicators_;
   std::vector<std::unique_ptr<rigid::BodyPartLoads>> part_splitters_; ///< per body; null: not split
   std::vector<std::vector<rigid::BodyLoad>> part_loads_;              ///< per body, per part
+  PointArray interior_pressure_, interior_couple_; ///< scratch: FoamFlow::interior_pressure_acceleration
+  PointArray across_surface_;    ///< scratch: the penalization force less that pressure's (N/m^3)
   std::unique_ptr<rigid::ImmersedWallDistance> wall_distance_; ///< only with a wall-distance turbulence model
   Eigen::VectorXd penalization_rate_;
   PointArray rigid_velocity_, penalization_acceleration_, penalization_force_;

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include <stdexcept>
+#include <string>
 
 namespace fsi::fluid::rigid {
 namespace {
@@ -25,13 +26,19 @@ std::vector<BodyLoad> BodyPartLoads::from_source_on_fluid(const BodyIndicator &i
                                                           const PointArray &cell_centres_m,
                                                           const PointArray &force_on_fluid_n_per_m3,
                                                           const Eigen::VectorXd &cell_volumes_m3,
-                                                          const Vec3 &torque_point_m, double time_s) {
+                                                          const Vec3 &torque_point_m, double time_s,
+                                                          const PointArray &couple_on_fluid_n_per_m2) {
   if (&indicator.body() != &body_)
     throw std::invalid_argument("body parts of '" + body_.name() + "' asked for the cells of body '" +
                                 indicator.body().name() + "'");
   // The totals check the sizes and name the body.
   (void)BodyLoads::from_source_on_fluid(indicator, cell_centres_m, force_on_fluid_n_per_m3, cell_volumes_m3,
                                         torque_point_m);
+  const bool couples = couple_on_fluid_n_per_m2.rows() > 0;
+  if (couples && couple_on_fluid_n_per_m2.rows() != cell_centres_m.rows())
+    throw std::invalid_argument("body parts of '" + body_.name() + "': " +
+                                std::to_string(couple_on_fluid_n_per_m2.rows()) + " couples for " +
+                                std::to_string(cell_centres_m.rows()) + " cells");
   std::vector<BodyLoad> loads(body_.part_names().size());
   for (auto &load : loads)
     load.torque_point_m = torque_point_m;
@@ -48,6 +55,8 @@ std::vector<BodyLoad> BodyPartLoads::from_source_on_fluid(const BodyIndicator &i
     const Vec3 on_body_n = -cell_volumes_m3(cell) * force_on_fluid_n_per_m3.row(cell).transpose();
     load.force_n += on_body_n;
     load.torque_n_m += (centre_m - torque_point_m).cross(on_body_n);
+    if (couples)
+      load.torque_n_m -= cell_volumes_m3(cell) * couple_on_fluid_n_per_m2.row(cell).transpose();
   }
   return loads;
 }

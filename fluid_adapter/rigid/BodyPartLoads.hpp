@@ -28,11 +28,13 @@ public:
 
   /// One load per part (in part_names() order) over the indicator's inside cells, the body
   /// placed by its motion at `time_s`; arguments as BodyLoads::from_source_on_fluid's (which
-  /// throws on a size mismatch, as this does).
+  /// throws on a size mismatch, as this does). `couple_on_fluid_n_per_m2` (optional, empty
+  /// for none): per cell a torque density on the fluid (N m / m^3) beside the force's, whose
+  /// reaction the cell's part also takes.
   std::vector<BodyLoad> from_source_on_fluid(const BodyIndicator &indicator, const PointArray &cell_centres_m,
                                              const PointArray &force_on_fluid_n_per_m3,
                                              const Eigen::VectorXd &cell_volumes_m3, const Vec3 &torque_point_m,
-                                             double time_s);
+                                             double time_s, const PointArray &couple_on_fluid_n_per_m2 = {});
 
 private:
   const RigidBody &body_;

@@ -85,6 +85,32 @@ void OpenFoamFlow::penalization_acceleration(PointArray &a) const {
   }
 }
 
+void OpenFoamFlow::interior_pressure_acceleration(PointArray &a, PointArray &couple) const {
+  a.setZero(mesh_->nCells(), 3);
+  couple.setZero(mesh_->nCells(), 3);
+  if (!penalizationRate_)
+    return;
+  const auto &rate = penalizationRate_->primitiveField();
+  const Foam::surfaceScalarField pf(Foam::fvc::interpolate(*p_));
+  const auto &owner = mesh_->owner();
+  const auto &neighbour = mesh_->neighbour();
+  const auto &sf = mesh_->Sf();
+  const auto &cf = mesh_->Cf();
+  const auto &cc = mesh_->C();
+  const auto &volume = mesh_->V();
+  const auto row = [](const Foam::vector &v) { return Eigen::RowVector3d(v.x(), v.y(), v.z()); };
+  forAll(neighbour, f) {
+    const Foam::label o = owner[f], n = neighbour[f];
+    if (rate[o] == 0.0 || rate[n] == 0.0)
+      continue;
+    const Foam::vector ps = pf[f] * sf[f]; // S_f points out of the owner
+    a.row(o) += row(ps) / volume[o];
+    a.row(n) -= row(ps) / volume[n];
+    couple.row(o) += row((cf[f] - cc[o]) ^ ps) / volume[o];
+    couple.row(n) -= row((cf[f] - cc[n]) ^ ps) / volume[n];
+  }
+}
+
 bool OpenFoamFlow::uses_wall_distance() const {
   return mesh_->thisDb().foundObject<Foam::wallDist>(Foam::wallDist::typeName);
 }

@@ -73,6 +73,28 @@ TEST_F(HalvedSphere, PartsSumToTheBodyAndTakeTheirOwnCells) {
   EXPECT_EQ(upper[0].force_n.norm(), 0.0);
 }
 
+TEST_F(HalvedSphere, ACoupleOnTheFluidTurnsItsPartTheOtherWay) {
+  const auto body = RigidBody::from_region_soup("ball", two_halves(), std::make_shared<motion::StaticPose>());
+  BodyIndicator indicator{*body, centres};
+  indicator.update(0.0);
+  BodyPartLoads split(*body);
+  const PointArray no_force = PointArray::Zero(centres.rows(), 3);
+  PointArray couple = PointArray::Zero(centres.rows(), 3);
+  double upper_volume_m3 = 0;
+  for (const std::int32_t cell : indicator.inside_cells())
+    if (centres(cell, 2) > 0.15) {
+      couple(cell, 2) = 2.0; // N m / m^3 on the fluid, about z
+      upper_volume_m3 += volumes(cell);
+    }
+  const auto parts = split.from_source_on_fluid(indicator, centres, no_force, volumes, Vec3::Zero(), 0.0, couple);
+  EXPECT_NEAR(parts[1].torque_n_m.z(), -2.0 * upper_volume_m3, 1e-12);
+  EXPECT_EQ(parts[0].torque_n_m.norm(), 0.0);
+  EXPECT_EQ(parts[1].force_n.norm(), 0.0);
+  EXPECT_THROW(split.from_source_on_fluid(indicator, centres, no_force, volumes, Vec3::Zero(), 0.0,
+                                          PointArray::Zero(3, 3)),
+               std::invalid_argument);
+}
+
 TEST_F(HalvedSphere, CellsGoToThePartsOfTheBodyFrame) {
   // Turned upside down (half a turn about x), the cap is below the equator in the world.
   Eigen::Isometry3d flipped = Eigen::Isometry3d::Identity();
