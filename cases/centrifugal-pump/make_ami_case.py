@@ -181,19 +181,7 @@ omega           %(w)r;   // rad/s
 FUNCTIONS_MORE = """    // The fluid's force (N) and torque (N m, about the origin on the axis) on the impeller's
     // patches, pressure and viscous parts, every step: python/fsi/pump_ami_run.py writes them
     // to forces.csv.
-    forces
-    {
-        type            forces;
-        libs            ("libforces.so");
-        patches         (%(patches)s);
-        rho             rhoInf;
-        rhoInf          %(rho)r;
-        CofR            (0 0 0);
-        writeControl    timeStep;
-        writeInterval   1;
-        log             false;
-    }
-%(part_forces)s    // The sums of the AMI weights (1 where the two sides overlap fully), min/max/average.
+%(forces)s%(part_forces)s    // The sums of the AMI weights (1 where the two sides overlap fully), min/max/average.
     AMIWeights
     {
         type            AMIWeights;
@@ -241,13 +229,12 @@ def rotor_cylinder(design, impeller):
     return 0.5 * (r_tip + volute["base_radius_m"]), 0.5 * (chamber[0] + lo[2]), 0.5 * (chamber[1] + hi[2])
 
 
-PART_FORCES = """    // The same on each part of the impeller (its STL's regions, one patch each): the torque by
-    // part, python/fsi/pump_ami_run.py writes parts.csv (the penalized runs' format).
-    forces_%(part)s
+# One forces function object (the fluid's force and torque, pressure and viscous parts, every step).
+FORCES = """    %(name)s
     {
         type            forces;
         libs            ("libforces.so");
-        patches         (%(part)s);
+        patches         (%(patches)s);
         rho             rhoInf;
         rhoInf          %(rho)r;
         CofR            (0 0 0);
@@ -255,6 +242,9 @@ PART_FORCES = """    // The same on each part of the impeller (its STL's regions
         writeInterval   1;
         log             false;
     }
+"""
+PART_FORCES_COMMENT = """    // The same on each part of the impeller (its STL's regions, one patch each): the torque by
+    // part, python/fsi/pump_ami_run.py writes parts.csv (the penalized runs' format).
 """
 
 
@@ -309,8 +299,9 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt):
     control = {"comment": "// make_ami_case.py: deltaT of case.yaml (scaled with h), endTime set by pump_ami_run.py.",
                "application": "pimpleFoam", "delta_t": repr(dt), "end_time": repr(case["run"]["end_time_s"]),
                "more_functions": FUNCTIONS_MORE % {
-                   "patches": " ".join(blade), "rho": make_case.RHO,
-                   "part_forces": "".join(PART_FORCES % {"part": part, "rho": make_case.RHO} for part in blade)}}
+                   "forces": FORCES % {"name": "forces", "patches": " ".join(blade), "rho": make_case.RHO},
+                   "part_forces": "".join(PART_FORCES_COMMENT + FORCES % {"name": "forces_" + part, "patches": part,
+                                                                          "rho": make_case.RHO} for part in blade)}}
     # fvSolution: the penalized case's + pcorr and the moving-mesh PIMPLE controls. The
     # body-fitted mesh has no holes in its pressure equation: GAMG alone, as it was measured.
     # The rotor's cells at the gaps are 2 mm: the mesh moves up to 2 cells per step there
