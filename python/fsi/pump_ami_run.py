@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The body-fitted sliding-mesh (AMI) reference of a pump point, run by stock pimpleFoam (serial):
+"""The body-fitted sliding-mesh (AMI) reference of a pump point, run by stock pimpleFoam (serial or on MPI ranks):
 the case folder that cases/centrifugal-pump/make_ami_case.py wrote (openfoam-ami-<resolution>),
 copied to OUT/openfoam with the flow rate set, meshed (blockMesh, snappyHexMesh, createBaffles,
 mergeOrSplitBaffles -split, checkMesh; or the same mesh from the cache, ~/.cache/fsi/meshes/<hash
@@ -9,7 +9,7 @@ OUT/forces.csv in the format of the penalized runs (time_s,body0.fx_n,...,body0.
 fluid's force and torque on the impeller, pressure + viscous, about the origin), so that
 python/fsi/pump_point.py's operating_point(OUT, ...) reads it unchanged.
 
-    pump_ami_run.py [--resolution coarse] [--flow-rate Q] [--end-time S] -o OUT CASE_DIR
+    pump_ami_run.py [--resolution coarse] [--flow-rate Q] [--end-time S] [--ranks N] [--restart] -o OUT CASE_DIR
 
 CASE_DIR is the pump case (cases/centrifugal-pump: its openfoam-ami-<resolution> is taken) or
 an AMI case folder itself. Progress with ETA on stderr from pimpleFoam's log. Writes
@@ -241,14 +241,51 @@ def ami_weights(foam_case):
     return {k: [v[0], v[1]] for k, v in sorted(result.items())}
 
 
-def run_pimple(foam_case, logs, end_time, dt):
-    """pimpleFoam, serial; progress with ETA on stderr. (steps, [ExecutionTime per step])."""
+def decompose(foam_case, logs, ranks):
+    """decomposePar into `ranks` subdomains cut along x, as the penalized runs are
+    (apps/fsi-openfoam-fluid/OpenFoamCase.cpp; Debian's scotch is a stub): each rank holds half
+    of the rotor and half of the casing."""
+    write_foam_file(foam_case, "system/decomposeParDict", "dictionary",
+                    "numberOfSubdomains %d;\nmethod hierarchical;\ncoeffs { n (%d 1 1); order xyz; }\n"
+                    % (ranks, ranks))
+    run_tool("decomposePar", foam_case, logs, ["-force"])
+
+
+def mpirun_prefix(ranks):
+    """mpirun for `ranks` ranks of an OpenFOAM solver, as SelfLaunch.cpp starts the penalized fluid
+    (empty for one rank)."""
+    if ranks <= 1:
+        return []
+    prefix = ["mpirun", "-np", str(ranks), "--oversubscribe", "-x", "WM_PROJECT_DIR", "-x", "FOAM_ETC"]
+    for name in ALLOCATOR_TUNABLES:
+        prefix += ["-x", name]
+    if os.geteuid() == 0:
+        prefix.append("--allow-run-as-root")
+    return prefix
+
+
+def latest_time(foam_case, ranks):
+    """The latest time folder with fields (U) of the case, or of its processor0 when decomposed."""
+    root = os.path.join(foam_case, "processor0") if ranks > 1 else foam_case
+    times = [d for d in os.listdir(root) if re.fullmatch(r"[0-9.eE+-]+", d)
+             and os.path.isfile(os.path.join(root, d, "U"))] if os.path.isdir(root) else []
+    return max(times, key=float) if times else None
+
+
+def run_pimple(foam_case, logs, end_time, dt, ranks=1, start_time=0.0):
+    """pimpleFoam, serial or on `ranks` MPI ranks (decomposed case), from start_time; progress with
+    ETA on stderr. ([ExecutionTime per step], wall s)."""
     log = os.path.join(logs, "log.pimpleFoam")
-    say("pimpleFoam to t = %g s (dt = %g s, %d steps), log %s" % (end_time, dt, round(end_time / dt), log))
-    exec_times, t, last_report, start = [], 0.0, 0.0, time.monotonic()
+    steps = round((end_time - start_time) / dt)
+    say("pimpleFoam from t = %g to %g s (dt = %g s, %d steps, %d rank%s), log %s"
+        % (start_time, end_time, dt, steps, ranks, "s" if ranks > 1 else "", log))
+    exec_times, t, last_report, start = [], start_time, 0.0, time.monotonic()
+    if start_time > 0 and os.path.exists(log):          # a continued run keeps the earlier log
+        os.rename(log, "%s.until-%g" % (log, start_time))
+    command = mpirun_prefix(ranks) + ["pimpleFoam", "-case", foam_case] + (["-parallel"] if ranks > 1 else [])
     with open(log, "w") as f:
         # With our executables' allocator settings: the comparison per revolution is of the methods.
-        process = subprocess.Popen(["pimpleFoam", "-case", foam_case], stdout=subprocess.PIPE,
+        process = subprocess.Popen(command, stdout=subprocess.PIPE,
                                    stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                                    env=dict(os.environ, **ALLOCATOR_TUNABLES))
         for raw in iter(process.stdout.readline, b""):
@@ -262,11 +299,11 @@ def run_pimple(foam_case, logs, end_time, dt):
             elif line.startswith("ExecutionTime = "):
                 exec_times.append(float(line.split()[2]))
                 now = time.monotonic()
-                if now - last_report > 15.0 and t > 0:
+                if now - last_report > 15.0 and t > start_time:
                     elapsed = now - start
                     say("flow: t = %.6g of %g s, step %d/%d, %.0f ms/step, ETA %.0f s"
-                        % (t, end_time, len(exec_times), round(end_time / dt), 1e3 * elapsed / len(exec_times),
-                           elapsed * (end_time - t) / t))
+                        % (t, end_time, len(exec_times), steps, 1e3 * elapsed / len(exec_times),
+                           elapsed * (end_time - t) / (t - start_time)))
                     last_report = now
         code = process.wait()
     if code != 0:
@@ -281,7 +318,8 @@ def time_mesh_motion(foam_case, logs, steps=20):
     copy = foam_case.rstrip("/") + ".mesh-motion"
     if os.path.exists(copy):
         shutil.rmtree(copy)
-    shutil.copytree(foam_case, copy, ignore=shutil.ignore_patterns("postProcessing", "[1-9]*", "0.[0-9]*"))
+    shutil.copytree(foam_case, copy, ignore=shutil.ignore_patterns("postProcessing", "processor*", "[1-9]*",
+                                                                   "0.[0-9]*"))
     control = os.path.join(copy, "system", "controlDict")
     dt = float(foam_entry(control, "deltaT"))
     set_foam_entry(control, "endTime", repr(steps * dt))
@@ -345,47 +383,72 @@ def map_initial_fields(foam_case, logs, source):
     say("warm start: the fields of t = %s s of %s mapped onto the AMI mesh" % (latest, source))
 
 
-def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", initial_fields_from=None):
-    """Runs the AMI reference at `flow_rate` (m^3/s) to `end_time` (s) in out_dir; returns the
-    operating point (pump_point.operating_point) and writes out_dir/{forces.csv,
-    operating_point.yaml, cost.yaml}. initial_fields_from: an OpenFOAM case whose latest fields
-    are the initial ones (a warm start; see map_initial_fields)."""
+def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", initial_fields_from=None,
+                  ranks=1, restart=False):
+    """Runs the AMI reference at `flow_rate` (m^3/s) to `end_time` (s) in out_dir on `ranks` MPI
+    ranks; returns the operating point (pump_point.operating_point) and writes
+    out_dir/{forces.csv, operating_point.yaml, cost.yaml}. initial_fields_from: an OpenFOAM case
+    whose latest fields are the initial ones (a warm start; see map_initial_fields). The fields
+    are written every revolution (the last two kept): restart=True continues the run in out_dir
+    from its latest one (same ranks) to end_time, and the forces of both parts are joined."""
     source = case_folder(os.path.abspath(case_dir), resolution)
     if not os.path.isfile(os.path.join(source, "constant", "dynamicMeshDict")):
         raise SystemExit("pump-ami: %s is not an AMI case folder (make_ami_case.py writes them)" % source)
+    if ranks < 1:
+        raise SystemExit("pump-ami: --ranks %d: the number of MPI ranks is at least 1" % ranks)
     out_dir = os.path.abspath(out_dir)
     foam_case, logs = os.path.join(out_dir, "openfoam"), os.path.join(out_dir, "logs")
-    if os.path.exists(foam_case):
-        shutil.rmtree(foam_case)
-    os.makedirs(logs, exist_ok=True)
-    shutil.copytree(source, foam_case, symlinks=False)          # the STL links resolved
-    write_operating_point(foam_case, flow_rate)
     control = os.path.join(foam_case, "system", "controlDict")
+    start_time, t0 = 0.0, time.monotonic()
+    if restart:
+        decomposed = len(glob.glob(os.path.join(foam_case, "processor*")))
+        latest = latest_time(foam_case, ranks)
+        if latest is None or decomposed != (ranks if ranks > 1 else 0):
+            raise SystemExit("pump-ami: --restart: %s has no fields to continue from on %d rank%s (it has %d "
+                             "processor folders): run it first, or restart with the ranks it ran on"
+                             % (foam_case, ranks, "s" if ranks > 1 else "", decomposed))
+        start_time = float(latest)
+        if start_time >= end_time - 1e-9:
+            raise SystemExit("pump-ami: --restart: %s is already at t = %s s, not before --end-time %g s"
+                             % (foam_case, latest, end_time))
+        set_foam_entry(control, "startFrom", "latestTime")
+        say("restart: continuing %s from t = %s s" % (foam_case, latest))
+    else:
+        if os.path.exists(foam_case):
+            shutil.rmtree(foam_case)
+        os.makedirs(logs, exist_ok=True)
+        shutil.copytree(source, foam_case, symlinks=False)          # the STL links resolved
+        write_operating_point(foam_case, flow_rate)
     set_foam_entry(control, "endTime", repr(float(end_time)))
     dt = float(foam_entry(control, "deltaT"))
-    if float(foam_entry(control, "writeInterval")) > end_time:
-        set_foam_entry(control, "writeInterval", repr(float(end_time)))   # the end state, to continue from
     with open(os.path.join(foam_case, "constant", "dynamicMeshDict")) as f:
         text = f.read()
     omega = float(re.search(r"^omega\s+([^;]+);", text, re.M).group(1))
     axis = [float(v) for v in re.search(r"^axis\s+\(([^)]*)\)", text, re.M).group(1).split()]
-    t0 = time.monotonic()
-    mesh(foam_case, logs)
+    period = 2 * math.pi / omega
+    # The fields of every revolution (purgeWrite keeps the last two), to continue from.
+    set_foam_entry(control, "writeInterval", repr(min(period, float(end_time))))
+    if not restart:
+        mesh(foam_case, logs)
+        if initial_fields_from:
+            map_initial_fields(foam_case, logs, os.path.abspath(initial_fields_from))
+        if ranks > 1:
+            decompose(foam_case, logs, ranks)
     mesh_s = time.monotonic() - t0
-    if initial_fields_from:
-        map_initial_fields(foam_case, logs, os.path.abspath(initial_fields_from))
     with open(os.path.join(logs, "log.checkMesh")) as f:
         check = f.read()
     cells = int(re.search(r"^\s+cells:\s+(\d+)", check, re.M).group(1))
-    exec_times, wall = run_pimple(foam_case, logs, end_time, dt)
+    exec_times, wall = run_pimple(foam_case, logs, end_time, dt, ranks, start_time)
+    if ranks > 1:   # the last fields in the case itself: the head budget and warm starts read them
+        run_tool("reconstructPar", foam_case, logs, ["-latestTime"])
     n = write_forces_csv(foam_case, out_dir)
     write_parts_csv(foam_case, out_dir)
     steps = len(exec_times)
     per_step = [b - a for a, b in zip([0.0] + exec_times[:-1], exec_times)]
     steady = per_step[min(5, steps - 1):] if steps else [float("nan")]
-    period = 2 * math.pi / omega
     cost = {
         "cells": cells,
+        "ranks": ranks,
         # The failed checks as checkMesh words them (snappy's AMI meshes usually fail only the
         # skewness of boundary faces, which snappyHexMesh allows up to maxBoundarySkewness 20).
         "checkMesh": "Mesh OK" if "Mesh OK." in check else
@@ -395,7 +458,7 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
         "dt_s": dt,
         "pimpleFoam_wall_s": round(wall, 1),
         "execution_s_per_step": sum(steady) / len(steady),
-        "wall_s_per_revolution": wall / (end_time / period),
+        "wall_s_per_revolution": wall / ((end_time - start_time) / period),
         "steps_per_revolution": period / dt,
         "ami_weights_sum_min_max": ami_weights(foam_case),
     }
@@ -406,7 +469,8 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
         cost["mesh_motion_and_ami_s_per_revolution"] = motion * period / dt
     with open(os.path.join(out_dir, "cost.yaml"), "w") as f:
         yaml.safe_dump(cost, f, sort_keys=False)
-    say("forces.csv (%d rows); %.1f wall s per revolution (%d cells, 1 core)" % (n, cost["wall_s_per_revolution"], cells))
+    say("forces.csv (%d rows); %.1f wall s per revolution (%d cells, %d rank%s)"
+        % (n, cost["wall_s_per_revolution"], cells, ranks, "s" if ranks > 1 else ""))
     radius = None
     pump_yaml = os.path.join(os.path.dirname(source), "pump.yaml")
     if os.path.isfile(pump_yaml):
@@ -442,6 +506,10 @@ def main(argv):
     parser.add_argument("--initial-fields-from", default="",
                         help="an OpenFOAM case (a penalized run's output/openfoam, ended after whole revolutions) "
                              "whose latest fields start this run")
+    parser.add_argument("--ranks", type=int, default=1, help="MPI ranks of pimpleFoam (default 1: serial)")
+    parser.add_argument("--restart", action="store_true",
+                        help="continue the run in OUTPUT from its latest fields (written every revolution) to "
+                             "--end-time, on the ranks it ran on")
     parser.add_argument("-o", "--output", required=True)
     parser.add_argument("case_dir")
     args = parser.parse_args(argv)
@@ -454,7 +522,8 @@ def main(argv):
     if not end:
         with open(os.path.join(pump_dir, "case.yaml")) as f:
             end = float(yaml.safe_load(f)["run"]["end_time_s"])
-    run_ami_point(args.case_dir, q, args.output, end, args.resolution, args.initial_fields_from or None)
+    run_ami_point(args.case_dir, q, args.output, end, args.resolution, args.initial_fields_from or None,
+                  args.ranks, args.restart)
     return 0
 
 
