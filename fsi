@@ -37,6 +37,9 @@
 #                    [--resolution NAME] [--end-time S] [-o DIR] CASE_DIR
 #                             a pump case at several flow rates (fractions of its design flow), the
 #                             impeller penalized, body-fitted (AMI) or both: pump_curve.csv and .png
+#   ./fsi pump-compare [--flow-fraction 1.0] [--revolutions 8] [--ranks 2] [--from DIR] [-o DIR] CASE_DIR
+#                             the penalized impeller against the body-fitted (AMI) one on the same mesh
+#                             from one settled state: head, torque by part, leak, cost (comparison.md)
 #   ./fsi coupling-study [--only laws|implicit]  the coupling laws at equal cost and implicit coupling
 #                             against explicit on real runs (study/coupling/COUPLING.md; docs/coupling.md)
 #   ./fsi disc-study [--only laminar|turbulent] [--levels 2] [--jobs 2] [-o DIR]
@@ -318,6 +321,9 @@ case "${1:-help}" in
     shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.coupling_study --bin-dir "$BUILD/bin" "$@" ;;
   disc-study)
     shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.disc_study --bin-dir "$BUILD/bin" "$@" ;;
+  pump-compare)
+    shift; [ $# -ge 1 ] || die "usage: ./fsi pump-compare [--flow-fraction F] [--revolutions N] [--ranks N] [--from DIR] CASE_DIR"
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.pump_compare --bin-dir "$BUILD/bin" "$@" ;;
   fuzz) shift; cmd_fuzz "$@" ;;
   submit)
     shift; [ $# -ge 1 ] || die "usage: ./fsi submit [--partition P] [--time T] [--fluid-nodes N] [--dry-run] CASE_DIR [CASE_DIR ...]"
@@ -326,5 +332,5 @@ case "${1:-help}" in
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
   help|-h|--help) sed -n '2,/^set -euo/p' "$0" | grep '^#' | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, rag-ensemble, coupling-study, disc-study, build, help)" ;;
+  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, pump-compare, rag-ensemble, coupling-study, disc-study, build, help)" ;;
 esac

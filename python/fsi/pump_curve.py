@@ -169,7 +169,7 @@ def run_point(args, point):
                    args.case_dir]
     point.state, point.started = "running", time.monotonic()
     def on_line(line):
-        if "flow alone (no structure)" in line or "pimpleFoam to t =" in line:
+        if "flow alone (no structure)" in line or "pimpleFoam from t =" in line:
             point.meshed.set()
         match = PROGRESS.search(line)
         if match:

@@ -43,7 +43,7 @@ def read_dat(folder, name):
             for line in f:
                 if line.strip() and not line.startswith("#"):
                     rows.append([float(w) for w in line.split()])
-    data = np.array(rows)
+    data = np.array(rows)[::-1]     # a time in two files: the later start's (the continued run's)
     _, unique = np.unique(data[:, 0], return_index=True)
     data = data[unique]
     return data[:, 0], data[:, 1:]
@@ -63,6 +63,27 @@ def harmonic(t, y, omega):
     c = np.mean(y * np.cos(omega * t))
     s = np.mean(y * np.sin(omega * t))
     return 2.0 * math.hypot(c, s)
+
+
+def revolution_means(t_torque, torque, t_head, head, t0, period, n):
+    """The mean of torque and head over each of the n revolutions from t0, the standard error of
+    the window's mean that their scatter gives (std / sqrt(n), revolutions taken as independent;
+    None for one revolution) and the drift of the last three (max - min of their means over the
+    window's mean, the issue's "under 2 %" rule; None for fewer than three)."""
+    result = {"revolution_torque_n_m": [], "revolution_head_m": []}
+    for k in range(n):
+        a, b = t0 + k * period + 1e-9, t0 + (k + 1) * period + 1e-9
+        result["revolution_torque_n_m"].append(float(np.mean(torque[(t_torque > a) & (t_torque <= b)])))
+        result["revolution_head_m"].append(float(np.mean(head[(t_head > a) & (t_head <= b)])))
+    for key, name in (("revolution_torque_n_m", "torque"), ("revolution_head_m", "head")):
+        values = np.asarray(result[key])
+        unit = "n_m" if name == "torque" else "m"
+        result["%s_standard_error_%s" % (name, unit)] = (float(np.std(values, ddof=1) / math.sqrt(n))
+                                                         if n > 1 else None)
+        mean = float(np.mean(values))
+        result["%s_drift_last_3_revolutions" % name] = (float((values[-3:].max() - values[-3:].min()) / abs(mean))
+                                                       if n >= 3 and mean else None)
+    return result
 
 
 def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, average_revolutions=4,
@@ -123,6 +144,7 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
                 by_part[part] = float(np.mean(window(data[:, 0], shaft_part)[1]))
     power = torque_mean * omega
     u2 = omega * radius_m
+    revolutions = revolution_means(tw, tq, hw, dp / (rho * G), t0, period, n_avg)
     point = {
         "flow_rate_m3_per_s": flow_rate,
         "outlet_flow_rate_m3_per_s": q_out,
@@ -145,6 +167,7 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         "revolutions_run": n_rev,
     }
     point = {k: (None if v is None else int(v) if isinstance(v, int) else float(v)) for k, v in point.items()}
+    point.update(revolutions)
     if by_part is not None:
         point["torque_by_part_n_m"] = by_part
     return point

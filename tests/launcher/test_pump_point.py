@@ -1,0 +1,114 @@
+#!/usr/bin/python3
+"""Checks of python/fsi/pump_point.py's revolution statistics on a hand-written run folder (the
+documented layout: forces.csv and the total-pressure function objects' .dat files), and of the
+refusals of ./fsi pump-compare and pump_ami_run.py --restart before anything runs.
+    /usr/bin/python3 tests/launcher/test_pump_point.py
+"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PYTHON = os.path.join(HERE, "..", "..", "python")
+sys.path.insert(0, PYTHON)
+from fsi import pump_point  # noqa: E402
+
+OMEGA = 150.0   # rad/s
+RHO, G = 1000.0, 9.81
+
+
+def write_dat(folder, name, start, t, values):
+    path = os.path.join(folder, "openfoam", "postProcessing", name, repr(start))
+    os.makedirs(path, exist_ok=True)
+    with open(os.path.join(path, "surfaceFieldValue.dat"), "w") as f:
+        f.write("# Time areaAverage\n")
+        for a, b in zip(t, values):
+            f.write("%.10g %.10g\n" % (a, b))
+
+
+def write_run(folder, torque_of_t, head_of_t, revolutions, steps_per_rev=200):
+    """forces.csv (torque -T about +z: the shaft supplies T) and inlet/outlet total pressures
+    giving the head head_of_t (m), sampled at the ends of the steps."""
+    period = 2 * math.pi / OMEGA
+    t = np.arange(1, revolutions * steps_per_rev + 1) * period / steps_per_rev
+    with open(os.path.join(folder, "forces.csv"), "w") as f:
+        f.write("time_s,body0.fx_n,body0.fy_n,body0.fz_n,body0.tx_n_m,body0.ty_n_m,body0.tz_n_m\n")
+        for a in t:
+            f.write("%.10g,0,0,0,0,0,%.10g\n" % (a, -torque_of_t(a)))
+    write_dat(folder, "inletTotalPressure", 0, t, np.full(len(t), 1000.0))
+    write_dat(folder, "outletTotalPressure", 0, t, 1000.0 + RHO * G * head_of_t(t))
+    return period
+
+
+class RevolutionMeans(unittest.TestCase):
+    def test_means_standard_error_and_drift_of_a_pulsating_drifting_pump(self):
+        # Torque 10 N m + 0.1 N m per revolution with a once-per-revolution pulsation of 2 N m
+        # (zero over each whole revolution); head 5 m with a pulsation at 3 per revolution.
+        with tempfile.TemporaryDirectory() as folder:
+            period = 2 * math.pi / OMEGA
+            write_run(folder, lambda t: 10.0 + 0.1 * np.floor(t / period - 1e-9) + 2.0 * np.sin(OMEGA * t),
+                      lambda t: 5.0 + 0.5 * np.sin(3 * OMEGA * t), revolutions=8)
+            p = pump_point.operating_point(folder, OMEGA, [0, 0, 1], 0.1, 0.02, average_revolutions=8,
+                                           settle_revolutions=1)
+            self.assertEqual(p["revolutions_averaged"], 7)
+            expected = [10.0 + 0.1 * k for k in range(1, 8)]
+            # Each revolution's mean: the drift step, the pulsation averaging out (1e-3 N m: the
+            # sampling of a sine at 200 points a revolution is exact to round-off).
+            np.testing.assert_allclose(p["revolution_torque_n_m"], expected, atol=1e-3)
+            np.testing.assert_allclose(p["revolution_head_m"], 5.0, atol=1e-3)
+            self.assertAlmostEqual(p["torque_standard_error_n_m"], np.std(expected, ddof=1) / math.sqrt(7), places=4)
+            self.assertAlmostEqual(p["torque_drift_last_3_revolutions"], 0.2 / np.mean(expected), places=4)
+            self.assertLess(p["head_drift_last_3_revolutions"], 1e-3)
+            self.assertLess(p["head_standard_error_m"], 1e-3)
+            self.assertAlmostEqual(p["shaft_torque_n_m"], np.mean(expected), places=3)
+
+    def test_a_continued_run_counts_each_time_once_the_later_start_winning(self):
+        with tempfile.TemporaryDirectory() as folder:
+            period = write_run(folder, lambda t: 10.0 + 0 * t, lambda t: 5.0 + 0 * t, revolutions=4)
+            # A continuation from 2 revolutions (the first run's rows after it are replaced).
+            t = np.arange(401, 801) * period / 200
+            write_dat(folder, "outletTotalPressure", 2 * period, t, np.full(len(t), 1000.0 + RHO * G * 6.0))
+            time, _ = pump_point.read_dat(folder, "outletTotalPressure")
+            self.assertEqual(len(time), 800)
+            p = pump_point.operating_point(folder, OMEGA, [0, 0, 1], 0.1, 0.02, average_revolutions=2,
+                                           settle_revolutions=2)
+            np.testing.assert_allclose(p["revolution_head_m"], [6.0, 6.0], atol=1e-9)
+
+
+class Refusals(unittest.TestCase):
+    def run_module(self, *args):
+        env = dict(os.environ, PYTHONPATH=PYTHON)
+        return subprocess.run([sys.executable, "-m"] + list(args), capture_output=True, text=True, env=env,
+                              stdin=subprocess.DEVNULL, timeout=60)
+
+    def test_pump_compare_without_a_settled_state_names_the_command_that_makes_it(self):
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        with tempfile.TemporaryDirectory() as out:
+            made = self.run_module("fsi.pump_compare", "--bin-dir", out, "--from", os.path.join(out, "none"),
+                                   "-o", out, case)
+        self.assertNotEqual(made.returncode, 0)
+        self.assertIn("the settled state", made.stderr)
+        self.assertIn("./fsi pump-curve --points 1", made.stderr)
+
+    def test_pump_compare_refuses_too_few_revolutions(self):
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        made = self.run_module("fsi.pump_compare", "--bin-dir", "/nonexistent", "--revolutions", "3", case)
+        self.assertNotEqual(made.returncode, 0)
+        self.assertIn("--revolutions 3: at least 4", made.stderr)
+
+    def test_ami_restart_without_a_run_says_so(self):
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        with tempfile.TemporaryDirectory() as out:
+            made = self.run_module("fsi.pump_ami_run", "--restart", "--ranks", "2", "--flow-rate", "0.02",
+                                   "--end-time", "0.1", "-o", out, case)
+        self.assertNotEqual(made.returncode, 0)
+        self.assertIn("no fields to continue from on 2 ranks", made.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
