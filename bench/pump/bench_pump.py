@@ -4,11 +4,13 @@
 body-fitted with the impeller in a rotating zone and an AMI to the casing (stock pimpleFoam,
 python/fsi/pump_ami_run.py), at the same cell size and time step, interleaved in one run:
 
-    bench_pump.py --bin-dir BIN [--resolution coarse] [--ours-resolution coarse-gaps] [--revolutions 1]
-                  [--rounds 1] [-o DIR]
+    bench_pump.py --bin-dir BIN [--resolution coarse] [--ours-resolution coarse-ami-mesh] [--ranks 1]
+                  [--revolutions 1] [--rounds 1] [-o DIR]
 
-Both start from water at rest at the design flow rate (pump.yaml) and run `--revolutions` on one
-core each, one after the other (the machine's other core idle). What the numbers contain:
+Both start from water at rest at the design flow rate (pump.yaml) and run `--revolutions` on
+--ranks MPI ranks each (default 1: the machine's other core idle), one after the other. Ours runs
+by default on the AMI reference's own mesh (preset <resolution>-ami-mesh: the same background,
+gap cells and refinement around the impeller, so nearly the same cells). What the numbers contain:
   ours  timings.csv of fsi-openfoam-fluid (per step, wall): penalization = chi and u_rib of the
         rotated impeller (Eq. 10) and the immersed wall distance; fluid solve = the PIMPLE step
         with turbulence, writing and the function objects; loads = the penalization force and the
@@ -40,9 +42,10 @@ CELLS = re.compile(r"PIMPLE, (\d+) cells")  # the fluid's description (the mesh 
 LOOP = re.compile(r"flow: t = [0-9.eE+-]+ of [0-9.eE+-]+ s, step (\d+)/(\d+), ([0-9.]+) ms/step")
 
 
-def ours(bin_dir, resolution, end_time, out):
+def ours(bin_dir, resolution, end_time, out, ranks):
     command = [sys.executable, os.path.join(ROOT, "python", "fsi", "fsi_launch.py"), "--bin-dir", bin_dir, "-o", out,
-               "--end-time", repr(end_time), "--resolution", resolution, CASE]
+               "--end-time", repr(end_time), "--resolution", resolution, "--set",
+               "fluid.openfoam.mpi_ranks=%d" % ranks, CASE]
     start = time.monotonic()
     subprocess.run(command, check=True, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     wall = time.monotonic() - start
@@ -62,8 +65,8 @@ def ours(bin_dir, resolution, end_time, out):
     return {"cells": cells, "steps": steps, "loop_s": loop, "process_wall_s": wall, "parts_s": parts}
 
 
-def ami(resolution, end_time, flow_rate, out):
-    pump_ami_run.run_ami_point(CASE, flow_rate, out, end_time, resolution)
+def ami(resolution, end_time, flow_rate, out, ranks):
+    pump_ami_run.run_ami_point(CASE, flow_rate, out, end_time, resolution, ranks=ranks)
     with open(os.path.join(out, "cost.yaml")) as f:
         cost = yaml.safe_load(f)
     steps = cost["steps"]
@@ -78,8 +81,8 @@ def main(argv):
     parser.add_argument("--bin-dir", required=True)
     parser.add_argument("--resolution", default="coarse", help="the AMI reference's mesh (coarse, medium)")
     parser.add_argument("--ours-resolution", default="",
-                        help="our preset (default: --resolution; coarse-gaps has the AMI mesh's 2 mm gap cells: "
-                             "about the same cells as the AMI coarse mesh)")
+                        help="our preset (default: <resolution>-ami-mesh, the AMI reference's own mesh)")
+    parser.add_argument("--ranks", type=int, default=1, help="MPI ranks of each run")
     parser.add_argument("--revolutions", type=float, default=1.0)
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("-o", "--output", default=os.path.join(ROOT, "build", "bench-pump"))
@@ -96,11 +99,12 @@ def main(argv):
         for name in ("ours", "AMI"):
             out = os.path.join(args.output, "runs", "%s-%s-r%d" % (name.lower(), args.resolution, r))
             sys.stderr.write("bench pump: %s, round %d, %g revolutions (%s)\n" % (name, r + 1, args.revolutions, out))
-            rows[name].append(ours(args.bin_dir, args.ours_resolution or args.resolution, end_time, out)
+            rows[name].append(ours(args.bin_dir, args.ours_resolution or args.resolution + "-ami-mesh", end_time, out,
+                                   args.ranks)
                               if name == "ours"
-                              else ami(args.resolution, end_time, q, out))
-    lines = ["# Cost per revolution of the centrifugal pump, %s, 1 core each (%s)" % (
-                 args.resolution, time.strftime("%Y-%m-%d %H:%M")),
+                              else ami(args.resolution, end_time, q, out, args.ranks))
+    lines = ["# Cost per revolution of the centrifugal pump, %s, %d rank%s each (%s)" % (
+                 args.resolution, args.ranks, "s" if args.ranks > 1 else "", time.strftime("%Y-%m-%d %H:%M")),
              "", "| run | cells | steps per revolution | wall s per revolution | split (s per revolution) |",
              "|---|---|---|---|---|"]
     summary = {}
