@@ -8,7 +8,7 @@ the first, each revolution's mean with the standard error of their scatter), and
 when the last three revolution means of head and torque drift by under 2 %.
 
     pump_compare.py --bin-dir BIN [--flow-fraction 1.0] [--revolutions 8] [--ranks 2]
-                    [--resolution coarse] [--from OPENFOAM_CASE] [-o DIR] CASE_DIR
+                    [--resolution coarse] [--from OPENFOAM_CASE] [--set KEY=VALUE] [-o DIR] CASE_DIR
 
 --from: the settled state (default CASE_DIR/output/pump-curve/q<fraction>/openfoam, which
 ./fsi pump-curve writes). DIR (default CASE_DIR/output/pump-compare/q<fraction>) gets ibm/ (the
@@ -18,7 +18,9 @@ torque within 10 %), comparison.md (the table) and comparison.png (the revolutio
 torque by part). The two runs go one after the other, each on --ranks MPI ranks: their wall
 seconds per revolution are the cost ratio at (nearly) equal cells. A run already made with the
 same inputs is reused; asked for more revolutions, the AMI run continues from its last
-revolution (pump_ami_run.py --restart) and the penalized one, the cheap one, is run again."""
+revolution (pump_ami_run.py --restart) and the penalized one, the cheap one, is run again.
+--set changes the penalized run only (a variant of the method against the same reference: give
+it its own -o and link DIR/ami to the first comparison's, which is then reused)."""
 
 import argparse
 import json
@@ -33,6 +35,7 @@ import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from fsi import fsi_launch  # noqa: E402
+from fsi import pump_ami_run  # noqa: E402
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
 from fsi.pump_curve import case_fingerprint, flow_rate_assignment  # noqa: E402
@@ -67,8 +70,11 @@ def rotation(case_dir):
 
 def run_inputs(args, method, flow_rate):
     """What makes a run: equal inputs, equal run (the end time aside, which the AMI run extends)."""
-    return {"method": method, "case": case_fingerprint(args.case_dir), "flow_rate_m3_per_s": flow_rate,
-            "from": os.path.abspath(args.settled), "resolution": args.resolution, "ranks": args.ranks}
+    inputs = {"method": method, "case": case_fingerprint(args.case_dir), "flow_rate_m3_per_s": flow_rate,
+              "from": os.path.abspath(args.settled), "resolution": args.resolution, "ranks": args.ranks}
+    if method == "ibm" and getattr(args, "assignments", None):
+        inputs["set"] = list(args.assignments)
+    return inputs
 
 
 def read_stamp(folder):
@@ -118,21 +124,34 @@ def run_method(args, method, flow_rate, end_time):
         return folder
     os.makedirs(folder, exist_ok=True)
     log = os.path.join(folder, "pump_compare.log")
+    started_path = os.path.join(folder, "run.started.json")
+    started = None
+    if os.path.isfile(started_path):
+        with open(started_path) as f:
+            started = json.load(f)
     if method == "ami":
         command = [sys.executable, AMI_RUN, "--resolution", args.resolution, "--flow-rate", repr(flow_rate),
                    "--end-time", repr(end_time), "--ranks", str(args.ranks), "-o", folder, args.case_dir]
-        if same and stamp["end_time_s"] < end_time:
+        # An interrupted run (or a finished one asked for more revolutions) of the same inputs
+        # continues from its last revolution's fields.
+        latest = pump_ami_run.latest_time(os.path.join(folder, "openfoam"), args.ranks)
+        if (same or started == inputs) and latest is not None and 0 < float(latest) < end_time:
             command.insert(2, "--restart")
-            say("ami: continuing from t = %g s to %g s" % (stamp["end_time_s"], end_time))
+            say("ami: continuing from t = %s s to %g s" % (latest, end_time))
         else:
             command += ["--initial-fields-from", args.settled]
     else:
         command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", folder, "--preset",
                    args.resolution + "-ami-mesh", "--end-time", repr(end_time), "--set",
                    flow_rate_assignment(flow_rate), "--set", "fluid.openfoam.initial_fields_from=" + args.settled,
-                   "--set", "fluid.openfoam.mpi_ranks=%d" % args.ranks, args.case_dir]
+                   "--set", "fluid.openfoam.mpi_ranks=%d" % args.ranks]
+        for assignment in args.assignments:
+            command += ["--set", assignment]
+        command.append(args.case_dir)
     if os.path.exists(os.path.join(folder, "run.json")):
         os.remove(os.path.join(folder, "run.json"))
+    with open(started_path, "w") as f:
+        json.dump(inputs, f, indent=1)
     say("%s: running to t = %g s (%d ranks; log %s)" % (method, end_time, args.ranks, log))
     wall = run_logged(command, log)
     write_stamp(folder, inputs, end_time, wall + (stamp["wall_s"] if same and method == "ami" else 0.0))
@@ -272,6 +291,9 @@ def main(argv):
     parser.add_argument("--resolution", default="coarse")
     parser.add_argument("--from", dest="settled", default="", help="the settled state: an OpenFOAM case whose latest "
                         "fields start both runs (default: CASE_DIR/output/pump-curve/q<fraction>/openfoam)")
+    parser.add_argument("--set", metavar="KEY=VALUE", dest="assignments", action="append", default=[],
+                        help="a key of the penalized run (e.g. fluid.openfoam.immersed_wall_model=spalding; "
+                             "repeatable); the AMI run is the same with or without")
     parser.add_argument("-o", "--output", default="")
     parser.add_argument("case_dir")
     args = parser.parse_args(argv)
