@@ -176,7 +176,12 @@ def summary(folder, design, omega, axis, flow_rate, revolutions):
     side space of the last fields (pump_head_budget)."""
     point = pump_point.operating_point(folder, omega, axis, 0.5 * design["impeller"]["outer_diameter_m"],
                                        flow_rate, average_revolutions=revolutions, settle_revolutions=1)
-    rows = pump_head_budget.head_budget(os.path.join(folder, "openfoam"), design)
+    foam_case = os.path.join(folder, "openfoam")
+    try:
+        pump_head_budget.latest_time(foam_case)
+    except ValueError:   # a run on MPI ranks: its last fields are in processor*/
+        pump_ami_run.run_tool("reconstructPar", foam_case, folder, ["-latestTime"])
+    rows = pump_head_budget.head_budget(foam_case, design)
     stations = {row["station"]: row for row in rows}
     point["front_side_space_leak_m3_per_s"] = stations["front side space"]["flow_rate_m3_per_s"]
     return point
