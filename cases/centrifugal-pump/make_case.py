@@ -26,12 +26,14 @@ run this by hand after changing a resolution.
 
 import math
 import os
+import shutil
 import sys
 
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from fsi.foam_case import write_foam_file  # noqa: E402
+from fsi.pump_stations import function_objects as station_function_objects  # noqa: E402
 
 NU, RHO = 1.0e-6, 1000.0            # water: m^2/s, kg/m^3
 NU_TILDA_IN = 3.0 * NU              # free-stream nuTilda / nu = 3 (Spalart & Rumsey 2007)
@@ -216,7 +218,7 @@ functions
         writeControl    timeStep;
         writeInterval   1;
     }
-%(more_functions)s}
+%(stations)s%(more_functions)s}
 """
 # What the penalized runs' controlDict holds; make_ami_case.py gives the AMI reference's.
 CONTROL_RUN = {"comment": "// deltaT and endTime are set by the run (case.yaml run.time_step_s and run.end_time_s).",
@@ -377,7 +379,9 @@ def link_surface(folder, source):
     """constant/triSurface/<name> as a relative link to the geometry file."""
     link = os.path.join(folder, "constant", "triSurface", os.path.basename(source))
     os.makedirs(os.path.dirname(link), exist_ok=True)
-    if os.path.lexists(link):
+    if os.path.isdir(link) and not os.path.islink(link):
+        shutil.rmtree(link)   # a copy of the case that resolved the link (shutil.copytree does)
+    elif os.path.lexists(link):
         os.remove(link)
     os.symlink(os.path.relpath(source, os.path.dirname(link)), link)
 
@@ -403,7 +407,8 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control
                               "refinement": GAP_REFINEMENT if refine_gaps else ""})
     omega = design["operation"]["rotation_rate_rad_per_s"]
     write_foam_file(folder, "system/controlDict", "dictionary",
-                    CONTROL % dict(CONTROL_RUN, **(control or {}), write=round(10 * 2 * math.pi / omega, 6), rho=RHO))
+                    CONTROL % dict(CONTROL_RUN, **(control or {}), write=round(10 * 2 * math.pi / omega, 6), rho=RHO,
+                                   stations=station_function_objects()))
     write_foam_file(folder, "system/fvSchemes", "dictionary", SCHEMES)
     entries = dict(SOLUTION_RUN, **({"u": U_KRYLOV} if refine_gaps else {}), **(solution or {}))
     write_foam_file(folder, "system/fvSolution", "dictionary", SOLUTION % entries)
@@ -411,6 +416,8 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control
                     "transportModel  Newtonian;\nnu              %r;   // water\n" % NU)
     write_foam_file(folder, "constant/turbulenceProperties", "dictionary", TURBULENCE[turbulence])
     link_surface(folder, casing)
+    # The head budget's stations (geometry/stations/, prepare.py writes them; a folder: not a mesh input).
+    link_surface(folder, os.path.join(os.path.dirname(casing), "stations"))
     if refine_gaps:
         link_surface(folder, os.path.join(os.path.dirname(casing), "impeller.stl"))
     inlet = design["inlet"]

@@ -44,6 +44,7 @@ def main(argv, pump_curve_variants=True):
     case's pump curve); cases/rag-in-pump, which calls this for its own folder, wants neither."""
     if len(argv) != 3:
         sys.exit("usage: prepare.py CASE_DIR BIN_DIR")
+    sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))   # fsi.pump_stations, also when run alone
     case_dir, bin_dir = argv[1], argv[2]
     design = os.path.join(case_dir, "pump.yaml")
     generator = os.path.join(bin_dir, "fsi-pump-design")
@@ -54,7 +55,7 @@ def main(argv, pump_curve_variants=True):
         stamp_file = os.path.join(geometry, "generated-from")
         if os.path.isfile(stamp_file) and ("pump.yaml sha256 %s\n" % sha256(design)) in open(stamp_file).read() \
                 and all(os.path.isfile(os.path.join(geometry, name)) for name in STLS):
-            return 0
+            return ensure_stations(case_dir)
         sys.exit("prepare.py: the pump generator %s is not built (./fsi build)" % generator)
     # One generation at a time per case (two runs of the same case may start together).
     lock = open(os.path.join(case_dir, ".geometry.lock"), "w")
@@ -66,9 +67,9 @@ def main(argv, pump_curve_variants=True):
     present = {name: sha256(os.path.join(geometry, name)) for name in STLS
                if os.path.isfile(os.path.join(geometry, name))}
     if any(stamped.get(name) != digest for name, digest in present.items()):
-        return 0  # files this script did not write: the user's own geometry, left alone
+        return ensure_stations(case_dir)  # files this script did not write: the user's own geometry, left alone
     if stamp == inputs + stl_lines(present) and len(present) == len(STLS):
-        return 0  # up to date
+        return ensure_stations(case_dir)  # up to date
     # Written next to geometry/ and swapped in whole: a failed or interrupted run leaves the old one.
     partial = geometry + ".partial-%d" % os.getpid()
     shutil.rmtree(partial, ignore_errors=True)
@@ -101,6 +102,24 @@ def main(argv, pump_curve_variants=True):
             sys.exit("prepare.py: %s failed:\n%s" % (script, made.stdout.decode(errors="replace").strip()))
     print("generated %s from %s in %.1f s (log: %s)"
           % (geometry, design, time.time() - start, os.path.join(geometry, "generate.log")))
+    return ensure_stations(case_dir)
+
+
+def ensure_stations(case_dir):
+    """geometry/stations/ (python/fsi/pump_stations.py: the head budget's stations, sampled by
+    the runs' function objects) when missing or older than pump.yaml or geometry.yaml. Without a
+    geometry.yaml (your own STL files), none: the station function objects then sample nothing."""
+    geometry = os.path.join(case_dir, "geometry")
+    sources = [os.path.join(case_dir, "pump.yaml"), os.path.join(geometry, "geometry.yaml")]
+    if not os.path.isfile(sources[1]):
+        return 0
+    from fsi import pump_stations
+    folder = os.path.join(geometry, "stations")
+    files = [os.path.join(folder, name + ".stl") for name in pump_stations.STATIONS]
+    if all(os.path.isfile(f) for f in files) and \
+            min(os.path.getmtime(f) for f in files) >= max(os.path.getmtime(s) for s in sources):
+        return 0
+    pump_stations.write_stations(case_dir)
     return 0
 
 

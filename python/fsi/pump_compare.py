@@ -173,9 +173,14 @@ def penalized_cost(folder, period):
 
 def summary(folder, design, omega, axis, flow_rate, revolutions):
     """The operating point over all revolutions but the first, with the leak through the front
-    side space of the last fields (pump_head_budget)."""
+    side space: averaged over the same revolutions from the stations' function objects
+    (pump_stations.py) when the run has them, else from its last fields (pump_head_budget)."""
     point = pump_point.operating_point(folder, omega, axis, 0.5 * design["impeller"]["outer_diameter_m"],
                                        flow_rate, average_revolutions=revolutions, settle_revolutions=1)
+    if point.get("stations"):
+        leak = {row["station"]: row for row in point["stations"]}["front_side_space"]["flow_rate_m3_per_s"]
+        point["front_side_space_leak_m3_per_s"], point["front_side_space_leak_from"] = leak, "window"
+        return point
     foam_case = os.path.join(folder, "openfoam")
     try:
         pump_head_budget.latest_time(foam_case)
@@ -184,6 +189,7 @@ def summary(folder, design, omega, axis, flow_rate, revolutions):
     rows = pump_head_budget.head_budget(foam_case, design)
     stations = {row["station"]: row for row in rows}
     point["front_side_space_leak_m3_per_s"] = stations["front side space"]["flow_rate_m3_per_s"]
+    point["front_side_space_leak_from"] = "last fields"
     return point
 
 
@@ -238,7 +244,8 @@ def table(points, result):
             100 * ibm["head_drift_last_3_revolutions"], 100 * ami["head_drift_last_3_revolutions"]),
         "| torque drift, last 3 revolutions | %.1f %% | %.1f %% | rule: under 2 %% |" % (
             100 * ibm["torque_drift_last_3_revolutions"], 100 * ami["torque_drift_last_3_revolutions"]),
-        "| front side space leak (L/s, last fields) | %.2f | %.2f | |" % (
+        "| front side space leak (L/s; %s, %s) | %.2f | %.2f | |" % (
+            ibm["front_side_space_leak_from"], ami["front_side_space_leak_from"],
             1e3 * ibm["front_side_space_leak_m3_per_s"], 1e3 * ami["front_side_space_leak_m3_per_s"]),
         "| once-per-revolution torque pulsation | %.3f | %.3f | |" % (
             ibm["torque_pulsation_1_per_rev"], ami["torque_pulsation_1_per_rev"]),
@@ -247,6 +254,11 @@ def table(points, result):
             c["ranks"], c["ibm"]["wall_s_per_revolution"], c["ami"]["wall_s_per_revolution"],
             c["ami"]["wall_s_per_revolution"] / c["ibm"]["wall_s_per_revolution"]),
     ]
+    if ibm.get("stations") and ami.get("stations"):
+        for a, b in zip(ibm["stations"], ami["stations"]):
+            rows.append("| %s: flow rate (L/s), head above the suction pipe (m) | %.2f, %.2f | %.2f, %.2f | |" % (
+                a["station"].replace("_", " "), 1e3 * a["flow_rate_m3_per_s"], a["head_above_suction_m"],
+                1e3 * b["flow_rate_m3_per_s"], b["head_above_suction_m"]))
     for part, v in result["torque_by_part_n_m"].items():
         rows.append("| torque on %s (N m) | %.2f | %.2f | %+.2f N m |" % (part, v["ibm"], v["ami"], v["ibm"] - v["ami"]))
     return "\n".join(rows) + "\n"

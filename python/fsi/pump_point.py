@@ -27,6 +27,8 @@ import os
 
 import numpy as np
 
+from fsi.pump_stations import STATIONS
+
 G = 9.81  # m/s^2
 
 
@@ -63,6 +65,32 @@ def harmonic(t, y, omega):
     c = np.mean(y * np.cos(omega * t))
     s = np.mean(y * np.sin(omega * t))
     return 2.0 * math.hypot(c, s)
+
+
+def station_budget(folder, window, rho):
+    """The head budget over the averaging window from the stations' function objects
+    (python/fsi/pump_stations.py; none when the run has none): per station the mean flow rate
+    (m^3/s, along its normal), the flow-weighted total pressure over the window (Pa: the mean of
+    p_t Q over the mean of Q, so that the energy fluxes add) and its head above the suction
+    pipe's (m)."""
+    rows = []
+    for name in STATIONS:
+        try:
+            t_q, q = read_dat(folder, "stationFlowRate_" + name)
+            t_p, p = read_dat(folder, "stationTotalPressure_" + name)
+        except FileNotFoundError:
+            return None
+        n = min(len(t_q), len(t_p))
+        tw, qw = window(t_q[:n], q[:n, 0])
+        _, pw = window(t_p[:n], p[:n, 0])
+        if not len(tw):
+            return None
+        q_mean = float(np.mean(qw))
+        rows.append({"station": name, "flow_rate_m3_per_s": q_mean,
+                     "total_pressure_pa": float(np.mean(pw * qw) / q_mean) if q_mean else float("nan")})
+    for row in rows:
+        row["head_above_suction_m"] = (row["total_pressure_pa"] - rows[0]["total_pressure_pa"]) / (rho * G)
+    return rows
 
 
 def revolution_means(t_torque, torque, t_head, head, t0, period, n):
@@ -168,6 +196,9 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
     }
     point = {k: (None if v is None else int(v) if isinstance(v, int) else float(v)) for k, v in point.items()}
     point.update(revolutions)
+    stations = station_budget(folder, window, rho)
+    if stations:
+        point["stations"] = stations
     if by_part is not None:
         point["torque_by_part_n_m"] = by_part
     return point
