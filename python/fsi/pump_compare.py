@@ -23,6 +23,7 @@ revolution (pump_ami_run.py --restart) and the penalized one, the cheap one, is 
 it its own -o and link DIR/ami to the first comparison's, which is then reused)."""
 
 import argparse
+import fcntl
 import json
 import math
 import os
@@ -45,6 +46,7 @@ AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
 DRIFT_LIMIT = 0.02      # the issue's settling rule: the last 3 revolution means within 2 %
 HEAD_GOAL = {"design": 0.05, "part load": 0.10}     # ISO 9906 class 2 at the BEP; part load
 TORQUE_GOAL = 0.10
+LOCKS = []              # the run folders' locks, held to the end of the process
 
 
 def say(message):
@@ -114,8 +116,18 @@ def run_logged(command, log_path):
 
 
 def run_method(args, method, flow_rate, end_time):
-    """The run of one method in OUT/<method>, reused or extended when it can be."""
+    """The run of one method in OUT/<method>, reused or extended when it can be. A lock on the
+    folder (held until this process ends) refuses a second comparison on the same run (a
+    variant's linked ami/ included) while it runs."""
     folder = os.path.join(args.output, method)
+    os.makedirs(folder, exist_ok=True)
+    lock = open(os.path.join(folder, ".pump-compare.lock"), "w")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        raise SystemExit("pump-compare: %s is in use by another pump-compare (its lock %s): wait for it to end"
+                         % (os.path.realpath(folder), lock.name))
+    LOCKS.append(lock)
     inputs = run_inputs(args, method, flow_rate)
     stamp = read_stamp(folder)
     same = stamp is not None and {k: stamp.get(k) for k in inputs} == inputs

@@ -101,6 +101,17 @@ class Refusals(unittest.TestCase):
         self.assertNotEqual(made.returncode, 0)
         self.assertIn("--revolutions 3: at least 4", made.stderr)
 
+    def test_pump_compare_refuses_a_run_folder_another_comparison_holds(self):
+        import fcntl
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        with tempfile.TemporaryDirectory() as out:
+            os.makedirs(os.path.join(out, "ibm"))
+            with open(os.path.join(out, "ibm", ".pump-compare.lock"), "w") as held:
+                fcntl.flock(held, fcntl.LOCK_EX)
+                made = self.run_module("fsi.pump_compare", "--bin-dir", out, "--from", out, "-o", out, case)
+        self.assertNotEqual(made.returncode, 0)
+        self.assertIn("is in use by another pump-compare", made.stderr)
+
     def test_ami_restart_without_a_run_says_so(self):
         case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
         with tempfile.TemporaryDirectory() as out:
