@@ -87,6 +87,10 @@ def main(argv):
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("-o", "--output", default=os.path.join(ROOT, "build", "bench-pump"))
     args = parser.parse_args(argv)
+    ours_preset = args.ours_resolution or args.resolution + "-ami-mesh"
+    if not os.path.isfile(os.path.join(CASE, "presets", ours_preset + ".yaml")):
+        raise SystemExit("bench pump: our preset %s does not exist in %s/presets (make_ami_case.py writes "
+                         "coarse-ami-mesh only): give --ours-resolution" % (ours_preset, CASE))
     fsi_launch.prepare_case(CASE, args.bin_dir)  # the geometry, from pump.yaml (both runs use it)
     with open(os.path.join(CASE, "pump.yaml")) as f:
         design = yaml.safe_load(f)
@@ -99,8 +103,7 @@ def main(argv):
         for name in ("ours", "AMI"):
             out = os.path.join(args.output, "runs", "%s-%s-r%d" % (name.lower(), args.resolution, r))
             sys.stderr.write("bench pump: %s, round %d, %g revolutions (%s)\n" % (name, r + 1, args.revolutions, out))
-            rows[name].append(ours(args.bin_dir, args.ours_resolution or args.resolution + "-ami-mesh", end_time, out,
-                                   args.ranks)
+            rows[name].append(ours(args.bin_dir, ours_preset, end_time, out, args.ranks)
                               if name == "ours"
                               else ami(args.resolution, end_time, q, out, args.ranks))
     lines = ["# Cost per revolution of the centrifugal pump, %s, %d rank%s each (%s)" % (
