@@ -23,6 +23,7 @@ cells move) and integrated by one surfaceFieldValue per station and quantity.
 
 import math
 import os
+import shutil
 import struct
 import sys
 
@@ -166,7 +167,6 @@ def write_stations(case_dir):
     for name, triangles in station_triangles(design, (box["min"], box["max"]), SPACING_M).items():
         write_binary_stl(os.path.join(partial, name + ".stl"), triangles, name)
     if os.path.isdir(folder):
-        import shutil
         shutil.rmtree(folder)
     os.rename(partial, folder)
     return folder
