@@ -25,16 +25,6 @@ from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
 
 
-def rotation(case_dir):
-    with open(os.path.join(case_dir, "case.yaml")) as f:
-        case = yaml.safe_load(f)
-    for surface in case.get("collisions", {}).get("surfaces", []):
-        rot = (surface.get("motion") or {}).get("rotation")
-        if rot:
-            return float(rot["rate_rad_per_s"]), rot.get("axis_direction", [0, 0, 1])
-    raise SystemExit("%s/case.yaml: no rotating surface (collisions.surfaces[].motion.rotation)" % case_dir)
-
-
 def flow_rate(out):
     """The inlet's volume flow rate the run imposed (m^3/s): fluid.openfoam.operating_point of
     its effective configuration."""
@@ -92,7 +82,7 @@ def budget(out, design, point):
 
 def main():
     out, case_dir = sys.argv[1], sys.argv[2]
-    omega, axis = rotation(case_dir)
+    omega, axis = pump_point.rotation(case_dir, "postprocess.py")
     with open(os.path.join(case_dir, "pump.yaml")) as f:
         design = yaml.safe_load(f)
     radius = 0.5 * design["impeller"]["outer_diameter_m"]

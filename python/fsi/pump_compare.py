@@ -27,7 +27,6 @@ import fcntl
 import json
 import math
 import os
-import subprocess
 import sys
 import time
 
@@ -39,6 +38,7 @@ from fsi import fsi_launch  # noqa: E402
 from fsi import pump_ami_run  # noqa: E402
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
+from fsi import pump_curve  # noqa: E402
 from fsi.pump_curve import case_fingerprint, flow_rate_assignment  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
@@ -57,17 +57,6 @@ def say(message):
 def load_yaml(path):
     with open(path) as f:
         return yaml.safe_load(f)
-
-
-def rotation(case_dir):
-    """(omega rad/s, axis) of the case's rotating surface."""
-    case = load_yaml(os.path.join(case_dir, "case.yaml"))
-    for surface in case.get("collisions", {}).get("surfaces", []):
-        rot = (surface.get("motion") or {}).get("rotation")
-        if rot:
-            return float(rot["rate_rad_per_s"]), rot.get("axis_direction", [0, 0, 1])
-    raise SystemExit("pump-compare: %s/case.yaml: no rotating surface (collisions.surfaces[].motion.rotation)"
-                     % case_dir)
 
 
 def run_inputs(args, method, flow_rate):
@@ -93,20 +82,17 @@ def write_stamp(folder, inputs, end_time, wall_s):
 
 
 def run_logged(command, log_path):
-    """Runs `command` with its output in log_path and its progress lines (ETA) echoed; returns the
-    wall seconds. Exits with the log's last lines if it fails."""
+    """Runs `command` with its output appended to log_path and its progress lines (ETA) echoed once
+    a minute; returns the wall seconds. Exits with the log's last lines if it fails."""
     start = time.monotonic()
-    with open(log_path, "ab") as log:
-        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE,
-                                   env=fsi_launch.case_script_env())
-        last = 0.0
-        for raw in iter(process.stderr.readline, b""):
-            log.write(raw)
-            line = raw.decode("utf-8", "replace").rstrip()
-            if "ETA" in line and time.monotonic() - last > 60.0:
-                say("  " + line.split("] ")[-1])
-                last = time.monotonic()
-        code = process.wait()
+    last = [0.0]
+
+    def echo(line):
+        if "ETA" in line and time.monotonic() - last[0] > 60.0:
+            say("  " + line.split("] ")[-1])
+            last[0] = time.monotonic()
+
+    code = pump_curve.run_logged(command, log_path, echo, append=True, env=fsi_launch.case_script_env())
     if code != 0:
         with open(log_path, "rb") as f:
             tail = f.read().decode("utf-8", "replace").strip().splitlines()[-5:]
@@ -347,7 +333,7 @@ def main(argv):
     os.makedirs(args.output, exist_ok=True)
     design = load_yaml(os.path.join(args.case_dir, "pump.yaml"))
     flow_rate = args.flow_fraction * float(design["operation"]["design_flow_rate_m3_per_s"])
-    omega, axis = rotation(args.case_dir)
+    omega, axis = pump_point.rotation(args.case_dir, "pump-compare")
     period = 2 * math.pi / omega
     # The whole revolutions, rounded up to 0.1 ms: the last one is in the averaging window.
     end_time = math.ceil(args.revolutions * period * 1e4 - 1e-3) / 1e4

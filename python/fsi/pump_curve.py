@@ -132,11 +132,11 @@ def launcher_command(args, out, case, flow_rate):
     return command + [case]
 
 
-def run_logged(command, log_path, on_line):
-    """Runs `command`, its output into `log_path`, each line of its stderr also to on_line (the
-    progress); returns the exit code."""
-    with open(log_path, "wb") as log:
-        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE)
+def run_logged(command, log_path, on_line, append=False, env=None):
+    """Runs `command`, its output into `log_path` (appended to with `append`), each line of its
+    stderr also to on_line (the progress); returns the exit code."""
+    with open(log_path, "ab" if append else "wb") as log:
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE, env=env)
         for raw in iter(process.stderr.readline, b""):
             log.write(raw)
             on_line(raw.decode("utf-8", "replace").rstrip())

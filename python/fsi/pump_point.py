@@ -26,10 +26,24 @@ import math
 import os
 
 import numpy as np
+import yaml
 
 from fsi.pump_stations import STATIONS
 
 G = 9.81  # m/s^2
+
+
+def rotation(case_dir, who="pump"):
+    """(omega rad/s, axis direction) of the rotating surface of CASE_DIR/case.yaml (the impeller);
+    refused, naming the file and the key, when the case has none."""
+    with open(os.path.join(case_dir, "case.yaml")) as f:
+        case = yaml.safe_load(f) or {}
+    for surface in (case.get("collisions") or {}).get("surfaces") or []:
+        rot = (surface.get("motion") or {}).get("rotation")
+        if rot:
+            return float(rot["rate_rad_per_s"]), rot.get("axis_direction", [0, 0, 1])
+    raise SystemExit("%s: %s: no rotating surface (collisions.surfaces[].motion.rotation)"
+                     % (who, os.path.join(case_dir, "case.yaml")))
 
 
 def read_dat(folder, name):
