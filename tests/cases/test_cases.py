@@ -202,7 +202,7 @@ class CentrifugalPump(CaseTest):
             # The same stations sampled every step by the controlDict's function objects
             # (python/fsi/pump_stations.py: 3 mm triangles, each taking its cell's value) find the
             # pipes' flow rate to 1 % (measured: 0.13 % low in the suction pipe, 0.19 % in the
-            # discharge pipe, at 45 L/s from rest).
+            # discharge pipe, at 45 L/s from rest, in the pump with the 45 L/s volute).
             for name in ("suction_pipe", "discharge_pipe"):
                 t_s, q_s = read_dat(out, "stationFlowRate_" + name)
                 self.assertEqual(len(t_s), self.STEPS, name)
@@ -327,7 +327,7 @@ class CentrifugalPumpRefusals(CaseTest):
         block = os.path.join(case, "openfoam-coarse", "system", "blockMeshDict")
         with open(block) as f:
             x_max = re.search(r"\(\S+ \S+ \S+\) \((\S+) ", f.read()).group(1)  # the second vertex's x
-        self.edit(block, x_max, "0.3")  # the discharge pipe reaches x = 0.54 m
+        self.edit(block, x_max, "0.3")  # the discharge pipe reaches x = 0.48 m
         code, err = self.launch_one_step(case, mesh_cache=os.path.join(self.tmp, "mesh-cache"))
         self.assertEqual(code, 1, err[-2000:])
         self.assertIn("reaches the background box", err)
@@ -433,7 +433,7 @@ class PumpOperatingPoint(CaseTest):
         self.assertIn("case.yaml", text)
         self.assertIn(key, text)
         self.assertIn("> 0", text)
-        self.edit(os.path.join(case, "case.yaml"), "    operating_point: {flow_rate_m3_per_s: 0.045}", "")
+        self.edit(os.path.join(case, "case.yaml"), "    operating_point: {flow_rate_m3_per_s: 0.021}", "")
         code, text = self.check(case)
         self.assertEqual(code, 2, text)
         self.assertIn("fluid.openfoam.operating_point is absent", text)
@@ -441,7 +441,8 @@ class PumpOperatingPoint(CaseTest):
 
 
 class CentrifugalPumpTwoBlades(CaseTest):
-    """The generated two-blade pump (impeller.n_blades: 2, wrap 180 deg) at 0.36 Q_design, coarse,
+    """The generated two-blade pump (impeller.n_blades: 2, wrap 180 deg, the 45 L/s volute) at 0.36 x
+    45 L/s, coarse,
     body_normal interfaces, past t = 0.0755 s, where it diverged when the momentum equation took
     the pressure of the faces between the hub disc's cells and the gap above it from the disc's
     extrapolated pressure: the gap cells ran away to 100 m/s across the one-cell disc."""
@@ -451,6 +452,9 @@ class CentrifugalPumpTwoBlades(CaseTest):
         case = self.copy_case("centrifugal-pump")
         self.edit(os.path.join(case, "pump.yaml"), "  n_blades: 1\n", "  n_blades: 2\n")
         self.edit(os.path.join(case, "pump.yaml"), "  wrap_angle_deg: 360\n", "  wrap_angle_deg: 180\n")
+        self.edit(os.path.join(case, "pump.yaml"), "  design_swirl_m2_per_s: 0.667\n", "")   # the volute it diverged in:
+        self.edit(os.path.join(case, "pump.yaml"), "  design_flow_rate_m3_per_s: 0.021\n",    # the design rules' for 45 L/s
+                  "  design_flow_rate_m3_per_s: 0.045\n")
         fsi_launch.prepare_case(case, BIN_DIR)  # the two-blade geometry and its OpenFOAM files
         os.environ["FSI_MESH_CACHE"] = os.path.join(self.tmp, "mesh-cache")
         try:
