@@ -27,11 +27,18 @@ the same snappyHexMeshDict except for the impeller, kept and refined as a region
 the same background cells and the same 2 mm band in the gaps as the AMI mesh, the impeller's
 surroundings one level finer in both (measured on the single blade: 177,626 cells, the AMI mesh
 183,412 with the impeller cut out: its surface refinement reaches a little farther).
+The pair openfoam-ami-coarse-fine-blade / openfoam-coarse-fine-blade-ami-mesh (preset
+coarse-fine-blade-ami-mesh) is the coarse pair with the blade's cells refined further, the same in
+both (FINE_BLADE): every cell within BLADE_BAND of the blade's own faces (impeller-blade.stl, the
+impeller's blade_* regions, written next to impeller.stl) is 2 mm, 4 cells across an 8 mm blade
+(issue 30 asks at least 3), and the time step is halved, so that the blade's tip moves about
+one of those cells per step.
 """
 
 import argparse
 import math
 import os
+import re
 import sys
 
 import yaml
@@ -44,6 +51,10 @@ RESOLUTIONS = {"coarse": 25, "medium": 50}   # cells across D2, as make_case.RES
 GAP_CELL = 0.002                             # m: the cells in the impeller-casing gaps
 GAP_BAND = 0.004                             # m: refined within this distance of the rotor cylinder
 IMPELLER_LEVELS = 1                          # levels finer than h on the impeller surface
+# Variants with the blade's surroundings finer, the same in both methods: name: (the resolution
+# it refines, cell size within BLADE_BAND of the blade, time step factor).
+FINE_BLADE = {"coarse-fine-blade": ("coarse", 0.002, 0.5)}
+BLADE_BAND = 0.004                           # m: on both sides of the blade's faces
 
 
 def stl_max_radius(path):
@@ -84,7 +95,7 @@ geometry
 %(impeller_regions)s
         }
     }
-    rotor
+%(blade_geometry)s    rotor
     {
         type   searchableCylinder;
         point1 (0 0 %(z0)r);
@@ -128,7 +139,7 @@ castellatedMeshControls
     refinementRegions
     {
         rotor { mode distance; levels ((%(band)r %(gap)d)); }
-    }
+%(blade_region)s    }
     locationInMesh (%(inside)s);   // in the suction pipe
     allowFreeStandingZoneFaces false;
 }
@@ -266,8 +277,36 @@ IMPELLER_REGION = """        impeller { mode distance; levels ((%(cut)r %(imp)d)
 """
 
 
-def snappy_dict(design, h, casing, impeller, penalized=False):
-    """The AMI case's snappyHexMeshDict at cell size h (penalized: the impeller kept as a cell zone)."""
+BLADE_GEOMETRY = """    impeller-blade.stl
+    {
+        type triSurfaceMesh;
+        name blade;
+    }
+"""
+BLADE_REGION = """        blade { mode distance; levels ((%(band)r %(level)d)); }   // the blade's cells finer, both methods
+"""
+
+
+def write_blade_stl(impeller):
+    """impeller-blade.stl next to impeller.stl: the impeller's blade_* solids (an ASCII STL of named
+    solids, as the generator writes it); the path."""
+    path = os.path.join(os.path.dirname(impeller), "impeller-blade.stl")
+    with open(impeller) as f:
+        text = f.read()
+    solids = [(name, facets) for name, facets in re.findall(r"^solid (\S+)[^\n]*\n(.*?)^endsolid[^\n]*\n?", text,
+                                                             re.S | re.M) if name.startswith("blade")]
+    if not solids:
+        sys.exit("make_ami_case.py: %s has no blade_* solid to refine around" % impeller)
+    body = "".join("solid %s\n%sendsolid %s\n" % (name, facets, name) for name, facets in solids)
+    if not os.path.exists(path) or open(path).read() != body:
+        with open(path, "w") as f:
+            f.write(body)
+    return path
+
+
+def snappy_dict(design, h, casing, impeller, penalized=False, blade_cell=None):
+    """The AMI case's snappyHexMeshDict at cell size h (penalized: the impeller kept as a cell zone;
+    blade_cell: the cells within BLADE_BAND of the blade refined to that size)."""
     r, z0, z1 = rotor_cylinder(design, impeller)
     gap = max(0, int(round(math.log2(h / GAP_CELL))))
     regions = lambda path: "\n".join("            %s { name %s; }" % (n, n) for n in make_case.stl_regions(path))
@@ -280,20 +319,25 @@ def snappy_dict(design, h, casing, impeller, penalized=False):
     text = template % {
         "h": h, "imp": IMPELLER_LEVELS, "gap": gap, "gapcell": h / 2 ** gap, "band": GAP_BAND,
         "cut": round(0.5 * math.sqrt(3.0) * h, 6),
+        "blade_geometry": BLADE_GEOMETRY if blade_cell else "",
+        "blade_region": BLADE_REGION % {"band": BLADE_BAND, "level": int(round(math.log2(h / blade_cell)))}
+        if blade_cell else "",
         "casing_regions": regions(casing), "impeller_regions": regions(impeller),
         "z0": round(z0, 6), "z1": round(z1, 6), "r": round(r, 6), "inside": "%r %r %r" % inside}
     return text, (r, z0, z1), gap
 
 
-def write_penalized_case(folder, design, h, casing, impeller):
+def write_penalized_case(folder, design, h, casing, impeller, blade_cell=None):
     """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
     solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
     make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True)
-    text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True)
+    text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True, blade_cell=blade_cell)
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
+    if blade_cell:
+        link(folder, "impeller-blade.stl", write_blade_stl(impeller))
 
 
-def write_ami_case(folder, design, case, h, casing, impeller, dt):
+def write_ami_case(folder, design, case, h, casing, impeller, dt, blade_cell=None):
     blade = make_case.stl_regions(impeller)
     # controlDict: pimpleFoam, the time step, the penalized case's function objects + forces.
     control = {"comment": "// make_ami_case.py: deltaT of case.yaml (scaled with h), endTime set by pump_ami_run.py.",
@@ -313,8 +357,10 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt):
                 "more_pimple": MOVING}
     box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution)
     link(folder, "impeller.stl", impeller)
-    text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller)
+    text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller, blade_cell=blade_cell)
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
+    if blade_cell:
+        link(folder, "impeller-blade.stl", write_blade_stl(impeller))
     write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
     rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
     write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
@@ -361,6 +407,15 @@ def main(argv):
     write_penalized_case(os.path.join(args.output, "openfoam-coarse-ami-mesh"), design, d2 / RESOLUTIONS["coarse"],
                          casing, impeller)
     print("openfoam-coarse-ami-mesh: the penalized case on openfoam-ami-coarse's mesh")
+    for name, (base, blade_cell, dt_factor) in FINE_BLADE.items():
+        h = d2 / RESOLUTIONS[base]
+        dt = dt_coarse * RESOLUTIONS["coarse"] / RESOLUTIONS[base] * dt_factor
+        write_ami_case(os.path.join(args.output, "openfoam-ami-" + name), design, case, h, casing, impeller, dt,
+                       blade_cell=blade_cell)
+        write_penalized_case(os.path.join(args.output, "openfoam-%s-ami-mesh" % name), design, h, casing, impeller,
+                             blade_cell=blade_cell)
+        print("openfoam-ami-%s and openfoam-%s-ami-mesh: %s with %g m cells within %g m of the blade, dt = %.3g s"
+              % (name, name, base, blade_cell, BLADE_BAND, dt))
 
 
 if __name__ == "__main__":
