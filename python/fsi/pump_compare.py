@@ -11,7 +11,8 @@ when the last three revolution means of head and torque drift by under 2 %.
                     [--resolution coarse] [--from OPENFOAM_CASE] [--set KEY=VALUE] [-o DIR] CASE_DIR
 
 --from: the settled state (default CASE_DIR/output/pump-curve/q<fraction>/openfoam, which
-./fsi pump-curve writes). DIR (default CASE_DIR/output/pump-compare/q<fraction>) gets ibm/ (the
+./fsi pump-curve writes). DIR (default CASE_DIR/output/pump-compare/q<fraction>, with -<resolution> after it for another
+resolution than coarse, e.g. q1.00-coarse-fine-blade: the blade's cells 2 mm) gets ibm/ (the
 penalized run, fsi_launch.py), ami/ (python/fsi/pump_ami_run.py), comparison.yaml (both points,
 their differences and the issue's goals: head within 5 % at the design flow, 10 % at part load,
 torque within 10 %), comparison.md (the table) and comparison.png (the revolution means, the
@@ -329,7 +330,9 @@ def main(argv):
     if not os.path.isdir(args.settled):
         raise SystemExit("pump-compare: the settled state %s does not exist: run ./fsi pump-curve --points %g %s "
                          "first, or give --from" % (args.settled, args.flow_fraction, args.case_dir))
-    args.output = os.path.abspath(args.output or os.path.join(args.case_dir, "output", "pump-compare", tag))
+    # One folder per flow rate and mesh: another resolution never takes over a finished pair's runs.
+    folder = tag if args.resolution == "coarse" else "%s-%s" % (tag, args.resolution)
+    args.output = os.path.abspath(args.output or os.path.join(args.case_dir, "output", "pump-compare", folder))
     os.makedirs(args.output, exist_ok=True)
     design = load_yaml(os.path.join(args.case_dir, "pump.yaml"))
     flow_rate = args.flow_fraction * float(design["operation"]["design_flow_rate_m3_per_s"])

@@ -112,6 +112,29 @@ class Refusals(unittest.TestCase):
         self.assertNotEqual(made.returncode, 0)
         self.assertIn("is in use by another pump-compare", made.stderr)
 
+    def test_pump_compare_keeps_each_resolution_in_its_own_folder(self):
+        import fcntl
+        import shutil
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        with tempfile.TemporaryDirectory() as tmp:
+            copy = os.path.join(tmp, "pump")
+            os.makedirs(os.path.join(copy, "presets"))
+            for name in ("case.yaml", "pump.yaml", os.path.join("presets", "coarse-fine-blade-ami-mesh.yaml")):
+                shutil.copy(os.path.join(case, name), os.path.join(copy, name))
+            os.makedirs(os.path.join(copy, "output", "pump-curve", "q1.00", "openfoam"))
+            # The coarse pair's default folder is q1.00; the fine-blade pair's, q1.00-coarse-fine-blade
+            # (held here, so the comparison stops before it runs anything and names it).
+            fine = os.path.join(copy, "output", "pump-compare", "q1.00-coarse-fine-blade", "ibm")
+            os.makedirs(fine)
+            with open(os.path.join(fine, ".pump-compare.lock"), "w") as held:
+                fcntl.flock(held, fcntl.LOCK_EX)
+                made = self.run_module("fsi.pump_compare", "--bin-dir", tmp, "--resolution", "coarse-fine-blade",
+                                       copy)
+            self.assertFalse(os.path.exists(os.path.join(copy, "output", "pump-compare", "q1.00")))
+        self.assertNotEqual(made.returncode, 0)
+        self.assertIn("is in use by another pump-compare", made.stderr)
+        self.assertIn(fine, made.stderr)
+
     def test_ami_restart_without_a_run_says_so(self):
         case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
         with tempfile.TemporaryDirectory() as out:
