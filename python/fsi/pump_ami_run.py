@@ -198,7 +198,9 @@ def write_forces_csv(foam_case, out_dir):
 def write_parts_csv(foam_case, out_dir):
     """OUT/parts.csv from postProcessing/forces_<part>/<start>/moment.dat (make_ami_case.py's
     function object per impeller patch): the torque (N m, pressure + viscous) of each part, in the
-    penalized runs' format (time_s,body0.<part>.tx_n_m,...). Returns the parts (none: no file)."""
+    penalized runs' format (time_s,body0.<part>.tx_n_m,...), and OUT/parts_pressure.csv, the
+    pressure's share alone (a smooth surface of revolution, the discs, takes none: what they take
+    is the snapped mesh's roughness). Returns the parts (none: no file)."""
     parts = sorted(os.path.basename(p)[len("forces_"):]
                    for p in glob.glob(os.path.join(foam_case, "postProcessing", "forces_*")))
     rows = {}
@@ -207,14 +209,15 @@ def write_parts_csv(foam_case, out_dir):
                         key=lambda p: float(os.path.basename(p)))
         for start in starts:
             for m in read_foam_vectors(os.path.join(start, "moment.dat")):
-                rows.setdefault(m[0], [None] * len(parts))[k] = m[1:4]
+                rows.setdefault(m[0], [None] * len(parts))[k] = m[1:7]   # total, then pressure
     complete = {t: r for t, r in rows.items() if all(v is not None for v in r)}
     if not complete:
         return []
-    with open(os.path.join(out_dir, "parts.csv"), "w") as f:
-        f.write(",".join(["time_s"] + ["body0.%s.t%s_n_m" % (p, c) for p in parts for c in "xyz"]) + "\n")
-        for t in sorted(complete):
-            f.write("%.9g,%s\n" % (t, ",".join("%.9g" % v for r in complete[t] for v in r)))
+    for name, columns in (("parts.csv", slice(0, 3)), ("parts_pressure.csv", slice(3, 6))):
+        with open(os.path.join(out_dir, name), "w") as f:
+            f.write(",".join(["time_s"] + ["body0.%s.t%s_n_m" % (p, c) for p in parts for c in "xyz"]) + "\n")
+            for t in sorted(complete):
+                f.write("%.9g,%s\n" % (t, ",".join("%.9g" % v for r in complete[t] for v in r[columns])))
     return parts
 
 

@@ -8,7 +8,8 @@ the first, each revolution's mean with the standard error of their scatter), and
 when the last three revolution means of head and torque drift by under 2 %.
 
     pump_compare.py --bin-dir BIN [--flow-fraction 1.0] [--revolutions 8] [--ranks 2]
-                    [--resolution coarse] [--from OPENFOAM_CASE] [--set KEY=VALUE] [-o DIR] CASE_DIR
+                    [--resolution coarse] [--from OPENFOAM_CASE] [--set KEY=VALUE] [--summarize] [-o DIR]
+                    CASE_DIR
 
 --from: the settled state (default CASE_DIR/output/pump-curve/q<fraction>/openfoam, which
 ./fsi pump-curve writes). DIR (default CASE_DIR/output/pump-compare/q<fraction>, with -<resolution> after it for another
@@ -21,10 +22,13 @@ seconds per revolution are the cost ratio at (nearly) equal cells. A run already
 same inputs is reused; asked for more revolutions, the AMI run continues from its last
 revolution (pump_ami_run.py --restart) and the penalized one, the cheap one, is run again.
 --set changes the penalized run only (a variant of the method against the same reference: give
-it its own -o and link DIR/ami to the first comparison's, which is then reused)."""
+it its own -o and link DIR/ami to the first comparison's, which is then reused). A run is
+"the same" when case.yaml, pump.yaml and its own OpenFOAM folder (and preset) are (run_fingerprint);
+--summarize writes the comparison again from the finished runs as they are, running nothing."""
 
 import argparse
 import fcntl
+import hashlib
 import json
 import math
 import os
@@ -40,9 +44,10 @@ from fsi import pump_ami_run  # noqa: E402
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
 from fsi import pump_curve  # noqa: E402
-from fsi.pump_curve import case_fingerprint, flow_rate_assignment  # noqa: E402
+from fsi.pump_curve import flow_rate_assignment  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
+SURFACES_OF_REVOLUTION = ("hub", "shroud")   # the generated impeller's discs (its STL's regions)
 AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
 DRIFT_LIMIT = 0.02      # the issue's settling rule: the last 3 revolution means within 2 %
 HEAD_GOAL = {"design": 0.05, "part load": 0.10}     # ISO 9906 class 2 at the BEP; part load
@@ -60,9 +65,30 @@ def load_yaml(path):
         return yaml.safe_load(f)
 
 
+def run_fingerprint(case_dir, method, resolution):
+    """A hash of what one method's run is made of: case.yaml, pump.yaml and its OpenFOAM folder
+    (the penalized run: presets/<res>-ami-mesh.yaml and openfoam-<res>-ami-mesh; the AMI run:
+    openfoam-ami-<res>), links followed to the geometry they name. Other files of the case (another
+    resolution's folders, a new preset, the scripts) do not make a finished run stale."""
+    if method == "ibm":
+        inputs = [os.path.join("presets", resolution + "-ami-mesh.yaml"), "openfoam-%s-ami-mesh" % resolution]
+    else:
+        inputs = ["openfoam-ami-" + resolution]
+    digest = hashlib.sha256()
+    for top in ["case.yaml", "pump.yaml"] + inputs:
+        path = os.path.join(case_dir, top)
+        files = [path] if os.path.isfile(path) else sorted(
+            os.path.join(root, name) for root, _dirs, names in os.walk(path, followlinks=True) for name in names)
+        for name in files:
+            digest.update(os.path.relpath(name, case_dir).encode() + b"\0")
+            with open(name, "rb") as f:
+                digest.update(f.read())
+    return digest.hexdigest()[:16]
+
+
 def run_inputs(args, method, flow_rate):
     """What makes a run: equal inputs, equal run (the end time aside, which the AMI run extends)."""
-    inputs = {"method": method, "case": case_fingerprint(args.case_dir), "flow_rate_m3_per_s": flow_rate,
+    inputs = {"method": method, "case": run_fingerprint(args.case_dir, method, args.resolution), "flow_rate_m3_per_s": flow_rate,
               "from": os.path.abspath(args.settled), "resolution": args.resolution, "ranks": args.ranks}
     if method == "ibm" and getattr(args, "assignments", None):
         inputs["set"] = list(args.assignments)
@@ -157,6 +183,25 @@ def run_method(args, method, flow_rate, end_time):
     return folder
 
 
+def finished_run(args, method, end_time):
+    """OUT/<method> for --summarize: a run that finished (its run.json) at least to end_time; told
+    when its inputs are not the case's files of now."""
+    folder = os.path.join(args.output, method)
+    stamp = read_stamp(folder)
+    if stamp is None:
+        raise SystemExit("pump-compare: --summarize: %s has no finished run (no run.json); run without --summarize"
+                         % folder)
+    if stamp["end_time_s"] < end_time - 1e-9:
+        raise SystemExit("pump-compare: --summarize: %s ran to t = %g s, not the %d revolutions' %g s; give "
+                         "--revolutions of at most what it ran" % (folder, stamp["end_time_s"], args.revolutions,
+                                                                   end_time))
+    inputs = run_inputs(args, method, stamp["flow_rate_m3_per_s"])
+    changed = sorted(k for k in inputs if stamp.get(k) != inputs[k])
+    if changed:
+        say("%s: summarized as it ran; made with other %s than the case's of now" % (method, ", ".join(changed)))
+    return folder
+
+
 def penalized_cost(folder, period):
     """(cells, wall s per revolution) of a penalized run: its fluid.log and timings.csv."""
     cells = None
@@ -206,6 +251,10 @@ def compare(args, points, fraction, costs):
     settled = all((p[k] is not None and p[k] < DRIFT_LIMIT) for p in points.values()
                   for k in ("head_drift_last_3_revolutions", "torque_drift_last_3_revolutions"))
     parts = sorted(set(ibm.get("torque_by_part_n_m", {})) & set(ami.get("torque_by_part_n_m", {})))
+    # A smooth surface of revolution turning about its axis takes no torque from the pressure;
+    # what the body-fitted discs take is the roughness of their snapped, faceted surfaces.
+    pressure = ami.get("pressure_torque_by_part_n_m") or {}
+    discs = {p: pressure[p] for p in SURFACES_OF_REVOLUTION if p in pressure}
     return {
         "flow_fraction_of_design": fraction,
         "regime": regime,
@@ -222,6 +271,7 @@ def compare(args, points, fraction, costs):
         "torque_by_part_n_m": {p: {"ibm": ibm["torque_by_part_n_m"][p], "ami": ami["torque_by_part_n_m"][p]}
                                for p in parts},
         "cost": costs,
+        "ami_pressure_torque_on_surfaces_of_revolution_n_m": discs or None,
     }
 
 
@@ -260,6 +310,11 @@ def table(points, result):
                 1e3 * b["flow_rate_m3_per_s"], b["head_above_suction_m"]))
     for part, v in result["torque_by_part_n_m"].items():
         rows.append("| torque on %s (N m) | %.2f | %.2f | %+.2f N m |" % (part, v["ibm"], v["ami"], v["ibm"] - v["ami"]))
+    discs = result.get("ami_pressure_torque_on_surfaces_of_revolution_n_m")
+    if discs:
+        rows.append("| pressure torque on the AMI's surfaces of revolution (%s; none on a smooth one: the snapped "
+                    "mesh's roughness) (N m) | | %.2f | AMI torque without it: %.2f N m |" % (
+                        ", ".join(discs), sum(discs.values()), ami["shaft_torque_n_m"] - sum(discs.values())))
     return "\n".join(rows) + "\n"
 
 
@@ -310,6 +365,9 @@ def main(argv):
     parser.add_argument("--set", metavar="KEY=VALUE", dest="assignments", action="append", default=[],
                         help="a key of the penalized run (e.g. fluid.openfoam.immersed_wall_model=spalding; "
                              "repeatable); the AMI run is the same with or without")
+    parser.add_argument("--summarize", action="store_true",
+                        help="only write the comparison again from the two finished runs in DIR, as they are "
+                             "(whatever the case's files are now): nothing runs")
     parser.add_argument("-o", "--output", default="")
     parser.add_argument("case_dir")
     args = parser.parse_args(argv)
@@ -340,7 +398,10 @@ def main(argv):
     period = 2 * math.pi / omega
     # The whole revolutions, rounded up to 0.1 ms: the last one is in the averaging window.
     end_time = math.ceil(args.revolutions * period * 1e4 - 1e-3) / 1e4
-    folders = {m: run_method(args, m, flow_rate, end_time) for m in ("ibm", "ami")}
+    if args.summarize:
+        folders = {m: finished_run(args, m, end_time) for m in ("ibm", "ami")}
+    else:
+        folders = {m: run_method(args, m, flow_rate, end_time) for m in ("ibm", "ami")}
     points = {m: summary(folders[m], design, omega, axis, flow_rate, args.revolutions) for m in folders}
     ami_cost = load_yaml(os.path.join(folders["ami"], "cost.yaml"))
     ibm_cells, ibm_per_rev = penalized_cost(folders["ibm"], period)

@@ -11,6 +11,8 @@ and python/fsi/pump_curve.py. Inputs, all in the run's output folder:
                         hub, shroud, blade sides, eye), columns body0.<part>.t{x,y,z}_n_m; the
                         penalized runs count each cell for the part closest to it, the AMI
                         runs integrate each patch: torque_by_part_n_m, the shaft's share of each
+  parts_pressure.csv    (optional, the AMI runs) the same, the pressure's share alone:
+                        pressure_torque_by_part_n_m
   penalization.csv      (penalized runs) the kinetic energy per second the moving impeller
                         destroys in the cells it newly covers (W): switching_power_w, its mean;
                         and the water its cells swallow through their faces with free cells
@@ -171,19 +173,24 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
             switching = float(np.mean(window(data[:, 0], data[:, 3])[1]))
             if data.shape[1] >= 6:
                 transpiration = [float(np.mean(window(data[:, 0], data[:, k])[1])) for k in (4, 5)]
-    by_part = None
-    path = os.path.join(folder, "parts.csv")
-    if os.path.isfile(path):
+    def part_torques(name):
+        """{part: shaft torque (N m) over the window} of FOLDER/name (parts.csv's format), or None."""
+        path = os.path.join(folder, name)
+        if not os.path.isfile(path):
+            return None
         with open(path) as f:
             header = f.readline().strip().split(",")
         data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
         a = np.asarray(axis, float) / np.linalg.norm(axis)
-        by_part = {}
-        for k, name in enumerate(header):
-            if name.startswith("body0.") and name.endswith(".tx_n_m"):
-                part = name[len("body0."):-len(".tx_n_m")]
+        result = {}
+        for k, column in enumerate(header):
+            if column.startswith("body0.") and column.endswith(".tx_n_m"):
                 shaft_part = -(data[:, k:k + 3] @ a)
-                by_part[part] = float(np.mean(window(data[:, 0], shaft_part)[1]))
+                result[column[len("body0."):-len(".tx_n_m")]] = float(np.mean(window(data[:, 0], shaft_part)[1]))
+        return result
+
+    by_part = part_torques("parts.csv")
+    pressure_by_part = part_torques("parts_pressure.csv")   # the body-fitted runs: the pressure's share
     power = torque_mean * omega
     u2 = omega * radius_m
     revolutions = revolution_means(tw, tq, hw, dp / (rho * G), t0, period, n_avg)
@@ -215,6 +222,8 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         point["stations"] = stations
     if by_part is not None:
         point["torque_by_part_n_m"] = by_part
+    if pressure_by_part is not None:
+        point["pressure_torque_by_part_n_m"] = pressure_by_part
     return point
 
 

@@ -80,6 +80,67 @@ class RevolutionMeans(unittest.TestCase):
             np.testing.assert_allclose(p["revolution_head_m"], [6.0, 6.0], atol=1e-9)
 
 
+class PartsOfTheBodyFittedRun(unittest.TestCase):
+    def test_the_pressure_share_of_each_part_is_kept_apart(self):
+        # moment.dat of two patches as OpenFOAM's forces function object writes them (total,
+        # pressure, viscous; the fluid's moment about +z: the shaft supplies its negative): the
+        # hub 1.5 N m of which 1.0 from the pressure, the blade 10 N m of which 9.8.
+        from fsi import pump_ami_run
+        with tempfile.TemporaryDirectory() as folder:
+            period = write_run(folder, lambda t: 11.5 + 0 * t, lambda t: 5.0 + 0 * t, revolutions=3)
+            t = np.arange(1, 601) * period / 200
+            for part, (total, pressure) in {"hub": (1.5, 1.0), "blade_suction_side": (10.0, 9.8)}.items():
+                path = os.path.join(folder, "openfoam", "postProcessing", "forces_" + part, "0")
+                os.makedirs(path)
+                with open(os.path.join(path, "moment.dat"), "w") as f:
+                    f.write("# Time (total_x total_y total_z) (pressure_x pressure_y pressure_z) (viscous_x ...)\n")
+                    for a in t:
+                        f.write("%.10g (0 0 %r) (0 0 %r) (0 0 %r)\n" % (a, -total, -pressure, pressure - total))
+            self.assertEqual(pump_ami_run.write_parts_csv(os.path.join(folder, "openfoam"), folder),
+                             ["blade_suction_side", "hub"])
+            p = pump_point.operating_point(folder, OMEGA, [0, 0, 1], 0.1, 0.02, average_revolutions=2,
+                                           settle_revolutions=1)
+            self.assertAlmostEqual(p["torque_by_part_n_m"]["hub"], 1.5, places=9)
+            self.assertAlmostEqual(p["torque_by_part_n_m"]["blade_suction_side"], 10.0, places=9)
+            self.assertAlmostEqual(p["pressure_torque_by_part_n_m"]["hub"], 1.0, places=9)
+            self.assertAlmostEqual(p["pressure_torque_by_part_n_m"]["blade_suction_side"], 9.8, places=9)
+
+
+class RunFingerprint(unittest.TestCase):
+    def test_a_run_is_stale_when_its_own_inputs_change_and_only_then(self):
+        from fsi import pump_compare
+        with tempfile.TemporaryDirectory() as case:
+            def write(path, text):
+                os.makedirs(os.path.dirname(os.path.join(case, path)), exist_ok=True)
+                with open(os.path.join(case, path), "w") as f:
+                    f.write(text)
+            write("case.yaml", "run: {}\n")
+            write("pump.yaml", "impeller: {}\n")
+            write("geometry/impeller.stl", "solid hub\nendsolid hub\n")
+            write("presets/coarse-ami-mesh.yaml", "fluid: {}\n")
+            write("openfoam-coarse-ami-mesh/system/controlDict", "a\n")
+            write("openfoam-ami-coarse/system/controlDict", "b\n")
+            os.makedirs(os.path.join(case, "openfoam-ami-coarse", "constant", "triSurface"))
+            os.symlink(os.path.join("..", "..", "..", "geometry", "impeller.stl"),
+                       os.path.join(case, "openfoam-ami-coarse", "constant", "triSurface", "impeller.stl"))
+            before = {m: pump_compare.run_fingerprint(case, m, "coarse") for m in ("ibm", "ami")}
+            # Another resolution's folders, a new preset, a script: neither run is stale.
+            write("openfoam-ami-coarse-fine-blade/system/controlDict", "c\n")
+            write("presets/coarse-fine-blade-ami-mesh.yaml", "run: {}\n")
+            write("make_ami_case.py", "# changed\n")
+            self.assertEqual({m: pump_compare.run_fingerprint(case, m, "coarse") for m in ("ibm", "ami")}, before)
+            # The AMI folder's own file, and the geometry its link names: the AMI run only.
+            write("openfoam-ami-coarse/system/controlDict", "b2\n")
+            after = {m: pump_compare.run_fingerprint(case, m, "coarse") for m in ("ibm", "ami")}
+            self.assertEqual(after["ibm"], before["ibm"])
+            self.assertNotEqual(after["ami"], before["ami"])
+            write("geometry/impeller.stl", "solid hub\nendsolid hub\n\n")
+            self.assertNotEqual(pump_compare.run_fingerprint(case, "ami", "coarse"), after["ami"])
+            # The case's keys: both.
+            write("case.yaml", "run: {end_time_s: 1}\n")
+            self.assertNotEqual(pump_compare.run_fingerprint(case, "ibm", "coarse"), before["ibm"])
+
+
 class Refusals(unittest.TestCase):
     def run_module(self, *args):
         env = dict(os.environ, PYTHONPATH=PYTHON)
@@ -134,6 +195,14 @@ class Refusals(unittest.TestCase):
         self.assertNotEqual(made.returncode, 0)
         self.assertIn("is in use by another pump-compare", made.stderr)
         self.assertIn(fine, made.stderr)
+
+    def test_summarize_without_finished_runs_runs_nothing_and_says_so(self):
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        with tempfile.TemporaryDirectory() as out:
+            made = self.run_module("fsi.pump_compare", "--bin-dir", out, "--from", out, "--summarize", "-o", out, case)
+            self.assertEqual(sorted(os.listdir(out)), [])
+        self.assertNotEqual(made.returncode, 0)
+        self.assertIn("--summarize: %s has no finished run" % os.path.join(out, "ibm"), made.stderr)
 
     def test_ami_restart_without_a_run_says_so(self):
         case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
