@@ -210,6 +210,14 @@ class Unwritable(DiskTest):
     def setUp(self):
         if os.geteuid() != 0 or not shutil.which("runuser"):
             self.skipTest("needs root and runuser (to run as nobody)")
+        # The run goes as nobody: the clone must be reachable by others (not so under /root or a
+        # mktemp -d folder, mode 0700), or the launcher cannot even start.
+        binary = os.path.join(BIN_DIR, "fsi-structure")
+        probe = subprocess.run(["runuser", "-u", "nobody", "--", "sh", "-c", 'test -x "$1" && test -r "$2"', "sh",
+                                binary, LAUNCH], stdin=subprocess.DEVNULL)
+        if probe.returncode != 0:
+            self.skipTest("user nobody cannot reach %s or %s (a parent folder is not world-executable): "
+                          "clone the repository where others can read it to run this test" % (binary, LAUNCH))
         self.tmp = tempfile.mkdtemp(prefix="fsi_unwritable_")
         self.mount = os.path.join(self.tmp, "unused")
         os.chmod(self.tmp, 0o755)
