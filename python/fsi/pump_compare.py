@@ -88,8 +88,9 @@ def run_fingerprint(case_dir, method, resolution):
 
 def run_inputs(args, method, flow_rate):
     """What makes a run: equal inputs, equal run (the end time aside, which the AMI run extends)."""
-    inputs = {"method": method, "case": run_fingerprint(args.case_dir, method, args.resolution), "flow_rate_m3_per_s": flow_rate,
-              "from": os.path.abspath(args.settled), "resolution": args.resolution, "ranks": args.ranks}
+    inputs = {"method": method, "case": run_fingerprint(args.case_dir, method, args.resolution),
+              "flow_rate_m3_per_s": flow_rate, "from": os.path.abspath(args.settled), "resolution": args.resolution,
+              "ranks": args.ranks}
     if method == "ibm" and getattr(args, "assignments", None):
         inputs["set"] = list(args.assignments)
     return inputs
