@@ -298,9 +298,12 @@ def write_blade_stl(impeller):
     if not solids:
         sys.exit("make_ami_case.py: %s has no blade_* solid to refine around" % impeller)
     body = "".join("solid %s\n%sendsolid %s\n" % (name, facets, name) for name, facets in solids)
-    if not os.path.exists(path) or open(path).read() != body:
-        with open(path, "w") as f:
-            f.write(body)
+    if os.path.exists(path):
+        with open(path) as f:
+            if f.read() == body:
+                return path   # unchanged: not rewritten (the mesh cache keys on it)
+    with open(path, "w") as f:
+        f.write(body)
     return path
 
 
@@ -327,17 +330,19 @@ def snappy_dict(design, h, casing, impeller, penalized=False, blade_cell=None):
     return text, (r, z0, z1), gap
 
 
-def write_penalized_case(folder, design, h, casing, impeller, blade_cell=None):
+def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None):
     """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
     solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
     make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True)
-    text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True, blade_cell=blade_cell)
+    text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True,
+                                     blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
-    if blade_cell:
-        link(folder, "impeller-blade.stl", write_blade_stl(impeller))
+    if fine_blade:
+        link(folder, "impeller-blade.stl", fine_blade[0])
 
 
-def write_ami_case(folder, design, case, h, casing, impeller, dt, blade_cell=None):
+def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=None):
+    """fine_blade: (impeller-blade.stl, cell size within BLADE_BAND of it), or None."""
     blade = make_case.stl_regions(impeller)
     # controlDict: pimpleFoam, the time step, the penalized case's function objects + forces.
     control = {"comment": "// make_ami_case.py: deltaT of case.yaml (scaled with h), endTime set by pump_ami_run.py.",
@@ -357,10 +362,10 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt, blade_cell=Non
                 "more_pimple": MOVING}
     box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution)
     link(folder, "impeller.stl", impeller)
-    text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller, blade_cell=blade_cell)
+    text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller, blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
-    if blade_cell:
-        link(folder, "impeller-blade.stl", write_blade_stl(impeller))
+    if fine_blade:
+        link(folder, "impeller-blade.stl", fine_blade[0])
     write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
     rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
     write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
@@ -407,13 +412,14 @@ def main(argv):
     write_penalized_case(os.path.join(args.output, "openfoam-coarse-ami-mesh"), design, d2 / RESOLUTIONS["coarse"],
                          casing, impeller)
     print("openfoam-coarse-ami-mesh: the penalized case on openfoam-ami-coarse's mesh")
+    blade_stl = write_blade_stl(impeller) if FINE_BLADE else None   # once, for every variant and both methods
     for name, (base, blade_cell, dt_factor) in FINE_BLADE.items():
         h = d2 / RESOLUTIONS[base]
         dt = dt_coarse * RESOLUTIONS["coarse"] / RESOLUTIONS[base] * dt_factor
         write_ami_case(os.path.join(args.output, "openfoam-ami-" + name), design, case, h, casing, impeller, dt,
-                       blade_cell=blade_cell)
+                       fine_blade=(blade_stl, blade_cell))
         write_penalized_case(os.path.join(args.output, "openfoam-%s-ami-mesh" % name), design, h, casing, impeller,
-                             blade_cell=blade_cell)
+                             fine_blade=(blade_stl, blade_cell))
         print("openfoam-ami-%s and openfoam-%s-ami-mesh: %s with %g m cells within %g m of the blade, dt = %.3g s"
               % (name, name, base, blade_cell, BLADE_BAND, dt))
 
