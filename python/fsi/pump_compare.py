@@ -28,7 +28,6 @@ it its own -o and link DIR/ami to the first comparison's, which is then reused).
 
 import argparse
 import fcntl
-import hashlib
 import json
 import math
 import os
@@ -74,16 +73,12 @@ def run_fingerprint(case_dir, method, resolution):
         inputs = [os.path.join("presets", resolution + "-ami-mesh.yaml"), "openfoam-%s-ami-mesh" % resolution]
     else:
         inputs = ["openfoam-ami-" + resolution]
-    digest = hashlib.sha256()
+    paths = []
     for top in ["case.yaml", "pump.yaml"] + inputs:
         path = os.path.join(case_dir, top)
-        files = [path] if os.path.isfile(path) else sorted(
+        paths += [path] if os.path.isfile(path) else sorted(
             os.path.join(root, name) for root, _dirs, names in os.walk(path, followlinks=True) for name in names)
-        for name in files:
-            digest.update(os.path.relpath(name, case_dir).encode() + b"\0")
-            with open(name, "rb") as f:
-                digest.update(f.read())
-    return digest.hexdigest()[:16]
+    return pump_curve.files_digest(case_dir, paths)
 
 
 def run_inputs(args, method, flow_rate):

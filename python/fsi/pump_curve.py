@@ -86,19 +86,24 @@ def flow_rate_assignment(flow_rate):
     return "%s=%r" % (FLOW_RATE_KEY, float(flow_rate))
 
 
+def files_digest(base, paths):
+    """A short hash of the files' paths (relative to base) and contents, in the order given."""
+    digest = hashlib.sha256()
+    for path in paths:
+        digest.update(os.path.relpath(path, base).encode() + b"\0")
+        with open(path, "rb") as f:
+            digest.update(f.read())
+    return digest.hexdigest()[:16]
+
+
 def case_fingerprint(case_dir):
     """A hash of every file of the case folder but its results and logs: a point reruns when it changes."""
-    digest = hashlib.sha256()
+    paths = []
     for root, dirs, files in os.walk(case_dir, followlinks=False):
         dirs[:] = sorted(d for d in dirs if d not in ("output", "__pycache__"))
-        for name in sorted(files):
-            if name in ("generate.log", ".geometry.lock"):  # the generator's log (its timings), the lock
-                continue
-            path = os.path.join(root, name)
-            digest.update(os.path.relpath(path, case_dir).encode() + b"\0")
-            with open(path, "rb") as f:
-                digest.update(f.read())
-    return digest.hexdigest()[:16]
+        # the generator's log (its timings) and its lock are not the case
+        paths += [os.path.join(root, name) for name in sorted(files) if name not in ("generate.log", ".geometry.lock")]
+    return files_digest(case_dir, paths)
 
 
 def postprocess(args, point):
