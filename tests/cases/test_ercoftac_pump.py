@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""python/fsi/ercoftac_pump.py: the ERCOFTAC pump's blade and vane read from Table 2
+(cases/ercoftac-pump/data) against the numbers the test case states for them (Table 1 and the
+text: R1, R2, 10 mm blades, 8 mm vanes, beta2 = -70 deg, alpha3 = -74 deg, the 6 % radial gap, the
+flow coefficient), and the penalized impeller's STL closed with the volume of its outlines.
+
+    PYTHONPATH=python /usr/bin/python3 tests/cases/test_ercoftac_pump.py -v
+"""
+
+import collections
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+from fsi import ercoftac_pump as ecp  # noqa: E402
+
+
+class TableTwo(unittest.TestCase):
+    def test_the_blade_is_the_stated_one(self):
+        """Table 1: D1 = 240 mm, D2 = 420 mm, constant thickness (10 mm), beta2 = -70 deg from radial."""
+        blade = ecp.blade()
+        radii = np.linalg.norm(np.vstack([blade.a, blade.b]), axis=1)
+        self.assertAlmostEqual(radii.min(), 0.120, delta=1e-5)
+        self.assertAlmostEqual(radii.max(), ecp.R2_M, delta=0.001)          # the trailing edge cut at R2
+        thickness = ecp.thickness_m(blade)
+        middle = thickness[8:23]                                               # past the leading edge's wedge
+        self.assertLess(np.max(np.abs(middle - 0.010)), 2e-4)
+        self.assertAlmostEqual(ecp.angle_from_radial_deg(blade, 0.20), 70.0, delta=1.0)
+        wrap = math.degrees(math.atan2(blade.a[-1, 1], blade.a[-1, 0]))
+        self.assertAlmostEqual(wrap, 79.4, delta=0.1)
+
+    def test_the_vane_is_the_stated_one(self):
+        """Table 1: 8 mm vanes, alpha3 = -74 deg and alpha4 = -68 deg from radial; a vaneless gap of
+        about 6 % of R2 (to the vanes' nominal D3 = 444 mm; 4.8 % to the first point of the table)."""
+        vane = ecp.vane()
+        self.assertLess(np.max(np.abs(ecp.thickness_m(vane)[8:] - 0.008)), 2e-4)
+        self.assertAlmostEqual(ecp.angle_from_radial_deg(vane, 0.225), 74.0, delta=1.0)
+        self.assertAlmostEqual(ecp.angle_from_radial_deg(vane, 0.325), 68.0, delta=1.0)
+        gap = (np.linalg.norm(np.vstack([vane.a, vane.b]), axis=1).min() - ecp.R2_M) / ecp.R2_M
+        self.assertAlmostEqual(gap, 0.048, delta=0.002)
+
+    def test_the_operating_point(self):
+        """2000 rpm, phi = 0.0475: U2 = 43.98 m/s, Q = 0.2894 m^3/s."""
+        self.assertAlmostEqual(ecp.tip_speed_m_per_s(), 43.98, delta=0.01)
+        self.assertAlmostEqual(ecp.design_flow_rate_m3_per_s(), 0.2894, delta=2e-4)
+
+    def test_a_side_missing_is_refused(self):
+        with tempfile.NamedTemporaryFile("w", suffix=".csv") as f:
+            f.write("# one side only\nside,r_mm,theta_deg\nA,120,0\nA,130,5\nA,140,10\n")
+            f.flush()
+            with self.assertRaisesRegex(ValueError, "side B has 0 points"):
+                ecp.read_profile(f.name)
+
+    def test_a_strip_that_folds_is_refused(self):
+        blade = ecp.blade()
+        folded = ecp.Profile(blade.a, np.vstack([blade.b[:10], blade.b[12:]]), "folded")
+        with self.assertRaisesRegex(ValueError, "folded"):
+            ecp.cap_triangles(folded)
+
+
+class Measured(unittest.TestCase):
+    def test_reference_yaml_holds_what_the_data_give(self):
+        """reference.yaml's measured averages, to the digits written, from data/ by
+        impeller_outlet_averages; the four instants of the description."""
+        import yaml
+        with open(os.path.join(ecp.DATA, "..", "reference.yaml")) as f:
+            measured = yaml.safe_load(f)["measured"]
+        averages = ecp.impeller_outlet_averages()
+        self.assertEqual(averages["instants"], [0.126, 0.226, 0.326, 0.426])
+        for key, value in measured.items():
+            self.assertAlmostEqual(averages[key], value, delta=5e-4, msg=key)
+
+    def test_continuity(self):
+        """The measured c_r against the flow coefficient's: Q / (2 pi r b) at r = 1.02 R2 is
+        0.122 U2; the span average measured is 7 % over it (the hub and shroud layers and the
+        clearance are outside Z/B 0.05-0.95)."""
+        continuity = ecp.design_flow_rate_m3_per_s() / (2 * math.pi * ecp.MEASUREMENT_RADIUS_M * ecp.SPAN_M)
+        ratio = ecp.impeller_outlet_averages()["cr_over_u2_span_average"] * ecp.tip_speed_m_per_s() / continuity
+        self.assertAlmostEqual(ratio, 1.07, delta=0.01)
+
+
+class ImpellerSurface(unittest.TestCase):
+    def test_closed_and_of_the_outlines_volume(self):
+        """Every edge in two triangles, once each way (closed, consistently oriented), and the
+        divergence theorem's volume = 7 blade areas x the slab's height (outward normals)."""
+        z0, z1 = -0.001, 0.005
+        tris = ecp.impeller_triangles(z0, z1)
+        edges = collections.Counter()
+        volume = 0.0
+        for tri in tris:
+            p = [tuple(np.round(v, 12)) for v in tri]
+            for i in range(3):
+                edges[(p[i], p[(i + 1) % 3])] += 1
+            a, b, c = (np.array(v) for v in tri)
+            volume += float(np.dot(a, np.cross(b, c))) / 6.0
+        self.assertEqual([e for e, n in edges.items() if n != 1 or edges[(e[1], e[0])] != 1], [])
+        area = ecp.polygon_area(ecp.blade().outline())
+        self.assertAlmostEqual(volume / (ecp.BLADES * area * (z1 - z0)), 1.0, delta=1e-9)
+
+
+if __name__ == "__main__":
+    unittest.main()
