@@ -68,7 +68,7 @@ PACKAGES=(cmake ninja-build g++ ccache git pkg-config libeigen3-dev libspdlog-de
           libyaml-cpp-dev libcli11-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libnanoflann-dev
           libgtest-dev libgmock-dev libbenchmark-dev python3-h5py python3-matplotlib python3-numpy
           paraview python3-paraview python3-yaml openmpi-bin libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler
-          libgmsh-dev python3-scipy ffmpeg iproute2 nftables clang-14 libclang-rt-14-dev
+          libgmsh-dev python3-gmsh python3-scipy ffmpeg iproute2 nftables clang-14 libclang-rt-14-dev
           slurm-wlm munge)
 
 say() { printf 'fsi: %s\n' "$*" >&2; }

@@ -2,7 +2,8 @@
 """python/fsi/ercoftac_pump.py: the ERCOFTAC pump's blade and vane read from Table 2
 (cases/ercoftac-pump/data) against the numbers the test case states for them (Table 1 and the
 text: R1, R2, 10 mm blades, 8 mm vanes, beta2 = -70 deg, alpha3 = -74 deg, the 6 % radial gap, the
-flow coefficient), and the penalized impeller's STL closed with the volume of its outlines.
+flow coefficient), the penalized impeller's STL closed with the volume of its outlines, and
+python/fsi/ercoftac_mesh.py's slab for both methods (the same stator cells in both).
 
     PYTHONPATH=python /usr/bin/python3 tests/cases/test_ercoftac_pump.py -v
 """
@@ -102,6 +103,63 @@ class ImpellerSurface(unittest.TestCase):
         self.assertEqual([e for e, n in edges.items() if n != 1 or edges[(e[1], e[0])] != 1], [])
         area = ecp.polygon_area(ecp.blade().outline())
         self.assertAlmostEqual(volume / (ecp.BLADES * area * (z1 - z0)), 1.0, delta=1e-9)
+
+
+class Mesh(unittest.TestCase):
+    """python/fsi/ercoftac_mesh.py at h = 3.3 mm (3 cells across the 10 mm blade): hexahedra only,
+    the patches of each method, and the body-fitted reference's stator the penalized mesh's outer
+    part cell for cell (issue 31's same cells elsewhere). About 15 s."""
+
+    @classmethod
+    def setUpClass(cls):
+        from fsi import ercoftac_mesh
+        cls.mesh = ercoftac_mesh
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.made = {r: ercoftac_mesh.write_msh(os.path.join(cls.tmp.name, r + ".msh"), r, 0.0033, 0.0132)
+                    for r in ercoftac_mesh.REGIONS}
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_hexahedra_and_patches(self):
+        for region, made in self.made.items():
+            self.assertEqual(made["element_types"], [5], region)    # gmsh's 8-node hexahedron only
+        self.assertEqual(sorted(self.made["penalized"]["patches"]), ["frontAndBack", "inlet", "outlet", "vanes"])
+        self.assertEqual(sorted(self.made["rotor"]["patches"]), ["ami_rotor", "blades", "frontAndBack", "inlet"])
+        self.assertEqual(sorted(self.made["stator"]["patches"]), ["ami_stator", "frontAndBack", "outlet", "vanes"])
+
+    def cell_centres(self, region, zone):
+        import gmsh
+        gmsh.initialize()
+        try:
+            gmsh.option.setNumber("General.Terminal", 0)
+            gmsh.open(os.path.join(self.tmp.name, region + ".msh"))
+            for dim, group in gmsh.model.getPhysicalGroups(3):
+                if gmsh.model.getPhysicalName(dim, group) == zone:
+                    volume = gmsh.model.getEntitiesForPhysicalGroup(dim, group)[0]
+            centres = gmsh.model.mesh.getBarycenters(5, volume, False, False)
+            return np.round(np.reshape(centres, (-1, 3)), 9)
+        finally:
+            gmsh.finalize()
+
+    def test_the_stator_is_the_same_in_both_methods(self):
+        penalized = self.cell_centres("penalized", "stator")
+        body_fitted = self.cell_centres("stator", "stator")
+        self.assertEqual(len(penalized), len(body_fitted))
+        self.assertEqual(np.max(np.abs(np.sort(penalized, axis=0) - np.sort(body_fitted, axis=0))), 0.0)
+
+    def test_the_rotor_cells_are_the_size_asked(self):
+        """The penalized rotor's mean cell, sqrt(area / cells), between 0.85 h and h (an unstructured
+        quad mesh of size h has its cells a little smaller than h^2: 0.93 h measured)."""
+        area = math.pi * (self.mesh.R_INTERFACE_M ** 2 - self.mesh.R_INLET_M ** 2)
+        mean = math.sqrt(area / len(self.cell_centres("penalized", "rotor")))
+        self.assertGreater(mean, 0.85 * 0.0033)
+        self.assertLess(mean, 0.0033)
+
+    def test_bad_sizes_are_refused(self):
+        with self.assertRaisesRegex(ValueError, "0 < h_near <= h_far"):
+            self.mesh.write_msh(os.path.join(self.tmp.name, "x.msh"), "rotor", 0.01, 0.005)
 
 
 if __name__ == "__main__":
