@@ -15,6 +15,10 @@ ami_stator; cell zones rotor and stator. The radii of the domain are those of th
 OpenFOAM cases (the repository's plot scripts: rIn = 0.1, rOut = 0.365)."""
 
 import math
+import os
+import re
+import shutil
+import tempfile
 
 import numpy as np
 
@@ -163,3 +167,66 @@ def write_msh(path, region, h_near_m, h_far_m, thickness_m=None):
                 "patches": {name: len(tags) for name, tags in patches.items()}}
     finally:
         gmsh.finalize()
+
+
+PATCH_TYPES = {"frontAndBack": "empty", "inlet": "patch", "outlet": "patch", "vanes": "wall", "blades": "wall"}
+AMI_PAIRS = {"ami_rotor": "ami_stator", "ami_stator": "ami_rotor"}
+
+
+def write_boundary_types(foam_case):
+    """constant/polyMesh/boundary with the patches' OpenFOAM types (gmshToFoam writes them all as
+    `patch`): the slab's faces empty, the walls walls, the two sides of the interface a cyclicAMI
+    pair (noOrdering: their faces do not match one to one)."""
+    path = os.path.join(foam_case, "constant", "polyMesh", "boundary")
+    with open(path) as f:
+        text = f.read()
+    patches = re.findall(r"\n\s*(\w+)\s*\{[^}]*?nFaces\s+(\d+);\s*startFace\s+(\d+);[^}]*\}", text)
+    if not patches:
+        raise ValueError("%s: no patches found (gmshToFoam's output expected)" % path)
+    lines = [text[:text.index("// * *")].rstrip() + "\n" + "// " + "* " * 37 + "//\n", "%d\n(" % len(patches)]
+    for name, faces, start in patches:
+        if name not in PATCH_TYPES and name not in AMI_PAIRS:
+            raise ValueError("%s: patch %r is none of %s" % (path, name, ", ".join(list(PATCH_TYPES) + list(AMI_PAIRS))))
+        body = ["type %s;" % ("cyclicAMI" if name in AMI_PAIRS else PATCH_TYPES[name])]
+        if name in AMI_PAIRS:
+            body += ["inGroups (cyclicAMI);", "neighbourPatch %s;" % AMI_PAIRS[name], "transform noOrdering;"]
+        elif PATCH_TYPES[name] in ("empty", "wall"):
+            body.append("inGroups (%s);" % PATCH_TYPES[name])
+        body += ["nFaces %s;" % faces, "startFace %s;" % start]
+        lines.append("    %s\n    {\n%s\n    }" % (name, "\n".join("        " + b for b in body)))
+    lines.append(")\n")
+    with open(path, "w") as f:
+        f.write("\n".join(lines))
+
+
+def foam_mesh(foam_case, method, h_near_m, h_far_m, logs):
+    """The slab's OpenFOAM mesh in foam_case/constant/polyMesh: gmsh (write_msh), gmshToFoam,
+    for the body-fitted method the rotor merged into the stator (mergeMeshes), the patch types
+    (write_boundary_types), checkMesh. method: penalized or ami. Returns the cell count."""
+    from fsi.pump_ami_run import run_tool
+    if method not in ("penalized", "ami"):
+        raise ValueError("method %r: penalized or ami" % method)
+    os.makedirs(logs, exist_ok=True)
+    shutil.rmtree(os.path.join(foam_case, "constant", "polyMesh"), ignore_errors=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        if method == "penalized":
+            made = write_msh(os.path.join(tmp, "penalized.msh"), "penalized", h_near_m, h_far_m)
+            run_tool("gmshToFoam", foam_case, logs, [os.path.join(tmp, "penalized.msh")])
+            cells = made["cells"]
+        else:
+            rotor_case = os.path.join(tmp, "rotor")
+            os.makedirs(os.path.join(rotor_case, "constant"))
+            shutil.copytree(os.path.join(foam_case, "system"), os.path.join(rotor_case, "system"))
+            cells = 0
+            for region, case in (("stator", foam_case), ("rotor", rotor_case)):
+                cells += write_msh(os.path.join(tmp, region + ".msh"), region, h_near_m, h_far_m)["cells"]
+                run_tool("gmshToFoam", case, logs, [os.path.join(tmp, region + ".msh")])
+                os.rename(os.path.join(logs, "log.gmshToFoam"), os.path.join(logs, "log.gmshToFoam." + region))
+            run_tool("mergeMeshes", foam_case, logs, ["-overwrite", foam_case, rotor_case])
+    write_boundary_types(foam_case)
+    run_tool("checkMesh", foam_case, logs, ["-constant"])
+    with open(os.path.join(logs, "log.checkMesh")) as f:
+        if "Mesh OK." not in f.read():
+            raise RuntimeError("checkMesh fails the %s mesh of %s: see %s" % (method, foam_case,
+                                                                               os.path.join(logs, "log.checkMesh")))
+    return cells
