@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Writes the ERCOFTAC pump's OpenFOAM folders (issue 31): openfoam-ami-<level>, the body-fitted
-reference (stock pimpleFoam, the rotor turning behind an AMI at r = 217 mm). The mesh is not
-written here: python/fsi/ercoftac_mesh.py makes it at run time with gmsh (foam_mesh), from the
-level's sizes in LEVELS. Air at 298 K, k-omega SST with wall functions (Re = 6.5e5), the test's
+"""Writes the ERCOFTAC pump's OpenFOAM folders (issue 31): openfoam-<level>, the penalized
+impeller's (the fluid of ./fsi run, case.yaml), and openfoam-ami-<level>, the body-fitted
+reference (stock pimpleFoam, the rotor turning behind an AMI at r = 217 mm). The meshes are not
+written here: prepare.py makes them with gmsh (python/fsi/ercoftac_mesh.py) before a run, from
+the level's sizes in LEVELS. Air at 298 K, k-omega SST with wall functions (Re = 6.5e5), the test's
 2000 rpm and flow coefficient 0.0475. Run it after changing a parameter below; the files it
 writes are committed.
 
@@ -166,33 +167,45 @@ functions
 """ % (REVOLUTIONS, end_time_s, dt, 2 * math.pi / ecp.omega_rad_per_s(), points, ecp.AIR_DENSITY_KG_PER_M3)
 
 
-def write_ami_folder(level):
+def write_folder(level, method):
+    """openfoam-<level> (method penalized: no blades in the mesh, no motion) or
+    openfoam-ami-<level> (ami)."""
     h, _h_far = LEVELS[level]
-    folder = os.path.join(HERE, "openfoam-ami-" + level)
+    folder = os.path.join(HERE, ("openfoam-ami-" if method == "ami" else "openfoam-") + level)
     end = REVOLUTIONS * 2 * math.pi / ecp.omega_rad_per_s()
     for name, (cls, dims, internal, patches) in FIELDS.items():
         body = "dimensions      %s;\ninternalField   %s;\nboundaryField\n{\n" % (dims, internal)
         for patch, value in patches.items():
-            body += "    %-8s { %s }\n" % (patch, value)
-        body += "    frontAndBack { type empty; }\n    \"ami_.*\" { type cyclicAMI; }\n}\n"
-        write_foam_file(folder, os.path.join("0", name), cls, body)
+            if method == "ami" or patch != "blades":
+                body += "    %-8s { %s }\n" % (patch, value)
+        body += "    frontAndBack { type empty; }\n"
+        if method == "ami":
+            body += "    \"ami_.*\" { type cyclicAMI; }\n"
+        write_foam_file(folder, os.path.join("0", name), cls, body + "}\n")
     write_foam_file(folder, "constant/transportProperties", "dictionary",
                     "transportModel  Newtonian;\nnu              %.6g;   // air at 298 K (m^2/s)\n" % NU_M2_PER_S)
     write_foam_file(folder, "constant/turbulenceProperties", "dictionary",
                     "simulationType  RAS;\nRAS\n{\n    RASModel        kOmegaSST;\n    turbulence      on;\n"
                     "    printCoeffs     off;\n}\n")
+    control = control_dict(h, end)
+    if method == "penalized":
+        # the loads on the impeller are the penalized body's (coupling.h5), not a patch's
+        control = control[:control.index("    forces\n")] + "}\n"
+    write_foam_file(folder, "system/controlDict", "dictionary", control)
+    write_foam_file(folder, "system/fvSchemes", "dictionary", FV_SCHEMES)
+    write_foam_file(folder, "system/fvSolution", "dictionary", FV_SOLUTION)
+    if method == "penalized":
+        return folder
     write_foam_file(folder, "constant/dynamicMeshDict", "dictionary",
                     "// make_case.py: the rotor turns toward -theta of the test's Table 2 (its blades lean back).\n"
                     "dynamicFvMesh   dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfvMotionSolvers.so\");\n"
                     "motionSolver    solidBody;\ncellZone        rotor;\nsolidBodyMotionFunction rotatingMotion;\n"
                     "origin          (0 0 0);\naxis            (0 0 -1);\nomega           %.6f;   // rad/s (2000 rpm)\n"
                     % ecp.omega_rad_per_s())
-    write_foam_file(folder, "system/controlDict", "dictionary", control_dict(h, end))
-    write_foam_file(folder, "system/fvSchemes", "dictionary", FV_SCHEMES)
-    write_foam_file(folder, "system/fvSolution", "dictionary", FV_SOLUTION)
     return folder
 
 
 if __name__ == "__main__":
     for name in LEVELS:
-        print(write_ami_folder(name))
+        for how in ("penalized", "ami"):
+            print(write_folder(name, how))

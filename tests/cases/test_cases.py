@@ -15,6 +15,7 @@ with tolerances stated at each assertion.
 Each test writes into its own temporary folder (FSI_KEEP_TEST_DIRS=1 keeps it).
 """
 
+import glob
 import os
 import re
 import shutil
@@ -38,6 +39,7 @@ load_case_yaml = yaml.safe_load
 sys.dont_write_bytecode = True  # the case scripts loaded below: no __pycache__ in cases/
 
 from fsi import case_module, fsi_launch, pump_head_budget, rotating_disc  # noqa: E402  (python/fsi/)
+from fsi import ercoftac_pump as ecp  # noqa: E402
 from fsi.foam_case import LAMINAR_FV_SCHEMES, OPENFOAM_ENVIRONMENT  # noqa: E402
 
 free_edge = case_module("pendulum-in-air", "free_edge")  # cases/pendulum-in-air/free_edge.py
@@ -235,6 +237,55 @@ class CentrifugalPump(CaseTest):
                             % (warm_shaft[0], shaft[0], shaft[-1]))
         finally:
             del os.environ["FSI_MESH_CACHE"]
+
+
+class ErcoftacPump(CaseTest):
+    """cases/ercoftac-pump, coarse, for its first steps through the launcher (prepare.py meshes the
+    slab with gmsh): the one-cell slab's faces empty and the vanes walls, the impeller only
+    penalized (no blade patch), the test's flow rate through the slab (the inflow and the outflow,
+    sum of phi on the patches, equal to Q dz / b to 1e-4: the inflow velocity derived from the
+    flow coefficient), the impeller's loads finite every step and the velocity sampled at the
+    measured radius. The comparison with the measurements needs revolutions: not the suite."""
+
+    STEPS = 12
+
+    def test_first_steps(self):
+        need_openfoam(self)
+        case = case_dir("ercoftac-pump")
+        with open(os.path.join(case, "case.yaml")) as f:
+            dt = load_case_yaml(f)["run"]["time_step_s"]
+        out = os.path.join(self.tmp, "out")
+        command = [PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, "--end-time", repr(self.STEPS * dt), case]
+        result = subprocess.run(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                timeout=900)
+        self.assertEqual(result.returncode, 0, result.stderr.decode("utf-8", "replace")[-3000:])
+        foam = os.path.join(out, "openfoam")
+        with open(os.path.join(foam, "constant", "polyMesh", "boundary")) as f:
+            boundary = re.sub(r"\s+", " ", f.read())
+        self.assertIn("frontAndBack { type empty;", boundary)
+        self.assertIn("vanes { type wall;", boundary)
+        self.assertNotIn("blades", boundary)
+        env = dict(os.environ, **OPENFOAM_ENVIRONMENT)
+        flux = {}
+        for patch in ("inlet", "outlet"):
+            done = subprocess.run(["postProcess", "-case", foam, "-func", "flowRatePatch(name=%s)" % patch,
+                                   "-latestTime"], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT, env=env, timeout=120)
+            found = re.search(r"sum\(%s\) of phi = (\S+)" % patch, done.stdout.decode())
+            self.assertIsNotNone(found, done.stdout.decode()[-2000:])
+            flux[patch] = float(found.group(1))
+        samples = sorted(glob.glob(os.path.join(foam, "postProcessing", "impellerOutlet", "*", "r214_U.xy")))
+        self.assertTrue(samples)
+        points = np.loadtxt(samples[-1])
+        self.assertEqual(points.shape, (720, 6))
+        self.assertLess(np.max(np.abs(np.hypot(points[:, 0], points[:, 1]) - ecp.MEASUREMENT_RADIUS_M)), 1e-6)
+        slab = 2 * points[0, 2]                      # sampled in the slab's mid-plane
+        expected = ecp.design_flow_rate_m3_per_s() * slab / ecp.SPAN_M
+        self.assertAlmostEqual(-flux["inlet"] / expected, 1.0, delta=1e-4)
+        self.assertAlmostEqual(flux["outlet"] / expected, 1.0, delta=1e-4)
+        forces = np.loadtxt(os.path.join(out, "forces.csv"), delimiter=",", skiprows=1, ndmin=2)
+        self.assertEqual(forces.shape, (self.STEPS, 7))
+        self.assertTrue(np.all(np.isfinite(forces)))
 
 
 class CentrifugalPumpTwoRanks(CaseTest):
