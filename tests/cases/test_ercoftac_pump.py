@@ -105,6 +105,40 @@ class ImpellerSurface(unittest.TestCase):
         self.assertAlmostEqual(volume / (ecp.BLADES * area * (z1 - z0)), 1.0, delta=1e-9)
 
 
+class Postprocess(unittest.TestCase):
+    """ecp.impeller_outlet on samples of a known field written as the impellerOutlet function
+    object writes them: c_r = 0.13 U2, c_u = (0.4 + 0.1 cos 7 phi) U2 positive toward -theta, phi
+    the impeller-fixed angle theta + omega t; its averages, its profile across a pitch, and the
+    phase that profile_rms finds."""
+
+    def test_a_known_field(self):
+        omega, u2 = ecp.omega_rad_per_s(), ecp.tip_speed_m_per_s()
+        with tempfile.TemporaryDirectory() as foam:
+            theta = 2 * np.pi * np.arange(720) / 720
+            for step in range(1, 41):
+                t = step * 3.75e-5 * 10
+                phi = theta + omega * t
+                c_r, c_u = 0.13 * u2, (0.4 + 0.1 * np.cos(ecp.BLADES * phi)) * u2
+                ux = c_r * np.cos(theta) + c_u * np.sin(theta)      # c_u along -e_theta
+                uy = c_r * np.sin(theta) - c_u * np.cos(theta)
+                folder = os.path.join(foam, "postProcessing", "impellerOutlet", "%.8g" % t)
+                os.makedirs(folder)
+                r = ecp.MEASUREMENT_RADIUS_M
+                np.savetxt(os.path.join(folder, "r214_U.xy"),
+                           np.column_stack([r * np.cos(theta), r * np.sin(theta), np.full(720, 0.00165), ux, uy,
+                                            np.zeros(720)]))
+            got = ecp.impeller_outlet(foam, settle_revolutions=0.1)
+            self.assertAlmostEqual(got["cu_over_u2"], 0.4, delta=1e-9)
+            self.assertAlmostEqual(got["cr_over_u2"], 0.13, delta=1e-9)
+            self.assertLess(got["from_s"], 0.1 * 2 * np.pi / omega + 3.75e-4)
+            fraction, profile = np.array(got["profile"]["pitch_fraction"]), np.array(got["profile"]["cu_over_u2"])
+            self.assertLess(np.max(np.abs(profile - (0.4 + 0.1 * np.cos(2 * np.pi * fraction)))), 0.004)
+            moved = 0.4 + 0.1 * np.cos(2 * np.pi * (fraction - 0.3))
+            rms, shift = ecp.profile_rms(fraction, profile, fraction, moved)
+            self.assertAlmostEqual(shift, 0.3, delta=0.006)
+            self.assertLess(rms, 0.004)
+
+
 class Mesh(unittest.TestCase):
     """python/fsi/ercoftac_mesh.py at h = 3.3 mm (3 cells across the 10 mm blade): hexahedra only,
     the patches of each method, and the body-fitted reference's stator the penalized mesh's outer
