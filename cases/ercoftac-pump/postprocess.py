@@ -20,8 +20,8 @@ from fsi import ercoftac_pump as ecp
 def main(out, case_dir):
     with open(os.path.join(case_dir, "reference.yaml")) as f:
         measured = yaml.safe_load(f)["measured"]
-    with open(os.path.join(out, "config.effective.yaml")) as f:
-        end = yaml.safe_load(f)["run"]["end_time_s"]
+    # the run's length: its last sample (a penalized run's and an AMI run's alike)
+    end = ecp.read_outlet_samples(os.path.join(out, "openfoam"))[-1][0]
     revolutions = end * ecp.omega_rad_per_s() / (2 * math.pi)
     ours = ecp.impeller_outlet(os.path.join(out, "openfoam"), settle_revolutions=0.5 * revolutions)
     fraction = np.array(ours["profile"]["pitch_fraction"])
