@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Generates this case's inputs before a run: geometry/impeller.stl (the 7 blades of Table 2
-extruded through the slab, python/fsi/ercoftac_pump.py) and the penalized meshes of every level
-(openfoam-<level>/constant/polyMesh, gmsh: python/fsi/ercoftac_mesh.py), each when it is missing
+extruded through the slab, python/fsi/ercoftac_pump.py) and the penalized mesh of the level run
+(FSI_RESOLUTION, which the launcher sets from --resolution; case.yaml's coarse without one:
+openfoam-<level>/constant/polyMesh, gmsh: python/fsi/ercoftac_mesh.py), each when it is missing
 or was made from other inputs (a stamp, generated-from, holds the hash of the data, the two
 modules and the level's sizes). Quiet when there is nothing to do; a level takes 10-60 s.
 
@@ -58,7 +59,8 @@ def main(case_dir):
                 f.write(_stl_solid("blades", ercoftac_pump.impeller_triangles(*STL_Z_M)))
             write_stamp(stamp, key)
             print("prepare: geometry/impeller.stl written (7 blades, z %g to %g m)" % STL_Z_M)
-        for level, (h_near, h_far) in make_case.LEVELS.items():
+        level = os.environ.get("FSI_RESOLUTION") or "coarse"
+        for level, (h_near, h_far) in [(level, make_case.LEVELS[level])] if level in make_case.LEVELS else []:
             foam_case = os.path.join(case_dir, "openfoam-" + level)
             key = inputs_hash("penalized", h_near, h_far)
             stamp = os.path.join(foam_case, "constant", "polyMesh", "generated-from")

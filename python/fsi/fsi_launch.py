@@ -157,14 +157,18 @@ def case_script_env():
     return env
 
 
-def prepare_case(case_dir, bin_dir):
+def prepare_case(case_dir, bin_dir, resolution=None):
     """A case's generated inputs: cases/<case>/prepare.py CASE_DIR BIN_DIR, when the case has one
-    (the centrifugal pump generates its geometry from pump.yaml). Quiet when there is nothing to do."""
+    (the centrifugal pump generates its geometry from pump.yaml). Quiet when there is nothing to do.
+    The preset to be run, if any, is in its environment as FSI_RESOLUTION (a case that meshes
+    per level meshes that one only)."""
     script = os.path.join(case_dir, "prepare.py")
     if not os.path.isfile(script):
         return
+    env = case_script_env()
+    env["FSI_RESOLUTION"] = resolution or ""
     made = subprocess.run([sys.executable, script, case_dir, bin_dir], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, env=case_script_env())
+                          stderr=subprocess.STDOUT, env=env)
     text = made.stdout.decode(errors="replace").strip()
     if made.returncode != 0:
         raise UserError("preparing the case failed (%s):\n%s" % (script, text), EXIT_RUN_FAILED)
@@ -540,7 +544,7 @@ def main(argv):
     if not os.path.isdir(args.case_dir):
         raise UserError("case folder %s not found" % args.case_dir)
     if not args.print_output_dir:
-        prepare_case(args.case_dir, args.bin_dir)
+        prepare_case(args.case_dir, args.bin_dir, args.resolution)
     plan = read_plan(args)
     if args.print_output_dir:
         print(plan.output_dir)
