@@ -43,7 +43,7 @@ def time_step_s(h):
 FIELDS = {
     "U": ("volVectorField", "[0 1 -1 0 0 0 0]", "uniform (0 0 0)", {
         "inlet": "type surfaceNormalFixedValue; refValue uniform %.6g; value uniform (0 0 0);" % -inlet_velocity_m_per_s(),
-        "outlet": "type pressureInletOutletVelocity; value uniform (0 0 0);",
+        "outlet": "type inletOutlet; inletValue uniform (0 0 0); value uniform (0 0 0);",
         "blades": "type movingWallVelocity; value uniform (0 0 0);",
         "vanes": "type noSlip;"}),
     "p": ("volScalarField", "[0 2 -2 0 0 0 0]", "uniform 0", {

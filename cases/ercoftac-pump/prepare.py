@@ -55,8 +55,10 @@ def main(case_dir):
         stamp = os.path.join(geometry, "generated-from")
         if not stamp_matches(stamp, key):
             os.makedirs(geometry, exist_ok=True)
-            with open(os.path.join(geometry, "impeller.stl"), "w") as f:
+            partial = os.path.join(geometry, "impeller.stl.partial")
+            with open(partial, "w") as f:
                 f.write(_stl_solid("blades", ercoftac_pump.impeller_triangles(*STL_Z_M)))
+            os.replace(partial, os.path.join(geometry, "impeller.stl"))   # a reader never sees half a file
             write_stamp(stamp, key)
             print("prepare: geometry/impeller.stl written (7 blades, z %g to %g m)" % STL_Z_M)
         level = os.environ.get("FSI_RESOLUTION") or "coarse"

@@ -3,7 +3,7 @@ hexahedra across the constant channel width, quads recombined from a frontal tri
 both methods of issue 31 on the same cells:
 
 - `penalized`: one conformal mesh of the annulus from the inlet (r = 0.100 m) to the outlet
-  (0.365 m) with the diffuser's 12 vanes cut out; the impeller is not in the mesh (it is
+  (0.500 m) with the diffuser's 12 vanes cut out; the impeller is not in the mesh (it is
   penalized), and the whole rotor (r < 0.217 m, where the blades sweep) has cells of h_near.
 - `rotor`, `stator`: the body-fitted reference's two meshes, the rotor with the 7 blades cut out,
   joined by OpenFOAM's mergeMeshes behind an AMI at r = 0.217 m (the radius of the test case's
@@ -11,8 +11,10 @@ both methods of issue 31 on the same cells:
 
 The sizes: h_near in the rotor, along the vanes and in the vaneless gap, growing to h_far at
 8 cm from them. Patches (physical groups): inlet, outlet, frontAndBack, vanes, blades, ami_rotor,
-ami_stator; cell zones rotor and stator. The radii of the domain are those of the test case's 2-D
-OpenFOAM cases (the repository's plot scripts: rIn = 0.1, rOut = 0.365)."""
+ami_stator; cell zones rotor and stator. The inlet's radius is that of the test case's 2-D
+OpenFOAM cases (the repository's plot scripts: rIn = 0.1); their outlet, at 0.365 m, 30 mm behind
+the vanes' trailing edges, let the vanes' wakes flow back in and the run diverged after 1.3
+revolutions (coarse, penalized): ours is at 0.5 m."""
 
 import math
 import os
@@ -24,7 +26,7 @@ import numpy as np
 
 from fsi import ercoftac_pump as ecp
 
-R_INLET_M, R_INTERFACE_M, R_OUTLET_M = 0.100, 0.217, 0.365
+R_INLET_M, R_INTERFACE_M, R_OUTLET_M = 0.100, 0.217, 0.500
 REGIONS = ("penalized", "rotor", "stator")
 
 
