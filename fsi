@@ -178,7 +178,11 @@ cmd_run() {
     local made
     # python/ on PYTHONPATH (above): a copy of the case away from the repository imports the package too
     if made=$(/usr/bin/python3 "$case_dir/postprocess.py" "$out" "$case_dir" 2>&1); then
-      say "case quantities: $made (in $out)"
+      if [ "$status" -eq 0 ]; then
+        say "case quantities: $made (in $out)"
+      else  # what a failed run got to: say so, its numbers are not the case's
+        say "case quantities of the failed run, up to where it stopped: $made (in $out)"
+      fi
     else
       say "warning: $case_dir/postprocess.py failed: $(echo "$made" | tail -1)"
     fi
