@@ -205,7 +205,10 @@ def foam_mesh(foam_case, method, h_near_m, h_far_m, logs):
     """The slab's OpenFOAM mesh in foam_case/constant/polyMesh: gmsh (write_msh), gmshToFoam,
     for the body-fitted method the rotor merged into the stator (mergeMeshes), the patch types
     (write_boundary_types), checkMesh. method: penalized or ami. Returns the cell count."""
-    from fsi.pump_ami_run import run_tool
+    from fsi import pump_ami_run
+
+    def run_tool(tool, case, logs, options=()):
+        pump_ami_run.run_tool(tool, case, logs, options, who="ercoftac-mesh")
     if method not in ("penalized", "ami"):
         raise ValueError("method %r: penalized or ami" % method)
     os.makedirs(logs, exist_ok=True)

@@ -101,9 +101,10 @@ def mesh_inputs_hash(foam_case):
     return h.hex()
 
 
-def run_tool(tool, foam_case, logs, options=()):
+def run_tool(tool, foam_case, logs, options=(), who="pump-ami"):
+    """An OpenFOAM utility on foam_case, its output in logs/log.<tool>; announced as `who`'s."""
     log = os.path.join(logs, "log." + tool)
-    say("meshing: %s %s (log %s)" % (tool, " ".join(options), log))
+    sys.stderr.write("%s: meshing: %s %s (log %s)\n" % (who, tool, " ".join(options), log))
     with open(log, "w") as f:
         code = subprocess.call([tool, "-case", foam_case] + list(options), stdout=f, stderr=subprocess.STDOUT,
                                stdin=subprocess.DEVNULL)
