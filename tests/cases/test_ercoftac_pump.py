@@ -149,7 +149,7 @@ class Mesh(unittest.TestCase):
         from fsi import ercoftac_mesh
         cls.mesh = ercoftac_mesh
         cls.tmp = tempfile.TemporaryDirectory()
-        cls.made = {r: ercoftac_mesh.write_msh(os.path.join(cls.tmp.name, r + ".msh"), r, 0.0033, 0.0132)
+        cls.made = {r: ercoftac_mesh.write_msh(os.path.join(cls.tmp.name, r + ".msh"), r, 0.0033, 0.03)
                     for r in ercoftac_mesh.REGIONS}
 
     @classmethod
