@@ -32,7 +32,7 @@ import sys
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-from fsi.foam_case import write_foam_file  # noqa: E402
+from fsi.foam_case import TURBULENT_FV_SCHEMES, write_foam_file  # noqa: E402
 from fsi.pump_stations import function_objects as station_function_objects  # noqa: E402
 
 NU, RHO = 1.0e-6, 1000.0            # water: m^2/s, kg/m^3
@@ -245,22 +245,7 @@ RAS
 """,
 }
 
-SCHEMES = """ddtSchemes      { default Euler; }
-gradSchemes     { default Gauss linear; grad(U) cellLimited Gauss linear 1; }
-divSchemes
-{
-    default         none;
-    div(phi,U)      Gauss LUST grad(U);
-    div(phi,nuTilda) Gauss limitedLinear 1;
-    div(phi,k)      Gauss limitedLinear 1;
-    div(phi,omega)  Gauss limitedLinear 1;
-    div((nuEff*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear limited 0.5; }
-interpolationSchemes { default linear; }
-snGradSchemes   { default limited 0.5; }
-wallDist        { method meshWave; }
-"""
+SCHEMES = TURBULENT_FV_SCHEMES
 
 # The pressure: no non-orthogonal corrector (snappyHexMesh's cells here: at most 64.5 deg, 4.2 on
 # average) and pFinal to 1e-5. Measured on the coarse pump at Q_design, revolutions 3-6 of 6

@@ -15,7 +15,7 @@ import os
 
 from fsi import ercoftac_mesh as mesh
 from fsi import ercoftac_pump as ecp
-from fsi.foam_case import write_foam_file
+from fsi.foam_case import TURBULENT_FV_SCHEMES, write_foam_file
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -63,21 +63,8 @@ FIELDS = {
         "blades": "type nutkWallFunction; value uniform 0;", "vanes": "type nutkWallFunction; value uniform 0;"}),
 }
 
-FV_SCHEMES = """ddtSchemes      { default backward; }
-gradSchemes     { default Gauss linear; grad(U) cellLimited Gauss linear 1; }
-divSchemes
-{
-    default         none;
-    div(phi,U)      Gauss LUST grad(U);
-    div(phi,k)      Gauss limitedLinear 1;
-    div(phi,omega)  Gauss limitedLinear 1;
-    div((nuEff*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear limited 0.5; }
-interpolationSchemes { default linear; }
-snGradSchemes   { default limited 0.5; }
-wallDist        { method meshWave; }
-"""
+# The pump cases' schemes, second order in time (the blade passing is what is sampled).
+FV_SCHEMES = TURBULENT_FV_SCHEMES.replace("default Euler", "default backward")
 
 FV_SOLUTION = """solvers
 {

@@ -38,6 +38,26 @@ snGradSchemes   { default corrected; }
 """
 
 
+# fvSchemes of the turbulent pump cases (Spalart-Allmaras or k-omega SST): Euler in time, LUST
+# convection of U, bounded convection of the turbulence variables, limited corrections (the
+# snapped cells), the wall distance by meshWave.
+TURBULENT_FV_SCHEMES = """ddtSchemes      { default Euler; }
+gradSchemes     { default Gauss linear; grad(U) cellLimited Gauss linear 1; }
+divSchemes
+{
+    default         none;
+    div(phi,U)      Gauss LUST grad(U);
+    div(phi,nuTilda) Gauss limitedLinear 1;
+    div(phi,k)      Gauss limitedLinear 1;
+    div(phi,omega)  Gauss limitedLinear 1;
+    div((nuEff*dev2(T(grad(U))))) Gauss linear;
+}
+laplacianSchemes { default Gauss linear limited 0.5; }
+interpolationSchemes { default linear; }
+snGradSchemes   { default limited 0.5; }
+wallDist        { method meshWave; }
+"""
+
 def foam_header(cls, obj):
     """The FoamFile header of a dictionary or field file: class cls, object obj."""
     return FOAM_HEADER % {"cls": cls, "obj": obj}
