@@ -21,9 +21,9 @@ def main(out, case_dir):
     with open(os.path.join(case_dir, "reference.yaml")) as f:
         measured = yaml.safe_load(f)["measured"]
     # the run's length: its last sample (a penalized run's and an AMI run's alike)
-    end = ecp.read_outlet_samples(os.path.join(out, "openfoam"))[-1][0]
-    revolutions = end * ecp.omega_rad_per_s() / (2 * math.pi)
-    ours = ecp.impeller_outlet(os.path.join(out, "openfoam"), settle_revolutions=0.5 * revolutions)
+    samples = ecp.read_outlet_samples(os.path.join(out, "openfoam"))
+    revolutions = samples[-1][0] * ecp.omega_rad_per_s() / (2 * math.pi)
+    ours = ecp.impeller_outlet(os.path.join(out, "openfoam"), 0.5 * revolutions, samples=samples)
     fraction = np.array(ours["profile"]["pitch_fraction"])
     result = {"revolutions_run": round(revolutions, 3), "averaged_from_s": ours["from_s"],
               "averaged_to_s": ours["to_s"], "samples": ours["samples"],

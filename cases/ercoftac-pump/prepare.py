@@ -62,15 +62,17 @@ def main(case_dir):
             write_stamp(stamp, key)
             print("prepare: geometry/impeller.stl written (7 blades, z %g to %g m)" % STL_Z_M)
         level = os.environ.get("FSI_RESOLUTION") or "coarse"
-        for level, (h_near, h_far) in [(level, make_case.LEVELS[level])] if level in make_case.LEVELS else []:
-            foam_case = os.path.join(case_dir, "openfoam-" + level)
-            key = inputs_hash("penalized", h_near, h_far)
-            stamp = os.path.join(foam_case, "constant", "polyMesh", "generated-from")
-            if stamp_matches(stamp, key):
-                continue
-            cells = ercoftac_mesh.foam_mesh(foam_case, "penalized", h_near, h_far, os.path.join(foam_case, "logs"))
-            write_stamp(stamp, key)
-            print("prepare: openfoam-%s meshed: %d cells (h %g to %g m)" % (level, cells, h_near, h_far))
+        if level not in make_case.LEVELS:
+            return                  # not a level of this case: the coupler refuses the preset
+        h_near, h_far = make_case.LEVELS[level]
+        foam_case = os.path.join(case_dir, "openfoam-" + level)
+        key = inputs_hash("penalized", h_near, h_far)
+        stamp = os.path.join(foam_case, "constant", "polyMesh", "generated-from")
+        if stamp_matches(stamp, key):
+            return
+        cells = ercoftac_mesh.foam_mesh(foam_case, "penalized", h_near, h_far, os.path.join(foam_case, "logs"))
+        write_stamp(stamp, key)
+        print("prepare: openfoam-%s meshed: %d cells (h %g to %g m)" % (level, cells, h_near, h_far))
 
 
 if __name__ == "__main__":

@@ -165,6 +165,13 @@ def impeller_triangles(z0, z1):
     return [t for k in range(BLADES) for t in extruded_triangles(one.rotated(2 * math.pi * k / BLADES), z0, z1)]
 
 
+def read_numbers(path):
+    """A data file of numbers (a header line of names, '#' comment lines) as an array of rows."""
+    with open(path) as f:
+        return np.array([[float(v) for v in row.values()] for row in
+                         csv.DictReader(line for line in f if not line.startswith("#"))])
+
+
 def periodic_mean(x, y, period):
     """The mean of y(x) over one period by the trapezoid rule, closed across the period's ends."""
     order = np.argsort(x)
@@ -180,9 +187,7 @@ def impeller_outlet_averages(path=None):
     radial velocity (the swirl the through-flow carries: the work input). Returns a dict of
     floats (over U2) and per_span: {z_over_b: (cr, cu)}."""
     path = path or os.path.join(DATA, "impeller_outlet_velocity.csv")
-    with open(path) as f:
-        rows = np.array([[float(v) for v in row.values()] for row in
-                         csv.DictReader(line for line in f if not line.startswith("#"))])
+    rows = read_numbers(path)
     instants, spans = sorted(set(rows[:, 0])), sorted(set(rows[:, 1]))
     cr, cu, crcu = (np.zeros((len(instants), len(spans))) for _ in range(3))
     for i, t in enumerate(instants):
@@ -224,13 +229,14 @@ def read_outlet_samples(foam_case, name="r214_U.xy"):
     return out
 
 
-def impeller_outlet(foam_case, settle_revolutions, bins=100):
+def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None):
     """Our velocities at R/R2 = 1.02 as the measurement gives them: averaged over the whole circle
     (all 7 pitches) and over the samples after settle_revolutions; and across one pitch in the
     impeller's frame (phase-averaged over the blades and the samples: bins across the pitch,
     the fraction growing against the rotation from an arbitrary blade-fixed origin). Over U2.
-    Also the mean c_r against the flow rate's (continuity): the sampling's check."""
-    samples = read_outlet_samples(foam_case)
+    Also the mean c_r against the flow rate's (continuity): the sampling's check. samples:
+    read_outlet_samples(foam_case), when the caller has read them."""
+    samples = samples if samples is not None else read_outlet_samples(foam_case)
     omega, u2 = omega_rad_per_s(), tip_speed_m_per_s()
     start = settle_revolutions * 2 * math.pi / omega
     used = [s for s in samples if s[0] >= start - 1e-12]
@@ -259,9 +265,7 @@ def measured_profile(z_over_b=0.5, bins=100, path=None):
     """The measured c_r and c_u over U2 across one pitch at span z_over_b: the four instants and
     the two pitches of the data folded onto one pitch, in `bins` bins (the data's fraction)."""
     path = path or os.path.join(DATA, "impeller_outlet_velocity.csv")
-    with open(path) as f:
-        rows = np.array([[float(v) for v in row.values()] for row in
-                         csv.DictReader(line for line in f if not line.startswith("#"))])
+    rows = read_numbers(path)
     rows = rows[np.abs(rows[:, 1] - z_over_b) < 1e-9]
     k = np.minimum((np.mod(rows[:, 2], 1.0) * bins).astype(int), bins - 1)
     counts = np.bincount(k, minlength=bins).astype(float)
