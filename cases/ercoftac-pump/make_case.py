@@ -66,11 +66,14 @@ FIELDS = {
 # The pump cases' schemes, second order in time (the blade passing is what is sampled).
 FV_SCHEMES = TURBULENT_FV_SCHEMES.replace("default Euler", "default backward")
 
+# The pressure to the centrifugal pump's tolerances scaled by the pressure's scale (U2^2: 1934 here,
+# 227 m^2/s^2 in the pump, whose pFinal is solved to 1e-5), by CG with a GAMG V-cycle as its
+# preconditioner, as the pump's penalized runs are (1e-6 took GAMG 130-175 iterations a step).
 FV_SOLUTION = """solvers
 {
-    p      { solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.01; }
-    pFinal { $p; tolerance 1e-6; relTol 0; }
-    "pcorr.*" { $p; tolerance 1e-5; relTol 0; }
+    p      { solver PCG; preconditioner { preconditioner GAMG; smoother GaussSeidel; } tolerance 1e-4; relTol 0.01; }
+    pFinal { $p; tolerance 1e-4; relTol 0; }
+    "pcorr.*" { $p; tolerance 1e-4; relTol 0; }
     "(U|k|omega)(|Final)" { solver PBiCGStab; preconditioner DILU; tolerance 1e-8; relTol 0; }
 }
 PIMPLE
@@ -93,9 +96,17 @@ def sample_points(n=720):
              ecp.MEASUREMENT_RADIUS_M * math.sin(2 * math.pi * k / n)) for k in range(n)]
 
 
+def casing_points(n=180):
+    """The radii of the casing's pressure taps (R/R2 = 0.533-1.019), every 360/n deg."""
+    return [(r * ecp.R2_M * math.cos(2 * math.pi * k / n), r * ecp.R2_M * math.sin(2 * math.pi * k / n))
+            for r in ecp.casing_radii_over_r2() for k in range(n)]
+
+
 def control_dict(h, end_time_s):
     dt = time_step_s(h)
-    points = "\n".join("            (%.9g %.9g %.9g)" % (x, y, 0.5 * h) for x, y in sample_points())
+
+    def listed(points):
+        return "\n".join("            (%.9g %.9g %.9g)" % (x, y, 0.5 * h) for x, y in points)
     return """// make_case.py: the tip moves h/2 per step; %d revolutions.
 application     pimpleFoam;
 startFrom       latestTime;
@@ -114,28 +125,41 @@ timePrecision   8;
 runTimeModifiable false;
 functions
 {
-    // The velocity at the measured radius, every 0.5 deg in the absolute frame, every 10 steps
-    // (postprocess: c_r, c_u against the impeller's angle, pitch- and time-averaged).
+    // The velocity at the measured radius every 20 steps (9 deg of rotation), at 720 probes 0.5 deg
+    // apart in the slab's mid-plane, each the value of the cell it lies in at the run's start
+    // (postprocess: c_r, c_u against the impeller's angle, pitch- and time-averaged). On the AMI's
+    // moving mesh those cells are the rotor's and turn with it (fixedLocations false): probes that
+    // follow the absolute points, or sets, search the mesh anew every step, which took 3 times
+    // the flow's own cost.
     impellerOutlet
     {
-        type            sets;
+        type            probes;
         libs            ("libsampling.so");
         writeControl    timeStep;
-        writeInterval   10;
-        interpolationScheme cellPoint;
-        setFormat       raw;
-        fields          (U p);
-        sets
+        writeInterval   20;
+        interpolationScheme cell;
+        fixedLocations  false;
+        fields          (U);
+        probeLocations
         (
-            r214
-            {
-                type    cloud;
-                axis    xyz;
-                points
-                (
 %s
-                );
-            }
+        );
+    }
+    // The pressure at the radii of the casing's taps, every 2 deg, likewise (postprocess: cp
+    // across a pitch in the impeller's frame; the measurement's is on the casing over the open
+    // impeller, ours in the slab's mid-plane). Probes in a body-fitted blade find no cell.
+    casing
+    {
+        type            probes;
+        libs            ("libsampling.so");
+        writeControl    timeStep;
+        writeInterval   20;
+        interpolationScheme cell;
+        fixedLocations  false;
+        fields          (p);
+        probeLocations
+        (
+%s
         );
     }
     forces
@@ -151,7 +175,8 @@ functions
         log             false;
     }
 }
-""" % (REVOLUTIONS, end_time_s, dt, 2 * math.pi / ecp.omega_rad_per_s(), points, ecp.AIR_DENSITY_KG_PER_M3)
+""" % (REVOLUTIONS, end_time_s, dt, 2 * math.pi / ecp.omega_rad_per_s(), listed(sample_points()),
+       listed(casing_points()), ecp.AIR_DENSITY_KG_PER_M3)
 
 
 def write_folder(level, method):

@@ -209,58 +209,6 @@ def impeller_outlet_averages(path=None):
             "per_span": {z: (float(cr[:, j].mean()), float(cu[:, j].mean())) for j, z in enumerate(spans)}}
 
 
-def read_outlet_samples(foam_case, name="r214_U.xy"):
-    """The velocity sampled at the measured radius (make_case.py's impellerOutlet function object):
-    [(time_s, theta_rad[n], c_r[n], c_u[n])], c_u positive with the impeller's rotation (-theta)."""
-    root = os.path.join(foam_case, "postProcessing", "impellerOutlet")
-    if not os.path.isdir(root):
-        raise ValueError("%s: no samples at the measured radius (the impellerOutlet function object of "
-                         "controlDict)" % root)
-    out = []
-    for folder in sorted(os.listdir(root), key=float):
-        path = os.path.join(root, folder, name)
-        if not os.path.isfile(path):
-            continue
-        data = np.loadtxt(path, ndmin=2)
-        theta = np.arctan2(data[:, 1], data[:, 0])
-        c_r = data[:, 3] * np.cos(theta) + data[:, 4] * np.sin(theta)
-        c_u = -(-data[:, 3] * np.sin(theta) + data[:, 4] * np.cos(theta))
-        out.append((float(folder), theta, c_r, c_u))
-    return out
-
-
-def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None):
-    """Our velocities at R/R2 = 1.02 as the measurement gives them: averaged over the whole circle
-    (all 7 pitches) and over the samples after settle_revolutions; and across one pitch in the
-    impeller's frame (phase-averaged over the blades and the samples: bins across the pitch,
-    the fraction growing against the rotation from an arbitrary blade-fixed origin). Over U2.
-    Also the mean c_r against the flow rate's (continuity): the sampling's check. samples:
-    read_outlet_samples(foam_case), when the caller has read them."""
-    samples = samples if samples is not None else read_outlet_samples(foam_case)
-    omega, u2 = omega_rad_per_s(), tip_speed_m_per_s()
-    start = settle_revolutions * 2 * math.pi / omega
-    used = [s for s in samples if s[0] >= start - 1e-12]
-    if not used:
-        raise ValueError("%s: no samples after %g revolutions (the last at t = %.4g s)"
-                         % (foam_case, settle_revolutions, samples[-1][0] if samples else 0.0))
-    pitch = 2 * math.pi / BLADES
-    sums, counts = np.zeros((2, bins)), np.zeros(bins)
-    for t, theta, c_r, c_u in used:
-        fraction = np.mod(theta + omega * t, pitch) / pitch        # blade-fixed: the blades move toward -theta
-        k = np.minimum((fraction * bins).astype(int), bins - 1)
-        np.add.at(sums[0], k, c_r)
-        np.add.at(sums[1], k, c_u)
-        np.add.at(counts, k, 1.0)
-    continuity = design_flow_rate_m3_per_s() / (2 * math.pi * MEASUREMENT_RADIUS_M * SPAN_M)
-    cr_mean = float(np.mean([np.mean(s[2]) for s in used]))
-    return {"cr_over_u2": cr_mean / u2, "cu_over_u2": float(np.mean([np.mean(s[3]) for s in used])) / u2,
-            "cr_over_continuity": cr_mean / continuity, "samples": len(used),
-            "from_s": used[0][0], "to_s": used[-1][0],
-            "profile": {"pitch_fraction": ((np.arange(bins) + 0.5) / bins).tolist(),
-                        "cr_over_u2": (sums[0] / np.maximum(counts, 1) / u2).tolist(),
-                        "cu_over_u2": (sums[1] / np.maximum(counts, 1) / u2).tolist()}}
-
-
 def measured_profile(z_over_b=0.5, bins=100, path=None):
     """The measured c_r and c_u over U2 across one pitch at span z_over_b: the four instants and
     the two pitches of the data folded onto one pitch, in `bins` bins (the data's fraction)."""
@@ -275,13 +223,22 @@ def measured_profile(z_over_b=0.5, bins=100, path=None):
     return ((np.arange(bins) + 0.5) / bins)[fill], cr, cu
 
 
-def profile_rms(ours_fraction, ours, measured_fraction, measured):
-    """The RMS difference of two profiles across a pitch, ours shifted (periodically) to the
-    measured one's phase by the shift that minimises it (the measurement's origin against the
-    blade is not documented): (rms, shift as a fraction of the pitch)."""
-    best = (math.inf, 0.0)
-    for shift in np.linspace(0.0, 1.0, 200, endpoint=False):
-        moved = np.interp(np.mod(measured_fraction - shift, 1.0), ours_fraction, ours, period=1.0)
-        rms = float(np.sqrt(np.mean((moved - measured) ** 2)))
-        best = min(best, (rms, float(shift)))
-    return best
+def casing_radii_over_r2(path=None):
+    """The ten radii of the casing's pressure taps (casing_pressure.csv), over R2."""
+    return sorted(set(read_numbers(path or os.path.join(DATA, "casing_pressure.csv"))[:, 0].tolist()))
+
+
+def measured_casing_pressure(bins=100, path=None):
+    """The measured casing pressure coefficient (vane-averaged) at each tap radius across one
+    blade pitch: the data's two pitches folded onto one in `bins` bins of the data's angle (its
+    origin is not documented; it grows outward along the blade as Table 2's). Returns (radii over
+    R2, bin centres as pitch fractions, cp[radius, bin], NaN where a bin holds no point)."""
+    rows = read_numbers(path or os.path.join(DATA, "casing_pressure.csv"))
+    radii = sorted(set(rows[:, 0].tolist()))
+    cp = np.full((len(radii), bins), np.nan)
+    for i, r in enumerate(radii):
+        s = rows[rows[:, 0] == r]
+        k = np.minimum((np.mod(s[:, 1] / (360.0 / BLADES), 1.0) * bins).astype(int), bins - 1)
+        counts = np.bincount(k, minlength=bins)
+        cp[i, counts > 0] = np.bincount(k, s[:, 2], minlength=bins)[counts > 0] / counts[counts > 0]
+    return np.array(radii), (np.arange(bins) + 0.5) / bins, cp

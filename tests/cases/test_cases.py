@@ -15,7 +15,6 @@ with tolerances stated at each assertion.
 Each test writes into its own temporary folder (FSI_KEEP_TEST_DIRS=1 keeps it).
 """
 
-import glob
 import os
 import re
 import shutil
@@ -40,6 +39,7 @@ sys.dont_write_bytecode = True  # the case scripts loaded below: no __pycache__ 
 
 from fsi import case_module, fsi_launch, pump_head_budget, rotating_disc  # noqa: E402  (python/fsi/)
 from fsi import ercoftac_pump as ecp  # noqa: E402
+from fsi import ercoftac_compare as ecc  # noqa: E402
 from fsi.foam_case import LAMINAR_FV_SCHEMES, OPENFOAM_ENVIRONMENT  # noqa: E402
 
 free_edge = case_module("pendulum-in-air", "free_edge")  # cases/pendulum-in-air/free_edge.py
@@ -240,14 +240,14 @@ class CentrifugalPump(CaseTest):
 
 
 class ErcoftacPump(CaseTest):
-    """cases/ercoftac-pump, coarse, for its first steps through the launcher (prepare.py meshes the
+    """cases/ercoftac-pump, coarse, for its first 40 steps through the launcher (prepare.py meshes the
     slab with gmsh): the one-cell slab's faces empty and the vanes walls, the impeller only
     penalized (no blade patch), the test's flow rate through the slab (the inflow and the outflow,
     sum of phi on the patches, equal to Q dz / b to 1e-4: the inflow velocity derived from the
     flow coefficient), the impeller's loads finite every step and the velocity sampled at the
     measured radius. The comparison with the measurements needs revolutions: not the suite."""
 
-    STEPS = 12
+    STEPS = 40                      # the velocity is sampled every 20 steps
 
     def test_first_steps(self):
         need_openfoam(self)
@@ -274,11 +274,13 @@ class ErcoftacPump(CaseTest):
             found = re.search(r"sum\(%s\) of phi = (\S+)" % patch, done.stdout.decode())
             self.assertIsNotNone(found, done.stdout.decode()[-2000:])
             flux[patch] = float(found.group(1))
-        samples = sorted(glob.glob(os.path.join(foam, "postProcessing", "impellerOutlet", "*", "r214_U.xy")))
-        self.assertTrue(samples)
-        points = np.loadtxt(samples[-1])
-        self.assertEqual(points.shape, (720, 6))
+        samples = ecc.read_outlet_samples(foam)
+        self.assertEqual([len(s[1]) for s in samples], [720, 720])       # steps 20 and 40
+        with open(os.path.join(foam, "postProcessing", "impellerOutlet", "0", "U")) as f:
+            points = np.array([[float(v) for v in line[line.index("(") + 1:line.index(")")].split()]
+                               for line in f if line.startswith("# Probe ")])
         self.assertLess(np.max(np.abs(np.hypot(points[:, 0], points[:, 1]) - ecp.MEASUREMENT_RADIUS_M)), 1e-6)
+        self.assertTrue(all(np.all(np.isfinite(s[3])) for s in samples))
         slab = 2 * points[0, 2]                      # sampled in the slab's mid-plane
         expected = ecp.design_flow_rate_m3_per_s() * slab / ecp.SPAN_M
         self.assertAlmostEqual(-flux["inlet"] / expected, 1.0, delta=1e-4)

@@ -20,6 +20,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 from fsi import ercoftac_pump as ecp  # noqa: E402
+from fsi import ercoftac_compare as ecc  # noqa: E402
 
 
 class TableTwo(unittest.TestCase):
@@ -106,37 +107,142 @@ class ImpellerSurface(unittest.TestCase):
 
 
 class Postprocess(unittest.TestCase):
-    """ecp.impeller_outlet on samples of a known field written as the impellerOutlet function
-    object writes them: c_r = 0.13 U2, c_u = (0.4 + 0.1 cos 7 phi) U2 positive toward -theta, phi
-    the impeller-fixed angle theta + omega t; its averages, its profile across a pitch, and the
-    phase that profile_rms finds."""
+    """ecp.impeller_outlet on samples of a known field written as the impellerOutlet probes write
+    them: c_r = 0.13 U2, c_u = (0.4 + 0.1 cos 7 phi) U2 positive toward -theta, phi the
+    impeller-fixed angle theta + omega t; its averages, its profile across a pitch, and the phase
+    that profile_rms finds. Both frames: probes at fixed points (the penalized run's static mesh)
+    and probes in the rotor's cells, which turn with it from the run's start (the AMI run's
+    moving mesh: a dynamicMeshDict in the folder), the second file a restart's."""
+
+    def write_probes(self, foam, turning, stator=0.0):
+        """stator: the amplitude of a vane-fixed pattern added to c_u, stator cos(12 (theta - the
+        vane's leading edge))."""
+        omega, u2 = ecp.omega_rad_per_s(), ecp.tip_speed_m_per_s()
+        edge = ecp.vane().a[0]
+        theta0 = 2 * np.pi * np.arange(720) / 720
+        r = ecp.MEASUREMENT_RADIUS_M
+        if turning:
+            os.makedirs(os.path.join(foam, "constant"))
+            open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
+        for start, steps in ((0.0, range(1, 21)), (20 * 3.75e-4, range(21, 41))):
+            folder = os.path.join(foam, "postProcessing", "impellerOutlet", "%.8g" % start)
+            os.makedirs(folder)
+            with open(os.path.join(folder, "U"), "w") as f:
+                for k, a in enumerate(theta0):
+                    f.write("# Probe %d (%.9g %.9g 0.00165)\n" % (k, r * np.cos(a), r * np.sin(a)))
+                f.write("#       Probe  0 1 ...\n#        Time\n")
+                for step in steps:
+                    t = step * 3.75e-4
+                    theta = theta0 - omega * (t - start) if turning else theta0
+                    phi = theta + omega * t
+                    c_r, c_u = 0.13 * u2, (0.4 + 0.1 * np.cos(ecp.BLADES * phi)) * u2
+                    c_u = c_u + stator * u2 * np.cos(ecp.VANES * (theta - np.arctan2(edge[1], edge[0])))
+                    ux = c_r * np.cos(theta) + c_u * np.sin(theta)      # c_u along -e_theta
+                    uy = c_r * np.sin(theta) - c_u * np.cos(theta)
+                    f.write("%.8g" % t + "".join("  (%.9g %.9g 0)" % v for v in zip(ux, uy)) + "\n")
+                f.write("%.8g  (1 2" % (steps[-1] * 3.75e-4 + 1e-4))          # cut short by a stopped run
 
     def test_a_known_field(self):
+        omega = ecp.omega_rad_per_s()
+        for turning in (False, True):
+            with self.subTest(turning=turning), tempfile.TemporaryDirectory() as foam:
+                self.write_probes(foam, turning)
+                self.assertEqual(len(ecc.read_outlet_samples(foam)), 40)
+                got = ecc.impeller_outlet(foam, settle_revolutions=0.1)
+                self.assertAlmostEqual(got["cu_over_u2"], 0.4, delta=1e-9)
+                self.assertAlmostEqual(got["cr_over_u2"], 0.13, delta=1e-9)
+                self.assertLess(got["from_s"], 0.1 * 2 * np.pi / omega + 3.75e-4)
+                fraction = np.array(got["profile"]["pitch_fraction"])
+                profile = np.array(got["profile"]["cu_over_u2"])
+                self.assertLess(np.max(np.abs(profile - (0.4 + 0.1 * np.cos(2 * np.pi * fraction)))), 0.004)
+                moved = 0.4 + 0.1 * np.cos(2 * np.pi * (fraction - 0.3))
+                shift, (rms, rms_flat) = ecc.common_shift_rms([(fraction, profile, fraction, moved),
+                                                               (fraction, 0 * profile, fraction, 0 * moved)])
+                self.assertAlmostEqual(shift, 0.3, delta=0.006)
+                self.assertLess(rms, 0.004)
+                self.assertEqual(rms_flat, 0.0)
+                self.assertLess(np.ptp(got["cu_over_u2_by_vane_phase"]), 0.002)
+
+    def test_the_vanes_phase(self):
+        """A vane-fixed pattern of amplitude 0.05 U2 in c_u averages over a passage (1.71 vane pitches)
+        to 0.05 * 2 |sin(6 P)| / (12 P) cos(12 a + 6 P), P the pitch and a the passage's first blade
+        against the vane: 0.0145 peak to peak (0.0144 over 12 bins), the whole average unchanged."""
+        for turning in (False, True):
+            with self.subTest(turning=turning), tempfile.TemporaryDirectory() as foam:
+                self.write_probes(foam, turning, stator=0.05)
+                got = ecc.impeller_outlet(foam, settle_revolutions=0.0)
+                self.assertAlmostEqual(got["cu_over_u2"], 0.4, delta=1e-9)
+                self.assertEqual(len(got["cu_over_u2_by_vane_phase"]), 12)
+                self.assertGreater(np.ptp(got["cu_over_u2_by_vane_phase"]), 0.0125)
+                self.assertLess(np.ptp(got["cu_over_u2_by_vane_phase"]), 0.0150)
+
+
+class Casing(unittest.TestCase):
+    """The casing pressure: the measured cp folded onto a pitch (every tap radius, nearly every bin
+    filled); the blade mask as wide as the blade; ecc.casing_pressure on probes of a known field
+    cp = 0.2 + 0.5 (r/R2 - 0.5) + 0.1 cos(7 phi) in the impeller's frame, at rest and turning;
+    and casing_fit finding a shift and an offset put into a copy."""
+
+    def test_measured(self):
+        radii, fraction, cp = ecp.measured_casing_pressure(50)
+        self.assertEqual(len(radii), 10)
+        self.assertAlmostEqual(radii[0], 0.53333, delta=1e-9)
+        self.assertGreater(np.mean(np.isfinite(cp)), 0.95)
+        # the pitch-averaged cp rises by 0.6 from the innermost tap to the outermost (CP.DAT)
+        rise = np.nanmean(cp[-1]) - np.nanmean(cp[0])
+        self.assertAlmostEqual(rise, 0.608, delta=0.01)
+
+    def test_blade_mask(self):
+        mask = ecc.blade_mask([0.15], 400)
+        width_deg = mask.sum() / 400 * 360 / ecp.BLADES
+        # 10 mm normal thickness at r = 0.15 m, crossed at about 60 deg from the normal
+        thickness = math.degrees(0.010 / 0.15)
+        self.assertGreater(width_deg, thickness)
+        self.assertLess(width_deg, 3 * thickness)
+        self.assertFalse(ecc.blade_mask([0.2142], 100).any())
+
+    def write_probes(self, foam, turning, radii):
         omega, u2 = ecp.omega_rad_per_s(), ecp.tip_speed_m_per_s()
-        with tempfile.TemporaryDirectory() as foam:
-            theta = 2 * np.pi * np.arange(720) / 720
-            for step in range(1, 41):
-                t = step * 3.75e-5 * 10
-                phi = theta + omega * t
-                c_r, c_u = 0.13 * u2, (0.4 + 0.1 * np.cos(ecp.BLADES * phi)) * u2
-                ux = c_r * np.cos(theta) + c_u * np.sin(theta)      # c_u along -e_theta
-                uy = c_r * np.sin(theta) - c_u * np.cos(theta)
-                folder = os.path.join(foam, "postProcessing", "impellerOutlet", "%.8g" % t)
-                os.makedirs(folder)
-                r = ecp.MEASUREMENT_RADIUS_M
-                np.savetxt(os.path.join(folder, "r214_U.xy"),
-                           np.column_stack([r * np.cos(theta), r * np.sin(theta), np.full(720, 0.00165), ux, uy,
-                                            np.zeros(720)]))
-            got = ecp.impeller_outlet(foam, settle_revolutions=0.1)
-            self.assertAlmostEqual(got["cu_over_u2"], 0.4, delta=1e-9)
-            self.assertAlmostEqual(got["cr_over_u2"], 0.13, delta=1e-9)
-            self.assertLess(got["from_s"], 0.1 * 2 * np.pi / omega + 3.75e-4)
-            fraction, profile = np.array(got["profile"]["pitch_fraction"]), np.array(got["profile"]["cu_over_u2"])
-            self.assertLess(np.max(np.abs(profile - (0.4 + 0.1 * np.cos(2 * np.pi * fraction)))), 0.004)
-            moved = 0.4 + 0.1 * np.cos(2 * np.pi * (fraction - 0.3))
-            rms, shift = ecp.profile_rms(fraction, profile, fraction, moved)
-            self.assertAlmostEqual(shift, 0.3, delta=0.006)
-            self.assertLess(rms, 0.004)
+        theta0 = 2 * np.pi * np.arange(180) / 180
+        if turning:
+            os.makedirs(os.path.join(foam, "constant"))
+            open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
+        folder = os.path.join(foam, "postProcessing", "casing", "0")
+        os.makedirs(folder)
+        with open(os.path.join(folder, "p"), "w") as f:
+            points = [(r * ecp.R2_M, a) for r in radii for a in theta0]
+            for k, (r, a) in enumerate(points):
+                f.write("# Probe %d (%.9g %.9g 0.00165)\n" % (k, r * np.cos(a), r * np.sin(a)))
+            for step in range(1, 61):
+                t = step * 20 * 3.75e-5
+                values = []
+                for r, a in points:
+                    phi = a + (0.0 if turning else omega * t)
+                    values.append(0.5 * u2 ** 2 * (0.2 + 0.5 * (r / ecp.R2_M - 0.5) + 0.1 * np.cos(ecp.BLADES * phi)))
+                values[3] = -1e300                       # a probe in no cell
+                f.write("%.8g" % t + "".join("  %.9g" % v for v in values) + "\n")
+
+    def test_known_field(self):
+        radii = [0.6, 0.8, 1.0]
+        for turning in (False, True):
+            with self.subTest(turning=turning), tempfile.TemporaryDirectory() as foam:
+                self.write_probes(foam, turning, radii)
+                got_radii, fraction, cp, used = ecc.casing_pressure(foam, 0.0, bins=50)
+                self.assertEqual(used, 60)
+                self.assertEqual(got_radii.tolist(), radii)
+                expected = (0.2 + 0.5 * (np.array(radii)[:, None] - 0.5) + 0.1 * np.cos(2 * np.pi * fraction)[None, :])
+                good = np.isfinite(cp)
+                self.assertGreater(good.mean(), 0.8)
+                self.assertFalse(good[ecc.blade_mask(np.array(radii) * ecp.R2_M, 50)].any())
+                # cell-free bins: the probes 2 deg apart, the pitch in 50 bins of 1.03 deg
+                self.assertLess(np.max(np.abs(cp[good] - expected[good])), 0.012)
+                fit = ecc.casing_fit(cp, np.roll(expected, 10, axis=1) - 0.07)
+                self.assertAlmostEqual(fit["shift_pitch_fraction"], 0.2, delta=1e-9)
+                self.assertAlmostEqual(fit["offset"], -0.07, delta=0.003)
+                self.assertLess(fit["rms"], 0.01)
+                self.assertAlmostEqual(fit["rise_ours"][-1], fit["rise_measured"][-1], delta=0.005)
+                # 0.2, but the bins left out in the blade at 0.6 R2 take a part of the cosine from both alike
+                self.assertAlmostEqual(fit["rise_ours"][-1], 0.2, delta=0.03)
 
 
 class Mesh(unittest.TestCase):
