@@ -42,6 +42,9 @@
 #                             from one settled state: head, torque by part, leak, cost (comparison.md)
 #   ./fsi coupling-study [--only laws|implicit]  the coupling laws at equal cost and implicit coupling
 #                             against explicit on real runs (study/coupling/COUPLING.md; docs/coupling.md)
+#   ./fsi ercoftac-study [--levels coarse,medium] [--revolutions 10] [--jobs 2] [-o DIR]
+#                             the ERCOFTAC pump (cases/ercoftac-pump) penalized and body-fitted at each
+#                             mesh level against its measurement (study/ercoftac-pump/ERCOFTAC.md)
 #   ./fsi disc-study [--only laminar|turbulent] [--levels 2] [--jobs 2] [-o DIR]
 #                             the rotating disc (cases/rotating-disc) penalized and body-fitted on the
 #                             same meshes against the analytic and Daily & Nece torques (study/rotating-disc/DISC.md)
@@ -325,6 +328,8 @@ case "${1:-help}" in
     shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.coupling_study --bin-dir "$BUILD/bin" "$@" ;;
   disc-study)
     shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.disc_study --bin-dir "$BUILD/bin" "$@" ;;
+  ercoftac-study)
+    shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.ercoftac_study --bin-dir "$BUILD/bin" "$@" ;;
   pump-compare)
     shift; [ $# -ge 1 ] || die "usage: ./fsi pump-compare [--flow-fraction F] [--revolutions N] [--ranks N] [--from DIR] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.pump_compare --bin-dir "$BUILD/bin" "$@" ;;
@@ -336,5 +341,5 @@ case "${1:-help}" in
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
   help|-h|--help) sed -n '2,/^set -euo/p' "$0" | grep '^#' | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, pump-compare, rag-ensemble, coupling-study, disc-study, build, help)" ;;
+  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, pump-compare, rag-ensemble, coupling-study, disc-study, ercoftac-study, build, help)" ;;
 esac
