@@ -6,6 +6,8 @@ measurement (reference.yaml, data/):
   midspan and the span average, the RMS difference of the profiles across a pitch (ours moved by
   the one shift that fits both, the measurement's origin against the blade being undocumented),
   and the sampling's check (our mean c_r against continuity's);
+- the impeller's torque against the angular momentum the flow carries out through that radius
+  (they balance: nothing else turns the flow between the blades and the probes);
 - on the casing's tap radii: cp across a pitch against the measured one, with one shift and one
   offset (the reference pressure is not stated), and the rise of the pitch-averaged cp from the
   innermost tap.
@@ -42,6 +44,9 @@ def outlet(foam, measured):
         (fraction, ours["profile"]["cr_over_u2"], m_fraction, m_cr)])
     result.update({"cu_profile_rms_midspan": rms_cu, "cr_profile_rms_midspan": rms_cr,
                    "profile_shift_pitch_fraction": shift})
+    balance = ecc.angular_momentum_balance(os.path.dirname(foam), 0.5 * revolutions, samples=samples)
+    if balance:
+        result["angular_momentum"] = balance
     return result, ours, revolutions, (m_fraction, m_cr, m_cu)
 
 
@@ -123,6 +128,8 @@ def main(out, case_dir):
             % (ours["cu_over_u2"], measured["cu_over_u2_midspan"], measured["cu_over_u2_span_average"],
                100 * result["cu_error_against_midspan"], 100 * result["cu_error_against_span_average"],
                ours["cr_over_continuity"], result["cu_profile_rms_midspan"], result["cr_profile_rms_midspan"]))
+    if "angular_momentum" in result:
+        line += "; angular momentum flux / torque %.3f" % result["angular_momentum"]["flux_over_torque"]
     if casing_result:
         line += "; casing cp RMS %.3f, rise %.3f (measured %.3f)" % (
             casing_result["cp_rms"], casing_result["cp_rise_ours"][-1], casing_result["cp_rise_measured"][-1])

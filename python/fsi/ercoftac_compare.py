@@ -121,6 +121,42 @@ def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None, vane_
                         "cu_over_u2": (sums[1] / np.maximum(counts, 1) / u2).tolist()}}
 
 
+def angular_momentum_balance(out, settle_revolutions, samples=None):
+    """The impeller's torque against the angular momentum the flow carries out through the
+    measured radius (nothing else acts between the blades' trailing edge at R2 and that circle, and
+    the inflow has no swirl), over the samples after settle_revolutions: rho dz r^2 sum(c_r c_u)
+    dtheta, divided by the sampled mass flux over the imposed one (the sampling's error, which
+    the product shares). The torque is the penalized body's (out/forces.csv, about its box's
+    centre) or the blades' patch's (the forces function object, about the axis), over the same
+    time. Returns {torque_n_m, flux_torque_n_m, flux_over_torque} of the slab, or None without
+    a torque."""
+    foam = os.path.join(out, "openfoam")
+    points, rows = read_probes(foam, "impellerOutlet", "U")
+    samples = samples if samples is not None else read_outlet_samples(foam)
+    used = after(samples, settle_revolutions, foam)
+    start, end = used[0][0], used[-1][0]
+    penalized = os.path.join(out, "forces.csv")
+    moment = os.path.join(foam, "postProcessing", "forces", "0", "moment.dat")
+    if os.path.isfile(penalized):
+        loads = np.loadtxt(penalized, delimiter=",", skiprows=1, ndmin=2)
+        torque = loads[:, [0, 6]]
+    elif os.path.isfile(moment):
+        with open(moment) as f:
+            torque = np.array([[float(v) for v in line.replace("(", " ").replace(")", " ").split()[:4:3]]
+                               for line in f if not line.startswith("#")])
+    else:
+        return None
+    window = (torque[:, 0] >= start - 1e-12) & (torque[:, 0] <= end + 1e-12)
+    dz = 2.0 * points[0, 2]                      # sampled in the one-cell slab's mid-plane
+    r = ecp.MEASUREMENT_RADIUS_M
+    n = len(used[0][1])
+    flux = np.mean([np.sum(s[2] * s[3]) for s in used]) * ecp.AIR_DENSITY_KG_PER_M3 * dz * r * r * 2 * math.pi / n
+    sampled = np.mean([np.sum(s[2]) for s in used]) * dz * r * 2 * math.pi / n
+    flux /= sampled / (ecp.design_flow_rate_m3_per_s() * dz / ecp.SPAN_M)
+    mean_torque = float(np.mean(torque[window, 1]))
+    return {"torque_n_m": mean_torque, "flux_torque_n_m": float(flux), "flux_over_torque": float(flux) / mean_torque}
+
+
 def blade_mask(radii_m, bins):
     """[radius, bin] True where the bin's centre (phi = (bin + 0.5) / bins of the pitch) lies in a
     blade: no fluid there, in neither method."""

@@ -125,20 +125,23 @@ def report(runs, out, measured, failed=()):
              "cases/ercoftac-pump/README.md. Each run from rest, averaged over its second half; c_u/U2 and c_r/U2 "
              "pitch-averaged at R/R2 = 1.02 (measured: c_u/U2 %.3f midspan, %.3f span average); profile RMS across "
              "a pitch at the one shift that fits c_u and c_r; casing cp RMS at one fitted shift and offset; "
-             "wall seconds per revolution on one core." % (measured["cu_over_u2_midspan"],
+             "the angular momentum the flow carries through R/R2 = 1.02 over the impeller's torque (1 when the "
+             "torque is all the flow gets); wall seconds per revolution on one core." % (measured["cu_over_u2_midspan"],
                                                          measured["cu_over_u2_span_average"]), "",
              "| level | method | cells | c_u/U2 | vs midspan | vs span average | c_r / continuity | profile RMS c_u, c_r "
-             "| casing cp RMS | cp rise (measured %s) | s per revolution |" % (
+             "| casing cp RMS | cp rise (measured %s) | angular momentum flux / torque | s per revolution |" % (
                  next(("%.3f" % r.result["casing"]["cp_rise_measured"][-1] for r in runs if "casing" in r.result), "-")),
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in runs:
         res = r.result
         casing = res.get("casing")
-        lines.append("| %s | %s | %d | %.4f | %+.1f %% | %+.1f %% | %.3f | %.3f, %.3f | %s | %s | %.0f |" % (
+        balance = res.get("angular_momentum")
+        lines.append("| %s | %s | %d | %.4f | %+.1f %% | %+.1f %% | %.3f | %.3f, %.3f | %s | %s | %s | %.0f |" % (
             r.level, r.method, res["cells"], res["cu_over_u2"], 100 * res["cu_error_against_midspan"],
             100 * res["cu_error_against_span_average"], res["cr_over_continuity"], res["cu_profile_rms_midspan"],
             res["cr_profile_rms_midspan"], "%.3f" % casing["cp_rms"] if casing else "-",
-            "%.3f" % casing["cp_rise_ours"][-1] if casing else "-", res["wall_s_per_revolution"]))
+            "%.3f" % casing["cp_rise_ours"][-1] if casing else "-",
+            "%.3f" % balance["flux_over_torque"] if balance else "-", res["wall_s_per_revolution"]))
     lines.append("")
     for level in sorted({r.level for r in runs}):
         pair = {r.method: r for r in runs if r.level == level}
@@ -154,13 +157,14 @@ def report(runs, out, measured, failed=()):
         f.write("\n".join(lines))
     with open(os.path.join(out, "ercoftac.csv"), "w") as f:
         f.write("level,method,cells,cu_over_u2,cr_over_u2,cr_over_continuity,cu_profile_rms,cr_profile_rms,"
-                "casing_cp_rms,casing_cp_rise,wall_s_per_revolution\n")
+                "casing_cp_rms,casing_cp_rise,torque_n_m,flux_over_torque,wall_s_per_revolution\n")
         for r in runs:
-            res, casing = r.result, r.result.get("casing")
-            f.write("%s,%s,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%s,%.1f\n" % (
+            res, casing, balance = r.result, r.result.get("casing"), r.result.get("angular_momentum")
+            f.write("%s,%s,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%s,%s,%s,%.1f\n" % (
                 r.level, r.method, res["cells"], res["cu_over_u2"], res["cr_over_u2"], res["cr_over_continuity"],
                 res["cu_profile_rms_midspan"], res["cr_profile_rms_midspan"],
                 "%.6g" % casing["cp_rms"] if casing else "", "%.6g" % casing["cp_rise_ours"][-1] if casing else "",
+                "%.6g" % balance["torque_n_m"] if balance else "", "%.6g" % balance["flux_over_torque"] if balance else "",
                 res["wall_s_per_revolution"]))
     draw(runs, measured, os.path.join(out, "ercoftac.png"))
     return "\n".join(lines)

@@ -163,6 +163,25 @@ class Postprocess(unittest.TestCase):
                 self.assertEqual(rms_flat, 0.0)
                 self.assertLess(np.ptp(got["cu_over_u2_by_vane_phase"]), 0.002)
 
+    def test_angular_momentum_balance(self):
+        """The flux of angular momentum through the probes' circle is Euler's rho Q' r c_u (Q' the
+        slab's share of the flow, whatever c_r the probes sample), against a penalized run's torque
+        in forces.csv over the same samples."""
+        with tempfile.TemporaryDirectory() as out:
+            foam = os.path.join(out, "openfoam")
+            self.write_probes(foam, turning=False)
+            euler = (ecp.AIR_DENSITY_KG_PER_M3 * ecp.design_flow_rate_m3_per_s() * 0.0033 / ecp.SPAN_M
+                     * ecp.MEASUREMENT_RADIUS_M * 0.4 * ecp.tip_speed_m_per_s())
+            self.assertIsNone(ecc.angular_momentum_balance(out, 0.0))
+            with open(os.path.join(out, "forces.csv"), "w") as f:
+                f.write("time_s,body0.fx_n,body0.fy_n,body0.fz_n,body0.tx_n_m,body0.ty_n_m,body0.tz_n_m\n")
+                for step in range(1, 800):
+                    t = step * 3.75e-5
+                    f.write("%.8g,0,0,0,0,0,%.9g\n" % (t, 0.5 * euler if t > 0.02 else euler))
+            got = ecc.angular_momentum_balance(out, 0.0)
+            self.assertAlmostEqual(got["flux_torque_n_m"] / euler, 1.0, delta=1e-9)
+            self.assertAlmostEqual(got["flux_over_torque"], 1.0, delta=1e-8)   # the samples end at 0.015 s
+
     def test_the_vanes_phase(self):
         """A vane-fixed pattern of amplitude 0.05 U2 in c_u averages over a passage (1.71 vane pitches)
         to 0.05 * 2 |sin(6 P)| / (12 P) cos(12 a + 6 P), P the pitch and a the passage's first blade
