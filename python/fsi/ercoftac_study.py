@@ -126,7 +126,8 @@ def report(runs, out, measured, failed=()):
              "pitch-averaged at R/R2 = 1.02 (measured: c_u/U2 %.3f midspan, %.3f span average); profile RMS across "
              "a pitch at the one shift that fits c_u and c_r; casing cp RMS at one fitted shift and offset; "
              "the angular momentum the flow carries through R/R2 = 1.02 over the impeller's torque (1 when the "
-             "torque is all the flow gets); wall seconds per revolution on one core." % (measured["cu_over_u2_midspan"],
+             "torque is all the flow gets); wall seconds per revolution of each run on one core, as it ran (beside "
+             "the study's other runs: compare costs from runs that ran side by side)." % (measured["cu_over_u2_midspan"],
                                                          measured["cu_over_u2_span_average"]), "",
              "| level | method | cells | c_u/U2 | vs midspan | vs span average | c_r / continuity | profile RMS c_u, c_r "
              "| casing cp RMS | cp rise (measured %s) | angular momentum flux / torque | s per revolution |" % (
