@@ -47,7 +47,9 @@ def inputs_fingerprint():
     paths = []
     for root, dirs, files in os.walk(CASE):
         dirs[:] = sorted(d for d in dirs if d not in SKIPPED_DIRS)
-        paths += [os.path.join(root, n) for n in sorted(files) if not n.startswith(".") and n != "postprocess.py"]
+        # the documentation and the postprocessing (redone on every call) are not a run's inputs
+        paths += [os.path.join(root, n) for n in sorted(files)
+                  if not n.startswith(".") and n != "postprocess.py" and not n.endswith(".md")]
     paths += [os.path.join(HERE, n) for n in MODULES]
     return files_digest(ROOT, paths)
 
