@@ -102,11 +102,28 @@ def casing_points(n=180):
             for r in ecp.casing_radii_over_r2() for k in range(n)]
 
 
+PROBES = """    %s
+    {
+        type            probes;
+        libs            ("libsampling.so");
+        writeControl    timeStep;
+        writeInterval   20;
+        interpolationScheme cell;
+        fixedLocations  false;
+        fields          (%s);
+        probeLocations
+        (
+%s
+        );
+    }
+"""
+
+
 def control_dict(h, end_time_s):
     dt = time_step_s(h)
 
-    def listed(points):
-        return "\n".join("            (%.9g %.9g %.9g)" % (x, y, 0.5 * h) for x, y in points)
+    def probes(name, field, points):
+        return PROBES % (name, field, "\n".join("            (%.9g %.9g %.9g)" % (x, y, 0.5 * h) for x, y in points))
     return """// make_case.py: the tip moves h/2 per step; %d revolutions.
 application     pimpleFoam;
 startFrom       latestTime;
@@ -131,38 +148,10 @@ functions
     // moving mesh those cells are the rotor's and turn with it (fixedLocations false): probes that
     // follow the absolute points, or sets, search the mesh anew every step, which took 3 times
     // the flow's own cost.
-    impellerOutlet
-    {
-        type            probes;
-        libs            ("libsampling.so");
-        writeControl    timeStep;
-        writeInterval   20;
-        interpolationScheme cell;
-        fixedLocations  false;
-        fields          (U);
-        probeLocations
-        (
-%s
-        );
-    }
-    // The pressure at the radii of the casing's taps, every 2 deg, likewise (postprocess: cp
+%s    // The pressure at the radii of the casing's taps, every 2 deg, likewise (postprocess: cp
     // across a pitch in the impeller's frame; the measurement's is on the casing over the open
     // impeller, ours in the slab's mid-plane). Probes in a body-fitted blade find no cell.
-    casing
-    {
-        type            probes;
-        libs            ("libsampling.so");
-        writeControl    timeStep;
-        writeInterval   20;
-        interpolationScheme cell;
-        fixedLocations  false;
-        fields          (p);
-        probeLocations
-        (
-%s
-        );
-    }
-    forces
+%s    forces
     {
         type            forces;
         libs            ("libforces.so");
@@ -175,8 +164,8 @@ functions
         log             false;
     }
 }
-""" % (REVOLUTIONS, end_time_s, dt, 2 * math.pi / ecp.omega_rad_per_s(), listed(sample_points()),
-       listed(casing_points()), ecp.AIR_DENSITY_KG_PER_M3)
+""" % (REVOLUTIONS, end_time_s, dt, 2 * math.pi / ecp.omega_rad_per_s(), probes("impellerOutlet", "U", sample_points()),
+       probes("casing", "p", casing_points()), ecp.AIR_DENSITY_KG_PER_M3)
 
 
 def write_folder(level, method):

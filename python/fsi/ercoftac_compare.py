@@ -58,13 +58,14 @@ def read_probes(foam_case, name, field):
 
 
 def read_outlet_samples(foam_case):
-    """The velocity at the measured radius: [(time_s, theta_rad[n], c_r[n], c_u[n])], c_u positive
-    with the impeller's rotation (-theta)."""
+    """The velocity at the measured radius: [(time_s, theta_rad[n], c_r[n], c_u[n], z_m)], c_u
+    positive with the impeller's rotation (-theta), z the probes' height (the slab's mid-plane)."""
+    points, rows = read_probes(foam_case, "impellerOutlet", "U")
     out = []
-    for t, theta, u in read_probes(foam_case, "impellerOutlet", "U")[1]:
+    for t, theta, u in rows:
         c_r = u[:, 0] * np.cos(theta) + u[:, 1] * np.sin(theta)
         c_u = -(-u[:, 0] * np.sin(theta) + u[:, 1] * np.cos(theta))
-        out.append((t, theta, c_r, c_u))
+        out.append((t, theta, c_r, c_u, float(points[0, 2])))
     return out
 
 
@@ -95,7 +96,7 @@ def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None, vane_
     vane_angle = math.atan2(leading_edge[1], leading_edge[0])
     sums, counts = np.zeros((2, bins)), np.zeros(bins)
     by_phase, in_phase = np.zeros(vane_phases), np.zeros(vane_phases)
-    for t, theta, c_r, c_u in used:
+    for t, theta, c_r, c_u, _z in used:
         phi = np.mod(theta + omega * t, 2 * math.pi)
         fraction = np.mod(phi, pitch) / pitch
         k = np.minimum((fraction * bins).astype(int), bins - 1)
@@ -131,7 +132,6 @@ def angular_momentum_balance(out, settle_revolutions, samples=None):
     time. Returns {torque_n_m, flux_torque_n_m, flux_over_torque} of the slab, or None without
     a torque."""
     foam = os.path.join(out, "openfoam")
-    points, rows = read_probes(foam, "impellerOutlet", "U")
     samples = samples if samples is not None else read_outlet_samples(foam)
     used = after(samples, settle_revolutions, foam)
     start, end = used[0][0], used[-1][0]
@@ -147,7 +147,7 @@ def angular_momentum_balance(out, settle_revolutions, samples=None):
     else:
         return None
     window = (torque[:, 0] >= start - 1e-12) & (torque[:, 0] <= end + 1e-12)
-    dz = 2.0 * points[0, 2]                      # sampled in the one-cell slab's mid-plane
+    dz = 2.0 * samples[0][4]                     # sampled in the one-cell slab's mid-plane
     r = ecp.MEASUREMENT_RADIUS_M
     n = len(used[0][1])
     flux = np.mean([np.sum(s[2] * s[3]) for s in used]) * ecp.AIR_DENSITY_KG_PER_M3 * dz * r * r * 2 * math.pi / n
