@@ -70,6 +70,23 @@ void OpenFoamFlow::immersed_transpiration(double &inflow, double &power) const {
   });
 }
 
+void OpenFoamFlow::record_penalization_residual(const Foam::fvVectorMatrix &UEqn) {
+  // The penalized cells' momentum equation, A u - H = -grad(p) with the penalization in A and
+  // H, holds for the velocities it was solved with: the predictor's u* in H's neighbours and the
+  // correctors' pressure. Its residual with the step's final u and p is the momentum the body
+  // cells exchange with the final flow that -rate (u - u_rib) does not show (the fluid's cells
+  // beside the body moved from u* to u in the correctors; the body's own cells did not).
+  using namespace Foam;
+  const auto &rate = penalizationRate_->primitiveField();
+  const volScalarField A(UEqn.A());
+  const volVectorField H(UEqn.H());
+  const tmp<volVectorField> gradient = pressure_gradient();
+  const auto &u = U_->primitiveField();
+  penalizationResidual_.setSize(rate.size());
+  penalizationResidual_ = Zero;
+  forAll(rate, c) if (rate[c] > 0.0) penalizationResidual_[c] = A[c] * u[c] - H[c] + gradient()[c];
+}
+
 void OpenFoamFlow::penalization_acceleration(PointArray &a) const {
   a.setZero(mesh_->nCells(), 3);
   if (!penalizationRate_)
@@ -77,10 +94,17 @@ void OpenFoamFlow::penalization_acceleration(PointArray &a) const {
   const auto &rate = penalizationRate_->primitiveField();
   const auto &u = U_->primitiveField();
   const auto &u_rib = rigidVelocity_->primitiveField();
+  const bool with_residual = penalizationResidual_.size() == rate.size();
   forAll(rate, c) {
     if (rate[c] == 0.0)
       continue;
-    const Foam::vector f = -rate[c] * (u[c] - u_rib[c]);
+    // The force on the fluid: Eq. (9)'s -rate (u - u_rib) from the final u, plus the residual
+    // of the cell's momentum equation with the final u and p (record_penalization_residual):
+    // together, A0 u - H0 + grad(p) of the equation without penalization, the force that
+    // balances the body cell's momentum against the final flow around it.
+    Foam::vector f = -rate[c] * (u[c] - u_rib[c]);
+    if (with_residual)
+      f += penalizationResidual_[c];
     a.row(c) << f.x(), f.y(), f.z();
   }
 }

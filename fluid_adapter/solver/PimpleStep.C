@@ -26,6 +26,8 @@ void OpenFoamFlow::solve_momentum_and_pressure() {
   const Foam::labelList trapped = body_normal() ? trapped_free_cells() : Foam::labelList();
   while (pimple_->correct())
     correct_pressure(tUEqn.ref(), trapped);
+  if (penalizationRate_ && pimple_->finalIter())
+    record_penalization_residual(tUEqn());
 }
 
 Foam::tmp<Foam::fvVectorMatrix> OpenFoamFlow::momentum_equation() {
