@@ -17,7 +17,6 @@ results stay in DIR/runs/<name>/ and a finished run is reused while the case is 
 """
 
 import argparse
-import concurrent.futures
 import csv
 import hashlib
 import os
@@ -25,7 +24,7 @@ import subprocess
 import sys
 import time
 
-from fsi import ROOT, case_module, fsi_launch, rotating_disc
+from fsi import ROOT, case_module, fsi_launch, study_pool, rotating_disc
 from fsi.foam_case import LAMINAR_FV_SCHEMES, OPENFOAM_ENVIRONMENT
 
 CASE = os.path.join(ROOT, "cases", "rotating-disc")
@@ -268,18 +267,7 @@ def main(argv):
     os.makedirs(args.out, exist_ok=True)
     fingerprint = case_fingerprint()
     runs = plan(args)
-    start = time.monotonic()
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        futures = {pool.submit(run_one, r, args, fingerprint): r for r in runs}
-        for i, future in enumerate(concurrent.futures.as_completed(futures)):
-            try:
-                future.result()
-            except RuntimeError as e:  # a run that failed is reported, the others go on
-                futures[future].error = str(e)
-                say("%s: FAILED: %s" % (futures[future].name, e))
-            elapsed = time.monotonic() - start
-            say("%d of %d runs done, %.0f s" % (i + 1, len(runs), elapsed))
-    failed = [r for r in runs if r.result is None]
+    failed = study_pool.run_all(runs, lambda r: run_one(r, args, fingerprint), args.jobs, say)
     print(report([r for r in runs if r.result is not None], args.out, failed))
     if failed:
         raise SystemExit("disc-study: %d run(s) failed: %s" % (len(failed), ", ".join(r.name for r in failed)))

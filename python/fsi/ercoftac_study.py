@@ -14,18 +14,16 @@ both methods. Every run stays in DIR/runs/<level>-<method>/; a finished run is r
 case's inputs are unchanged (its postprocessing is redone, a few seconds)."""
 
 import argparse
-import concurrent.futures
 import math
 import os
 import re
 import shutil
 import subprocess
 import sys
-import time
 
 import yaml
 
-from fsi import ROOT, case_module, fsi_launch
+from fsi import ROOT, case_module, fsi_launch, study_pool
 from fsi import ercoftac_pump as ecp
 from fsi.pump_curve import files_digest
 
@@ -222,17 +220,7 @@ def main(argv):
         measured = yaml.safe_load(f)["measured"]
     fingerprint = inputs_fingerprint()
     runs = [Run(level, method, args.revolutions, args.out) for level in levels for method in METHODS]
-    start = time.monotonic()
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        futures = {pool.submit(run_one, r, args, fingerprint): r for r in runs}
-        for i, future in enumerate(concurrent.futures.as_completed(futures)):
-            try:
-                future.result()
-            except RuntimeError as e:  # a run that failed is reported, the others go on
-                futures[future].error = str(e)
-                say("%s: FAILED: %s" % (futures[future].name, e))
-            say("%d of %d runs done, %.0f s" % (i + 1, len(runs), time.monotonic() - start))
-    failed = [r for r in runs if r.result is None]
+    failed = study_pool.run_all(runs, lambda r: run_one(r, args, fingerprint), args.jobs, say)
     print(report([r for r in runs if r.result is not None], args.out, measured, failed))
     if failed:
         raise SystemExit("ercoftac-study: %d run(s) failed: %s" % (len(failed), ", ".join(r.name for r in failed)))
