@@ -96,6 +96,18 @@ def sample_points(n=720):
              ecp.MEASUREMENT_RADIUS_M * math.sin(2 * math.pi * k / n)) for k in range(n)]
 
 
+# The circles of the angular momentum budget (postprocess: the flux through each against the
+# impeller's torque): in the blades, at their trailing edge (R2), the measured radius, the
+# vaneless gap and the diffuser (its vanes begin at R/R2 = 1.048).
+BUDGET_RADII_M = (0.17, 0.18, 0.19, 0.20, 0.205, 0.21, 0.2142, 0.22, 0.23, 0.25)
+
+
+def budget_points(n=360):
+    """BUDGET_RADII_M, every 360/n deg."""
+    return [(r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n))
+            for r in BUDGET_RADII_M for k in range(n)]
+
+
 def casing_points(n=180):
     """The radii of the casing's pressure taps (R/R2 = 0.533-1.019), every 360/n deg."""
     return [(r * ecp.R2_M * math.cos(2 * math.pi * k / n), r * ecp.R2_M * math.sin(2 * math.pi * k / n))
@@ -151,6 +163,7 @@ functions
 %s    // The pressure at the radii of the casing's taps, every 2 deg, likewise (postprocess: cp
     // across a pitch in the impeller's frame; the measurement's is on the casing over the open
     // impeller, ours in the slab's mid-plane). Probes in a body-fitted blade find no cell.
+%s    // The velocity on the circles of the angular momentum budget, every 1 deg, likewise.
 %s    forces
     {
         type            forces;
@@ -165,7 +178,7 @@ functions
     }
 }
 """ % (REVOLUTIONS, end_time_s, dt, 2 * math.pi / ecp.omega_rad_per_s(), probes("impellerOutlet", "U", sample_points()),
-       probes("casing", "p", casing_points()), ecp.AIR_DENSITY_KG_PER_M3)
+       probes("casing", "p", casing_points()), probes("budget", "U", budget_points()), ecp.AIR_DENSITY_KG_PER_M3)
 
 
 def write_folder(level, method):

@@ -7,7 +7,8 @@ measurement (reference.yaml, data/):
   the one shift that fits both, the measurement's origin against the blade being undocumented),
   and the sampling's check (our mean c_r against continuity's);
 - the impeller's torque against the angular momentum the flow carries out through that radius
-  (they balance: nothing else turns the flow between the blades and the probes);
+  (they balance: nothing else turns the flow between the blades and the probes), and through
+  the budget's circles from inside the blades to the diffuser (where the flow gets it);
 - on the casing's tap radii: cp across a pitch against the measured one, with one shift and one
   offset (the reference pressure is not stated), and the rise of the pitch-averaged cp from the
   innermost tap.
@@ -47,6 +48,9 @@ def outlet(foam, measured):
     balance = ecc.angular_momentum_balance(os.path.dirname(foam), 0.5 * revolutions, samples=samples)
     if balance:
         result["angular_momentum"] = balance
+    by_radius = ecc.angular_momentum_by_radius(os.path.dirname(foam), 0.5 * revolutions)
+    if by_radius:
+        result["angular_momentum_by_radius"] = by_radius
     return result, ours, revolutions, (m_fraction, m_cr, m_cu)
 
 

@@ -1,6 +1,7 @@
 """Our ERCOFTAC pump runs against the measurement (issue 31): the probes the case's OpenFOAM
 folders write (cases/ercoftac-pump/make_case.py: `impellerOutlet`, the velocity at R/R2 = 1.02;
-`casing`, the pressure at the radii of the casing's taps), averaged as the measurement was
+`casing`, the pressure at the radii of the casing's taps; `budget`, the velocity on the circles of
+the angular momentum budget), averaged as the measurement was
 (python/fsi/ercoftac_pump.py reads it), and the fits that place a profile measured from an
 undocumented origin against ours.
 
@@ -8,7 +9,8 @@ Angles: theta is the absolute angle of the table's frame; the impeller turns tow
 the impeller-fixed angle is phi = theta + omega t (phi = theta at t = 0, when the mesh's blades
 are Table 2's). A folder with a dynamicMeshDict turns its rotor and the probes' cells with it
 (fixedLocations false): from the angle of its point at the run's start (the time its
-postProcessing folder is named after), a probe turns by -omega (t - start)."""
+postProcessing folder is named after), a probe in the rotor (r < 0.217 m, the AMI) turns by
+-omega (t - start); the stator's stay."""
 
 import math
 import os
@@ -17,6 +19,7 @@ import numpy as np
 from matplotlib.path import Path
 
 from fsi import ercoftac_pump as ecp
+from fsi.ercoftac_mesh import R_INTERFACE_M
 
 UNSET = -1e300          # OpenFOAM's probes write -VGREAT for a point in no cell (a body-fitted blade)
 
@@ -51,7 +54,8 @@ def read_probes(foam_case, name, field):
                 u[u < 0.5 * UNSET] = np.nan
                 theta = np.arctan2([q[1] for q in here], [q[0] for q in here])
                 if turning:
-                    theta = theta - omega * (t - float(folder))
+                    in_rotor = np.hypot([q[0] for q in here], [q[1] for q in here]) < R_INTERFACE_M
+                    theta = theta - np.where(in_rotor, omega * (t - float(folder)), 0.0)
                 rows[t] = (t, theta, u)
         points = np.array(here) if here else points
     return points, [rows[t] for t in sorted(rows)]
@@ -122,6 +126,25 @@ def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None, vane_
                         "cu_over_u2": (sums[1] / np.maximum(counts, 1) / u2).tolist()}}
 
 
+def impeller_torque(out, start, end):
+    """The impeller's mean torque from start to end (s): the penalized body's (out/forces.csv,
+    about its box's centre) or the blades' patch's (the forces function object, about the axis).
+    None without either."""
+    penalized = os.path.join(out, "forces.csv")
+    moment = os.path.join(out, "openfoam", "postProcessing", "forces", "0", "moment.dat")
+    if os.path.isfile(penalized):
+        loads = np.loadtxt(penalized, delimiter=",", skiprows=1, ndmin=2)
+        torque = loads[:, [0, 6]]
+    elif os.path.isfile(moment):
+        with open(moment) as f:
+            torque = np.array([[float(v) for v in line.replace("(", " ").replace(")", " ").split()[:4:3]]
+                               for line in f if not line.startswith("#")])
+    else:
+        return None
+    window = (torque[:, 0] >= start - 1e-12) & (torque[:, 0] <= end + 1e-12)
+    return float(np.mean(torque[window, 1]))
+
+
 def angular_momentum_balance(out, settle_revolutions, samples=None):
     """The impeller's torque against the angular momentum the flow carries out through the
     measured radius (nothing else acts between the blades' trailing edge at R2 and that circle, and
@@ -135,26 +158,52 @@ def angular_momentum_balance(out, settle_revolutions, samples=None):
     samples = samples if samples is not None else read_outlet_samples(foam)
     used = after(samples, settle_revolutions, foam)
     start, end = used[0][0], used[-1][0]
-    penalized = os.path.join(out, "forces.csv")
-    moment = os.path.join(foam, "postProcessing", "forces", "0", "moment.dat")
-    if os.path.isfile(penalized):
-        loads = np.loadtxt(penalized, delimiter=",", skiprows=1, ndmin=2)
-        torque = loads[:, [0, 6]]
-    elif os.path.isfile(moment):
-        with open(moment) as f:
-            torque = np.array([[float(v) for v in line.replace("(", " ").replace(")", " ").split()[:4:3]]
-                               for line in f if not line.startswith("#")])
-    else:
+    mean_torque = impeller_torque(out, start, end)
+    if mean_torque is None:
         return None
-    window = (torque[:, 0] >= start - 1e-12) & (torque[:, 0] <= end + 1e-12)
     dz = 2.0 * samples[0][4]                     # sampled in the one-cell slab's mid-plane
     r = ecp.MEASUREMENT_RADIUS_M
     n = len(used[0][1])
     flux = np.mean([np.sum(s[2] * s[3]) for s in used]) * ecp.AIR_DENSITY_KG_PER_M3 * dz * r * r * 2 * math.pi / n
     sampled = np.mean([np.sum(s[2]) for s in used]) * dz * r * 2 * math.pi / n
     flux /= sampled / (ecp.design_flow_rate_m3_per_s() * dz / ecp.SPAN_M)
-    mean_torque = float(np.mean(torque[window, 1]))
     return {"torque_n_m": mean_torque, "flux_torque_n_m": float(flux), "flux_over_torque": float(flux) / mean_torque}
+
+
+def angular_momentum_by_radius(out, settle_revolutions):
+    """Where the flow gets its angular momentum: through each circle of the `budget` probes, the
+    flux rho dz r^2 sum(c_r c_u) dtheta over the samples after settle_revolutions, as
+    angular_momentum_balance takes it at the measured radius (divided by the sampled mass flux
+    over the imposed one), against the impeller's torque. Inside the blades a penalized run's
+    probes in the body read its rigid motion (no c_r: no flux), a body-fitted run's find no
+    cell. Returns [{radius_m, flux_over_torque, mass_flux_over_imposed}] by radius, or None
+    without the probes or a torque."""
+    foam = os.path.join(out, "openfoam")
+    if not os.path.isdir(os.path.join(foam, "postProcessing", "budget")):
+        return None
+    points, rows = read_probes(foam, "budget", "U")
+    used = after(rows, settle_revolutions, foam)
+    torque = impeller_torque(out, used[0][0], used[-1][0])
+    if torque is None:
+        return None
+    dz = 2.0 * float(points[0, 2])
+    radius = np.round(np.hypot(points[:, 0], points[:, 1]), 4)   # the probes file prints 6 digits
+    imposed = ecp.design_flow_rate_m3_per_s() * dz / ecp.SPAN_M
+    result = []
+    for r in sorted(set(radius.tolist())):
+        on = radius == r
+        flux, mass = [], []
+        for _t, theta, u in used:
+            th, v = theta[on], u[on]
+            c_r = v[:, 0] * np.cos(th) + v[:, 1] * np.sin(th)
+            c_u = -(-v[:, 0] * np.sin(th) + v[:, 1] * np.cos(th))
+            flux.append(np.nanmean(c_r * c_u))
+            mass.append(np.nanmean(c_r))
+        sampled = np.mean(mass) * dz * r * 2 * math.pi
+        moment = np.mean(flux) * ecp.AIR_DENSITY_KG_PER_M3 * dz * r * r * 2 * math.pi * imposed / sampled
+        result.append({"radius_m": r, "flux_over_torque": float(moment / torque),
+                       "mass_flux_over_imposed": float(sampled / imposed)})
+    return result
 
 
 def blade_mask(radii_m, bins):

@@ -144,6 +144,18 @@ def report(runs, out, measured, failed=()):
             "%.3f" % casing["cp_rise_ours"][-1] if casing else "-",
             "%.3f" % balance["flux_over_torque"] if balance else "-", res["wall_s_per_revolution"]))
     lines.append("")
+    budgets = [(r, r.result["angular_momentum_by_radius"]) for r in runs if r.result.get("angular_momentum_by_radius")]
+    if budgets:
+        radii = [b["radius_m"] for b in budgets[0][1]]
+        lines += ["Where the flow gets its angular momentum: the flux through circles of radius r over the impeller's "
+                  "torque (1 where the torque is all the flow has got; inside the blades the probes in the blades "
+                  "read no flux, and the sampling misses mass there, so compare the methods beyond R2 = 0.21 m).", "",
+                  "| level | method | " + " | ".join("r = %.4g m" % r for r in radii) + " |",
+                  "|---|---|" + "---|" * len(radii)]
+        for r, budget in budgets:
+            lines.append("| %s | %s | " % (r.level, r.method) +
+                         " | ".join("%.3f" % b["flux_over_torque"] for b in budget) + " |")
+        lines.append("")
     for level in sorted({r.level for r in runs}):
         pair = {r.method: r for r in runs if r.level == level}
         if len(pair) == 2:

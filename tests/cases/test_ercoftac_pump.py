@@ -182,6 +182,51 @@ class Postprocess(unittest.TestCase):
             self.assertAlmostEqual(got["flux_torque_n_m"] / euler, 1.0, delta=1e-9)
             self.assertAlmostEqual(got["flux_over_torque"], 1.0, delta=1e-8)   # the samples end at 0.015 s
 
+    def test_angular_momentum_by_radius(self):
+        """The budget's circles, two in the rotor and one in the stator, of a free vortex r c_u = K
+        carrying the slab's share Q' of the flow (c_r = Q' / (2 pi r dz)), with a blade-fixed
+        pattern in the rotor and a vane-fixed one in the stator: the flux through every circle
+        is rho Q' K, the torque of forces.csv. On the AMI's moving mesh only the rotor's probes
+        turn (read as turning, the stator's would mix c_r into c_u)."""
+        omega, u2 = ecp.omega_rad_per_s(), ecp.tip_speed_m_per_s()
+        dz, k = 0.0033, 0.09 * u2
+        share = ecp.design_flow_rate_m3_per_s() * dz / ecp.SPAN_M
+        theta0 = 2 * np.pi * np.arange(360) / 360
+        radii = (0.2, 0.2142, 0.25)
+        for turning in (False, True):
+            with self.subTest(turning=turning), tempfile.TemporaryDirectory() as out:
+                foam = os.path.join(out, "openfoam")
+                if turning:
+                    os.makedirs(os.path.join(foam, "constant"))
+                    open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
+                folder = os.path.join(foam, "postProcessing", "budget", "0")
+                os.makedirs(folder)
+                with open(os.path.join(folder, "U"), "w") as f:
+                    for i, (r, a) in enumerate((r, a) for r in radii for a in theta0):
+                        f.write("# Probe %d (%.9g %.9g 0.00165)\n" % (i, r * np.cos(a), r * np.sin(a)))
+                    f.write("#       Probe  0 1 ...\n#        Time\n")
+                    for step in range(1, 21):
+                        t = step * 3.75e-4
+                        row = []
+                        for r in radii:
+                            rotor = r < 0.217
+                            theta = theta0 - omega * t if (turning and rotor) else theta0
+                            pattern = np.cos(ecp.BLADES * (theta + omega * t)) if rotor else np.cos(ecp.VANES * theta)
+                            c_r, c_u = share / (2 * np.pi * r * dz), k / r + 0.1 * u2 * pattern
+                            row += list(zip(c_r * np.cos(theta) + c_u * np.sin(theta),
+                                            c_r * np.sin(theta) - c_u * np.cos(theta)))
+                        f.write("%.8g" % t + "".join("  (%.9g %.9g 0)" % v for v in row) + "\n")
+                self.assertIsNone(ecc.angular_momentum_by_radius(out, 0.0))   # no torque yet
+                with open(os.path.join(out, "forces.csv"), "w") as f:
+                    f.write("time_s,fx,fy,fz,tx,ty,tz\n")
+                    for step in range(1, 401):
+                        f.write("%.8g,0,0,0,0,0,%.9g\n" % (step * 3.75e-5, ecp.AIR_DENSITY_KG_PER_M3 * share * k))
+                got = ecc.angular_momentum_by_radius(out, 0.0)
+                self.assertEqual([g["radius_m"] for g in got], list(radii))
+                for g in got:
+                    self.assertAlmostEqual(g["flux_over_torque"], 1.0, delta=1e-6)
+                    self.assertAlmostEqual(g["mass_flux_over_imposed"], 1.0, delta=1e-6)
+
     def test_the_vanes_phase(self):
         """A vane-fixed pattern of amplitude 0.05 U2 in c_u averages over a passage (1.71 vane pitches)
         to 0.05 * 2 |sin(6 P)| / (12 P) cos(12 a + 6 P), P the pitch and a the passage's first blade
