@@ -39,7 +39,7 @@ def read_probes(foam_case, name, field):
         path = os.path.join(root, folder, field)
         if not os.path.isfile(path):
             continue
-        here = []
+        here, start_angle = [], None
         with open(path) as f:
             for line in f:
                 if line.startswith("#"):
@@ -49,14 +49,14 @@ def read_probes(foam_case, name, field):
                 values = line.replace("(", " ").replace(")", " ").split()
                 if not here or (len(values) - 1) % len(here) or len(values) < 1 + len(here):
                     continue
+                if start_angle is None:   # the folder's probes, once
+                    xy = np.array(here)[:, :2]
+                    start_angle = np.arctan2(xy[:, 1], xy[:, 0])
+                    turns = turning & (np.hypot(xy[:, 0], xy[:, 1]) < R_INTERFACE_M)
                 t = float(values[0])
                 u = np.array(values[1:], float).reshape(len(here), -1)
                 u[u < 0.5 * UNSET] = np.nan
-                theta = np.arctan2([q[1] for q in here], [q[0] for q in here])
-                if turning:
-                    in_rotor = np.hypot([q[0] for q in here], [q[1] for q in here]) < R_INTERFACE_M
-                    theta = theta - np.where(in_rotor, omega * (t - float(folder)), 0.0)
-                rows[t] = (t, theta, u)
+                rows[t] = (t, start_angle - np.where(turns, omega * (t - float(folder)), 0.0), u)
         points = np.array(here) if here else points
     return points, [rows[t] for t in sorted(rows)]
 

@@ -106,6 +106,20 @@ class ImpellerSurface(unittest.TestCase):
         self.assertAlmostEqual(volume / (ecp.BLADES * area * (z1 - z0)), 1.0, delta=1e-9)
 
 
+def probes_folder(foam, turning, name=None):
+    """An OpenFOAM folder as a run leaves it for the probes reader: turning, with a
+    dynamicMeshDict (the AMI run's moving mesh). With a name, makes and returns its probes'
+    folder postProcessing/<name>/0."""
+    if turning:
+        os.makedirs(os.path.join(foam, "constant"))
+        open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
+    if name is None:
+        return None
+    folder = os.path.join(foam, "postProcessing", name, "0")
+    os.makedirs(folder)
+    return folder
+
+
 class Postprocess(unittest.TestCase):
     """ecp.impeller_outlet on samples of a known field written as the impellerOutlet probes write
     them: c_r = 0.13 U2, c_u = (0.4 + 0.1 cos 7 phi) U2 positive toward -theta, phi the
@@ -121,9 +135,7 @@ class Postprocess(unittest.TestCase):
         edge = ecp.vane().a[0]
         theta0 = 2 * np.pi * np.arange(720) / 720
         r = ecp.MEASUREMENT_RADIUS_M
-        if turning:
-            os.makedirs(os.path.join(foam, "constant"))
-            open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
+        probes_folder(foam, turning)
         for start, steps in ((0.0, range(1, 21)), (20 * 3.75e-4, range(21, 41))):
             folder = os.path.join(foam, "postProcessing", "impellerOutlet", "%.8g" % start)
             os.makedirs(folder)
@@ -196,11 +208,7 @@ class Postprocess(unittest.TestCase):
         for turning in (False, True):
             with self.subTest(turning=turning), tempfile.TemporaryDirectory() as out:
                 foam = os.path.join(out, "openfoam")
-                if turning:
-                    os.makedirs(os.path.join(foam, "constant"))
-                    open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
-                folder = os.path.join(foam, "postProcessing", "budget", "0")
-                os.makedirs(folder)
+                folder = probes_folder(foam, turning, "budget")
                 with open(os.path.join(folder, "U"), "w") as f:
                     for i, (r, a) in enumerate((r, a) for r in radii for a in theta0):
                         f.write("# Probe %d (%.9g %.9g 0.00165)\n" % (i, r * np.cos(a), r * np.sin(a)))
@@ -268,11 +276,7 @@ class Casing(unittest.TestCase):
     def write_probes(self, foam, turning, radii):
         omega, u2 = ecp.omega_rad_per_s(), ecp.tip_speed_m_per_s()
         theta0 = 2 * np.pi * np.arange(180) / 180
-        if turning:
-            os.makedirs(os.path.join(foam, "constant"))
-            open(os.path.join(foam, "constant", "dynamicMeshDict"), "w").close()
-        folder = os.path.join(foam, "postProcessing", "casing", "0")
-        os.makedirs(folder)
+        folder = probes_folder(foam, turning, "casing")
         with open(os.path.join(folder, "p"), "w") as f:
             points = [(r * ecp.R2_M, a) for r in radii for a in theta0]
             for k, (r, a) in enumerate(points):

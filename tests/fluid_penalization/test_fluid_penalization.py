@@ -47,6 +47,27 @@ from penalization_support import (BIN_DIR, LAUNCHER, PYTHON, Block, Penalization
 RHO = 1000.0  # kg/m^3
 
 
+def quasi_2d_box(case, half, n, nu):
+    """The OpenFOAM folder of a square box [-half, half]^2 of n x n cells, one cell thick
+    (`empty` front and back), no-slip walls, water at rest: returns (block, h)."""
+    h = 2.0 * half / n
+    block = Block([-half, -half, 0.0], [half, half, h], [n, n, 1])
+    patches = {"walls": ("wall", ["xmin", "xmax", "ymin", "ymax"]), "frontAndBack": ("empty", ["zmin", "zmax"])}
+    write_openfoam_case(os.path.join(case, "openfoam"), block, patches, nu, (0, 0, 0),
+                        {"walls": "type noSlip;", "frontAndBack": "type empty;"},
+                        {"walls": "type zeroGradient;", "frontAndBack": "type empty;"})
+    return block, h
+
+
+def use_body_normal(case):
+    """fluid.openfoam.interface_flux: body_normal in the case written by write_case."""
+    path = os.path.join(case, "case.yaml")
+    with open(path) as f:
+        text = f.read()
+    with open(path, "w") as f:
+        f.write(text.replace("penalization_time_s:", "interface_flux: body_normal, penalization_time_s:"))
+
+
 class CircularCouette(PenalizationTest):
     R1, R2, R_TUBE = 0.01, 0.02, 0.024   # m: rotor, stator (tube inner wall), tube outer wall
     HALF_BOX = 0.026                     # m: the box [-L, L]^2; fluid outside the tube is at rest
@@ -72,12 +93,7 @@ class CircularCouette(PenalizationTest):
         case = os.path.join(self.tmp, name)
         out = os.path.join(self.tmp, name + "-out")
         os.makedirs(case)
-        h = 2.0 * self.HALF_BOX / n
-        block = Block([-self.HALF_BOX, -self.HALF_BOX, 0.0], [self.HALF_BOX, self.HALF_BOX, h], [n, n, 1])
-        patches = {"walls": ("wall", ["xmin", "xmax", "ymin", "ymax"]), "frontAndBack": ("empty", ["zmin", "zmax"])}
-        write_openfoam_case(os.path.join(case, "openfoam"), block, patches, self.NU, (0, 0, 0),
-                            {"walls": "type noSlip;", "frontAndBack": "type empty;"},
-                            {"walls": "type zeroGradient;", "frontAndBack": "type empty;"})
+        block, h = quasi_2d_box(case, self.HALF_BOX, n, self.NU)
         # Solids longer than the mesh is thick; 512 facets: the polygon misses the circle by 2e-5 R.
         write_stl(os.path.join(case, "rotor.stl"), cylinder_triangles(self.R1, -0.01, 0.01, 512), "rotor")
         write_stl(os.path.join(case, "stator.stl"), tube_triangles(self.R2, self.R_TUBE, -0.01, 0.01, 512), "stator")
@@ -273,11 +289,7 @@ class TrappedWater(PenalizationTest):
         rotation = {"rotation": {"axis_point_m": [0.0, 0.0, 0.0], "axis_direction": [0.0, 0.0, 1.0],
                                  "rate_rad_per_s": self.OMEGA}}
         write_case(case, self.DT, self.END, sheet, [{"mesh": {"file": "tube.stl"}, "motion": rotation}], 1.0e-6)
-        path = os.path.join(case, "case.yaml")
-        with open(path) as f:
-            text = f.read()
-        with open(path, "w") as f:
-            f.write(text.replace("penalization_time_s:", "interface_flux: body_normal, penalization_time_s:"))
+        use_body_normal(case)
         self.run_case(case, out, timeout=150)
 
         with open(os.path.join(out, "fluid.log"), errors="replace") as f:  # the fluid's log, not its console
@@ -318,15 +330,11 @@ class StirredTube(PenalizationTest):
     NU = 1.0e-6
 
     def budget(self, n, dt):
-        """n cells across the box, time step dt: (relative budget error, paddle's integrated torque)."""
+        """n cells across the box, time step dt: the budget's error relative to the paddle's
+        integrated torque."""
         case, out = os.path.join(self.tmp, "n%d" % n), os.path.join(self.tmp, "n%d-out" % n)
         os.makedirs(case)
-        h = 2.0 * self.HALF / n
-        block = Block([-self.HALF, -self.HALF, 0.0], [self.HALF, self.HALF, h], [n, n, 1])
-        patches = {"walls": ("wall", ["xmin", "xmax", "ymin", "ymax"]), "frontAndBack": ("empty", ["zmin", "zmax"])}
-        write_openfoam_case(os.path.join(case, "openfoam"), block, patches, self.NU, (0, 0, 0),
-                            {"walls": "type noSlip;", "frontAndBack": "type empty;"},
-                            {"walls": "type zeroGradient;", "frontAndBack": "type empty;"})
+        block, h = quasi_2d_box(case, self.HALF, n, self.NU)
         a, b = self.PADDLE
         write_stl(os.path.join(case, "paddle.stl"), box_triangles((-a, -b, -0.01), (a, b, 0.01)), "paddle")
         write_stl(os.path.join(case, "tube.stl"), tube_triangles(self.R_IN, self.R_OUT, -0.01, 0.01, 512), "tube")
@@ -338,11 +346,7 @@ class StirredTube(PenalizationTest):
                     {"mesh": {"file": "tube.stl"}}]
         end = 2.0 * math.pi / self.OMEGA
         write_case(case, dt, end, sheet, surfaces, 1.0e-6)
-        path = os.path.join(case, "case.yaml")
-        with open(path) as f:
-            text = f.read()
-        with open(path, "w") as f:
-            f.write(text.replace("penalization_time_s:", "interface_flux: body_normal, penalization_time_s:"))
+        use_body_normal(case)
         wall = self.run_case(case, out, timeout=150)
 
         centres = block.centres()
