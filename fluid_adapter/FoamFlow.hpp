@@ -85,12 +85,22 @@ public:
   virtual PisoSettings piso_settings() const = 0;
   /// The largest viscous number nu_eff dt sum 1/dx^2 over the cells of every rank (collective).
   virtual ViscousNumber max_viscous_number(double dt_s) const = 0;
-  /// One PIMPLE time step of dt; writes fields at the case's write interval.
+  /// The mesh moves (the case has a constant/dynamicMeshDict: a cell zone turning with a rotor
+  /// behind an AMI, pimpleFoam's solidBody motion). Its cells move at every start_step().
+  virtual bool mesh_moves() const = 0;
+  /// Starts the next time step of dt: the time advances to its end and a moving mesh moves
+  /// there, so that cell_centres_m() are the centres at the step's end, where the rigid bodies
+  /// are penalized (Eqs. 9-10). Then advance() solves the step.
+  virtual void start_step(double dt_s) = 0;
+  /// One PIMPLE time step of dt (started by start_step, or here if it was not); writes fields at
+  /// the case's write interval. On failure the state of the step's start is put back (a moving
+  /// mesh's points too) and std::runtime_error names the step, the cell and the likely cause.
   virtual void advance(double dt_s) = 0;
   /// Implicit coupling (collective): keeps every field's values and the time before a step,
   /// and puts them back so that the next advance() repeats that step. The old-time fields are
   /// not copied: the first advance of the step shifted them, and a repeat at the same time
   /// index does not shift them again.
+  /// Not on a moving mesh (the mesh would have to move back too): std::runtime_error.
   virtual void save_step_start() = 0;
   virtual void restore_step_start() = 0;
   virtual double time_s() const = 0;

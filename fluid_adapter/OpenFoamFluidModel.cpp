@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -23,7 +24,7 @@ namespace fsi::fluid {
 
 OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &flow,
                                        std::vector<std::unique_ptr<rigid::RigidBody>> rigid_bodies)
-    : config_(config), flow_(flow), cells_(flow.cell_centres_m(), flow.cell_volumes_m3()), index_(cells_),
+    : config_(config), flow_(flow), cells_(flow.cell_centres_m(), flow.cell_volumes_m3()),
       bodies_(std::move(rigid_bodies)) {
   if (flow_.n_ranks() > 1 && config_.interpolation == InterpolationChoice::closest_cell_linear)
     throw std::runtime_error("fluid.openfoam.interpolation: closest_cell_linear is not available with MPI yet; use "
@@ -34,6 +35,8 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
     indicator_options.smoothing_depth_cells = config_.body_indicator_depth_cells;
   }
   for (const auto &body : bodies_) {
+    // On a moving mesh a moving body turns with its cells (check_bodies_on_moving_mesh).
+    indicator_options.cells_move_with_body = flow_.mesh_moves() && !body->declared_motion().is_static();
     indicators_.push_back(
         std::make_unique<rigid::BodyIndicator>(*body, cells_.centres_m(), indicator_options, cells_.sizes_m()));
     spdlog::info("rigid body '{}': {} candidate cells of {} (swept region), indicator {}", body->name(),
@@ -333,7 +336,7 @@ void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) {
   Eigen::VectorXd distance(n), local_width(n);
   std::size_t skipped = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const auto nearest = index_.nearest_within(positions_.row(k).transpose(), skip_beyond_m_);
+    const auto nearest = index().nearest_within(positions_.row(k).transpose(), skip_beyond_m_);
     distance[k] = nearest.distance_m;
     local_width[k] = nearest.cell >= 0 ? cells_.size_m(nearest.cell) : local_max_width_m_;
     skipped += nearest.cell < 0 && cells_.n_cells() > 0;
@@ -361,7 +364,7 @@ void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
     collective([&] { flow_.sum_over_ranks(u_m_per_s.data(), static_cast<std::size_t>(u_m_per_s.size())); });
     return;
   }
-  nearest_ = std::make_unique<ibm::NearestCells>(index_, positions_);
+  nearest_ = std::make_unique<ibm::NearestCells>(index(), positions_);
   ibm::CellGradientArray gradients;
   flow_.cell_velocity_gradients(gradients);
   u_m_per_s = ibm::ClosestCellLinear(cells_, *nearest_).interpolate(positions_, cell_velocity_, gradients);
@@ -371,9 +374,9 @@ void OpenFoamFluidModel::build_stencil() {
   Eigen::VectorXd widths;
   kernel_widths(widths);
   if (stencil_)
-    stencil_->rebuild(index_, positions_, widths); // reuses last step's arrays
+    stencil_->rebuild(index(), positions_, widths); // reuses last step's arrays
   else
-    stencil_ = std::make_unique<ibm::KernelStencil>(index_, positions_, widths);
+    stencil_ = std::make_unique<ibm::KernelStencil>(index(), positions_, widths);
   if (config_.normalise_kernel) {
     Eigen::VectorXd sums = stencil_->weight_sums();
     collective([&] { flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size())); });
@@ -395,14 +398,21 @@ void OpenFoamFluidModel::step_flow(long step, double time_s, double dt_s, std::v
   const double t_next = time_s + dt_s;
   if (dt_s > checked_dt_s_ * (1.0 + 1e-9)) // a smaller step only lowers the viscous number
     check_time_step(dt_s);
-  auto start = Clock::now();
   timings_ = {};
+  auto start = Clock::now();
+  flow_.start_step(dt_s); // a moving mesh moves to t_next: the bodies are penalized where its cells are then
+  if (flow_.mesh_moves())
+    follow_moving_mesh();
+  timings_.fluid_solve_s = seconds_since(start);
+  start = Clock::now();
   if (!bodies_.empty())
     penalize_rigid_bodies(t_next, dt_s);
+  if (!bodies_.empty() && flow_.mesh_moves())
+    check_bodies_on_moving_mesh(t_next);
   timings_.penalization_s = seconds_since(start);
   start = Clock::now();
   flow_.advance(dt_s);
-  timings_.fluid_solve_s = seconds_since(start);
+  timings_.fluid_solve_s += seconds_since(start);
   if (const long cut_off = flow_.cut_off_cells(); cut_off > 0 && (++cut_off_steps_ == 1 || cut_off_steps_ % 1000 == 0))
     spdlog::info("t = {} s: {} free cell(s) cut off by the bodies and walls from every open boundary, their pressure "
                  "held (docs/model.md, interface_flux: body_normal); {} step(s) so far",
@@ -458,6 +468,77 @@ std::vector<rigid::BodyLoad> OpenFoamFluidModel::advance_without_structure(long 
   std::vector<rigid::BodyLoad> loads;
   step_flow(step, time_s, dt_s, loads);
   return loads;
+}
+
+const ibm::CellIndex &OpenFoamFluidModel::index() {
+  if (!index_)
+    index_ = std::make_unique<ibm::CellIndex>(cells_);
+  return *index_;
+}
+
+void OpenFoamFluidModel::follow_moving_mesh() {
+  index_.reset(); // borrows cells_: rebuilt at the next query, on the moved centres
+  cells_ = ibm::EulerianCells(flow_.cell_centres_m(), flow_.cell_volumes_m3());
+  for (auto &indicator : indicators_)
+    indicator->move_cells(cells_.centres_m());
+}
+
+void OpenFoamFluidModel::check_bodies_on_moving_mesh(double time_s) {
+  const std::size_t n = bodies_.size();
+  static_inside_centres_m_.resize(n);
+  // Per body, the largest distance (m): a static body's inside cell from where it was at the
+  // first step; a carried body's cell from where it was in the body's frame.
+  std::vector<double> moved(n, 0.0);
+  std::vector<Vec3> where(n, Vec3::Zero());
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!bodies_[b]->declared_motion().is_static()) {
+      moved[b] = indicators_[b]->carried_drift_m();
+      continue;
+    }
+    const auto &inside = indicators_[b]->inside_cells();
+    PointArray &first = static_inside_centres_m_[b];
+    if (first.rows() == 0 && !inside.empty()) {
+      first.resize(static_cast<Eigen::Index>(inside.size()), 3);
+      for (std::size_t i = 0; i < inside.size(); ++i)
+        first.row(static_cast<Eigen::Index>(i)) = cells_.centres_m().row(inside[i]);
+    }
+    for (std::size_t i = 0; i < inside.size(); ++i) {
+      const Vec3 now = cells_.centres_m().row(inside[i]).transpose();
+      const double d = (now - first.row(static_cast<Eigen::Index>(i)).transpose()).norm();
+      if (d > moved[b]) {
+        moved[b] = d;
+        where[b] = now;
+      }
+    }
+  }
+  std::vector<double> largest(n);
+  for (std::size_t b = 0; b < n; ++b)
+    largest[b] = -moved[b];
+  flow_.min_over_ranks(largest.data(), n);
+  for (std::size_t b = 0; b < n; ++b) {
+    // Round-off: OpenFOAM turns the points, the cell centres follow (1e-16 relative).
+    const double distance = -largest[b];
+    if (distance <= 1e-9 * std::max(1.0, bodies_[b]->body_box_m().diagonal().norm()))
+      continue;
+    if (bodies_[b]->declared_motion().is_static())
+      throw common::UserError(fmt::format(
+          "rigid body '{}' is static but covers cells the mesh moves (a cell inside it{} moved by {:.3g} m by t = {} "
+          "s): a body held still must lie in the mesh's fixed cells, outside the cell zone that "
+          "constant/dynamicMeshDict turns",
+          bodies_[b]->name(),
+          flow_.n_ranks() == 1 ? fmt::format(", now at ({:.4g}, {:.4g}, {:.4g}) m,", where[b].x(), where[b].y(),
+                                             where[b].z())
+                               : std::string(),
+          distance, time_s));
+    const Vec3 omega = indicators_[b]->rigid_velocity().angular_velocity_rad_per_s;
+    throw common::UserError(fmt::format(
+        "rigid body '{}' and its cells moved apart on a moving mesh by t = {} s: a cell it covers is {:.3g} m from "
+        "where it was in the body's frame. A moving body must turn with its cells: constant/dynamicMeshDict's "
+        "solidBody motion must be the body's own rotation, here omega = ({:.10g}, {:.10g}, {:.10g}) rad/s (the same "
+        "axis, origin and rate to round-off: write both with all their digits), and its cell zone must hold the "
+        "whole region the body sweeps",
+        bodies_[b]->name(), time_s, distance, omega.x(), omega.y(), omega.z()));
+  }
 }
 
 void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {

@@ -1,12 +1,16 @@
 #pragma once
 // The OpenFOAM fluid as a fluid model of the protocol (fsi-openfoam-fluid), OpenFOAM-free:
 // each step it builds the kernel stencil of Eqs. (6-7) at X^n (cells found through a spatial
-// index built once per mesh), interpolates U_ib^n, then spreads F_fsi^n (Eq. 8) at the same
+// index built once per mesh, again after a moving mesh moved), interpolates U_ib^n, then spreads F_fsi^n (Eq. 8) at the same
 // points, divides by rho_f (OpenFOAM's incompressible momentum equation is per unit density)
 // and hands the acceleration to FoamFlow for one PIMPLE step. Rigid bodies (closed STL
 // surfaces with a prescribed motion) are penalized (Eqs. 9-10): chi and u_rib at t^{n+1} from
 // each body's swept candidate cells, the penalization implicit in the momentum matrix; the
 // force and torque of the fluid on each body go back to the coupler.
+//
+// A moving mesh (a rotor's cell zone turning behind an AMI, constant/dynamicMeshDict) moves at
+// the start of each step, before the bodies are penalized there: a body turning with its cells
+// keeps the same chi (no cell switches; docs/model.md), a static body lies in the fixed cells.
 //
 // MPI: every rank holds a model over its own cells. The master (rank 0) talks to the coupler
 // through participant::FluidParticipant and broadcasts each request to the other ranks, which run follow().
@@ -145,7 +149,16 @@ private:
   std::filesystem::path checkpoints_root_;
   long restart_step_ = 0;
   ibm::EulerianCells cells_;
-  ibm::CellIndex index_;
+  /// Built at the first Lagrangian query after the cells moved (index()).
+  std::unique_ptr<ibm::CellIndex> index_;
+  const ibm::CellIndex &index();
+  /// A moving mesh (FoamFlow::mesh_moves): after start_step, the cells where the flow put them.
+  void follow_moving_mesh();
+  /// A moving mesh: a static body's inside cells never move, and a moving body's cells stay
+  /// where they were in its frame (its chi is kept: BodyIndicator, cells_move_with_body);
+  /// otherwise common::UserError naming the body and what to fix. Collective.
+  void check_bodies_on_moving_mesh(double time_s);
+  std::vector<PointArray> static_inside_centres_m_; ///< per body: its inside cells' centres at the first step
   Eigen::VectorXd point_measures_;
   PointArray positions_, cell_velocity_, force_density_, acceleration_;
   std::unique_ptr<ibm::NearestCells> nearest_;

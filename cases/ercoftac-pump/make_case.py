@@ -181,11 +181,16 @@ functions
        probes("casing", "p", casing_points()), probes("budget", "U", budget_points()), ecp.AIR_DENSITY_KG_PER_M3)
 
 
+FOLDER_PREFIX = {"penalized": "openfoam-fixed-", "turning": "openfoam-", "ami": "openfoam-ami-"}
+
+
 def write_folder(level, method):
-    """openfoam-<level> (method penalized: no blades in the mesh, no motion) or
-    openfoam-ami-<level> (ami)."""
+    """The OpenFOAM folder of a level and method (ercoftac_mesh.METHODS): openfoam-<level>
+    (turning: the blades penalized in a rotor zone turning with them behind the AMI),
+    openfoam-fixed-<level> (penalized: no blades in one fixed mesh) or openfoam-ami-<level> (ami:
+    the blades cut out of the turning rotor)."""
     h, _h_far = LEVELS[level]
-    folder = os.path.join(HERE, ("openfoam-ami-" if method == "ami" else "openfoam-") + level)
+    folder = os.path.join(HERE, FOLDER_PREFIX[method] + level)
     end = REVOLUTIONS * 2 * math.pi / ecp.omega_rad_per_s()
     for name, (cls, dims, internal, patches) in FIELDS.items():
         body = "dimensions      %s;\ninternalField   %s;\nboundaryField\n{\n" % (dims, internal)
@@ -193,7 +198,7 @@ def write_folder(level, method):
             if method == "ami" or patch != "blades":
                 body += "    %-8s { %s }\n" % (patch, value)
         body += "    frontAndBack { type empty; }\n"
-        if method == "ami":
+        if method != "penalized":
             body += "    \"ami_.*\" { type cyclicAMI; }\n"
         write_foam_file(folder, os.path.join("0", name), cls, body + "}\n")
     write_foam_file(folder, "constant/transportProperties", "dictionary",
@@ -202,7 +207,7 @@ def write_folder(level, method):
                     "simulationType  RAS;\nRAS\n{\n    RASModel        kOmegaSST;\n    turbulence      on;\n"
                     "    printCoeffs     off;\n}\n")
     control = control_dict(h, end)
-    if method == "penalized":
+    if method != "ami":
         # the loads on the impeller are the penalized body's (coupling.h5), not a patch's
         control = control[:control.index("    forces\n")] + "}\n"
     write_foam_file(folder, "system/controlDict", "dictionary", control)
@@ -214,12 +219,12 @@ def write_folder(level, method):
                     "// make_case.py: the rotor turns toward -theta of the test's Table 2 (its blades lean back).\n"
                     "dynamicFvMesh   dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfvMotionSolvers.so\");\n"
                     "motionSolver    solidBody;\ncellZone        rotor;\nsolidBodyMotionFunction rotatingMotion;\n"
-                    "origin          (0 0 0);\naxis            (0 0 -1);\nomega           %.6f;   // rad/s (2000 rpm)\n"
+                    "origin          (0 0 0);\naxis            (0 0 -1);\nomega           %.14g;   // rad/s (2000 rpm)\n"
                     % ecp.omega_rad_per_s())
     return folder
 
 
 if __name__ == "__main__":
     for name in LEVELS:
-        for how in ("penalized", "ami"):
+        for how in FOLDER_PREFIX:
             print(write_folder(name, how))

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Generates this case's inputs before a run: geometry/impeller.stl (the 7 blades of Table 2
-extruded through the slab, python/fsi/ercoftac_pump.py) and the penalized mesh of the level run
-(FSI_RESOLUTION, which the launcher sets from --resolution; case.yaml's coarse without one:
-openfoam-<level>/constant/polyMesh, gmsh: python/fsi/ercoftac_mesh.py), each when it is missing
+extruded through the slab, python/fsi/ercoftac_pump.py) and the mesh of the preset run
+(FSI_RESOLUTION, which the launcher sets from --resolution; case.yaml's coarse without one):
+<level> meshes openfoam-<level> (the blades penalized in a rotor zone turning with them behind an
+AMI), <level>-fixed-mesh openfoam-fixed-<level> (one fixed mesh; gmsh:
+python/fsi/ercoftac_mesh.py), each when it is missing
 or was made from other inputs (a stamp, generated-from, holds the hash of the data, the two
 modules and the level's sizes). Quiet when there is nothing to do; a level takes 10-60 s.
 
@@ -22,6 +24,7 @@ from fsi.foam_case import _stl_solid  # noqa: E402
 import make_case  # noqa: E402
 
 STL_Z_M = (-0.01, 0.02)   # through the slab of every level (at most 3.3 mm thick)
+FIXED_MESH = "-fixed-mesh"  # presets <level>-fixed-mesh: the blades penalized in one fixed mesh
 
 
 def inputs_hash(*extra):
@@ -61,18 +64,22 @@ def main(case_dir):
             os.replace(partial, os.path.join(geometry, "impeller.stl"))   # a reader never sees half a file
             write_stamp(stamp, key)
             print("prepare: geometry/impeller.stl written (7 blades, z %g to %g m)" % STL_Z_M)
-        level = os.environ.get("FSI_RESOLUTION") or "coarse"
+        preset = os.environ.get("FSI_RESOLUTION") or "coarse"
+        level, method = preset, "turning"
+        if preset.endswith(FIXED_MESH):
+            level, method = preset[:-len(FIXED_MESH)], "penalized"
         if level not in make_case.LEVELS:
             return                  # not a level of this case: the coupler refuses the preset
         h_near, h_far = make_case.LEVELS[level]
-        foam_case = os.path.join(case_dir, "openfoam-" + level)
-        key = inputs_hash("penalized", h_near, h_far)
+        folder = make_case.FOLDER_PREFIX[method] + level
+        foam_case = os.path.join(case_dir, folder)
+        key = inputs_hash(method, h_near, h_far)
         stamp = os.path.join(foam_case, "constant", "polyMesh", "generated-from")
         if stamp_matches(stamp, key):
             return
-        cells = ercoftac_mesh.foam_mesh(foam_case, "penalized", h_near, h_far, os.path.join(foam_case, "logs"))
+        cells = ercoftac_mesh.foam_mesh(foam_case, method, h_near, h_far, os.path.join(foam_case, "logs"))
         write_stamp(stamp, key)
-        print("prepare: openfoam-%s meshed: %d cells (h %g to %g m)" % (level, cells, h_near, h_far))
+        print("prepare: %s meshed (%s): %d cells (h %g to %g m)" % (folder, method, cells, h_near, h_far))
 
 
 if __name__ == "__main__":

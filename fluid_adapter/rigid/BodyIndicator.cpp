@@ -51,6 +51,15 @@ BodyIndicator::BodyIndicator(const RigidBody &body, const PointArray &cell_centr
   velocity_m_per_s_ = PointArray::Zero(n_cells, 3);
 }
 
+void BodyIndicator::move_cells(const PointArray &cell_centres_m) {
+  if (cell_centres_m.rows() != chi_.size())
+    throw std::invalid_argument("body '" + body_.name() + "': the moved mesh has " +
+                                std::to_string(cell_centres_m.rows()) + " cells, the indicator was built on " +
+                                std::to_string(chi_.size()));
+  for (Eigen::Index k = 0; k < candidate_centres_m_.rows(); ++k)
+    candidate_centres_m_.row(k) = cell_centres_m.row(candidate_cells_[static_cast<std::size_t>(k)]);
+}
+
 double BodyIndicator::sharp_value(const Vec3 &centre_body_m) const {
   return body_.contains_body_point(centre_body_m) ? 1.0 : 0.0;
 }
@@ -97,6 +106,10 @@ void BodyIndicator::update(double time_s) {
     return;
   const Eigen::Isometry3d world_to_body = body_.motion().pose_at(time_s).inverse();
   rigid_velocity_ = RigidVelocity::of(body_.motion(), time_s);
+  if (evaluated_ && options_.cells_move_with_body) {
+    follow_carried_cells(world_to_body);
+    return;
+  }
   using Sampling = IndicatorOptions::Sampling;
   parallel_for(candidate_cells_.size(), options_.n_threads, [&](std::size_t begin, std::size_t end) {
     for (auto k = static_cast<Eigen::Index>(begin); k < static_cast<Eigen::Index>(end); ++k) {
@@ -125,6 +138,22 @@ void BodyIndicator::update(double time_s) {
     if (candidate_chi_(static_cast<Eigen::Index>(k)) > 0.0)
       inside_cells_.push_back(candidate_cells_[k]);
   evaluated_ = true;
+  if (options_.cells_move_with_body) {
+    first_body_centres_m_.resize(candidate_centres_m_.rows(), 3);
+    for (Eigen::Index k = 0; k < candidate_centres_m_.rows(); ++k)
+      first_body_centres_m_.row(k) = (world_to_body * Vec3(candidate_centres_m_.row(k).transpose())).transpose();
+  }
+}
+
+void BodyIndicator::follow_carried_cells(const Eigen::Isometry3d &world_to_body) {
+  // chi stays; the velocities follow the cells, and the cells are checked against the body.
+  double drift = 0.0;
+  for (Eigen::Index k = 0; k < candidate_centres_m_.rows(); ++k) {
+    const Vec3 centre_m = candidate_centres_m_.row(k).transpose();
+    drift = std::max(drift, (world_to_body * centre_m - first_body_centres_m_.row(k).transpose()).norm());
+    velocity_m_per_s_.row(candidate_cells_[static_cast<std::size_t>(k)]) = rigid_velocity_.at(centre_m).transpose();
+  }
+  carried_drift_m_ = drift;
 }
 
 } // namespace fsi::fluid::rigid

@@ -52,6 +52,10 @@ struct IndicatorOptions {
   int samples_per_direction = 4;       ///< cell_fraction only: n (n^3 sub-points per cut cell), >= 2
   double smoothing_depth_cells = 1.0;  ///< inside_smoothed only: n (> 0), depth of the ramp in cell sizes
   std::size_t n_threads = 0;     ///< 0: the hardware concurrency; 1 inside an MPI rank
+  /// The cells move with the body (a moving mesh's rotor zone turning with it): chi is evaluated
+  /// once and kept (a centre within round-off of the surface cannot flip), u_rib follows the
+  /// cells, and each update measures how far the cells drifted from the body (carried_drift_m).
+  bool cells_move_with_body = false;
 };
 
 class BodyIndicator {
@@ -63,6 +67,10 @@ public:
 
   /// Recomputes chi and u_rib for time t (a static body only on the first call).
   void update(double time_s);
+  /// The mesh moved (a rotor's cell zone turning with the body): the candidates' centres are
+  /// read again from the same cells. The candidate set stays: a cell carried by the body's own
+  /// rotation stays in the region it sweeps. A static body keeps its chi (its cells must not move).
+  void move_cells(const PointArray &cell_centres_m);
 
   /// chi per cell, in [0, 1] (0 or 1 when sharp).
   const Eigen::VectorXd &chi() const { return chi_; }
@@ -72,6 +80,10 @@ public:
   const std::vector<std::int32_t> &inside_cells() const { return inside_cells_; }
   /// Cells that can ever have chi > 0 (ascending).
   const std::vector<std::int32_t> &candidate_cells() const { return candidate_cells_; }
+  /// cells_move_with_body: the largest distance, in the body frame, between a candidate's
+  /// centre at the last update and where it was at the first (m): 0 up to round-off when the
+  /// mesh moves as the body does.
+  double carried_drift_m() const { return carried_drift_m_; }
   /// v_o and omega of the last update.
   const RigidVelocity &rigid_velocity() const { return rigid_velocity_; }
   const SweptRegion &swept_region() const { return region_; }
@@ -97,6 +109,9 @@ private:
   PointArray velocity_m_per_s_;
   RigidVelocity rigid_velocity_;
   bool evaluated_ = false;
+  PointArray first_body_centres_m_; ///< cells_move_with_body: the candidates in the body frame at the first update
+  double carried_drift_m_ = 0.0;
+  void follow_carried_cells(const Eigen::Isometry3d &world_to_body);
 };
 
 } // namespace fsi::fluid::rigid

@@ -5,6 +5,7 @@
 #include "OpenFoamFlow.H"
 
 #include "InterfaceFaces.H"
+#include "cyclicAMIPolyPatch.H"
 
 #include <algorithm>
 
@@ -17,6 +18,23 @@ void OpenFoamFlow::fix_interface_fluxes(Foam::surfaceScalarField &phiHbyA, Foam:
   using namespace Foam;
   const fvMesh &mesh = *mesh_;
   const auto &rate = penalizationRate_->primitiveField();
+  if (mesh.moving()) {
+    // The bodies turn with their cells (or stand in fixed ones): each interface face carries
+    // the volume it sweeps, so that no water crosses it relative to the mesh (exactly, where the
+    // body velocity at the penalized cell's centre would miss the face's by omega h / 2).
+    const surfaceScalarField &mesh_flux = mesh.phi();
+    for_each_interface_face(mesh, rate, [&](label f, label, label, bool) {
+      phiHbyA[f] = mesh_flux[f];
+      rAtUf[f] *= 1e-9;
+    });
+    auto &phi_boundary = phiHbyA.boundaryFieldRef();
+    auto &rAtUf_boundary = rAtUf.boundaryFieldRef();
+    for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label, bool) {
+      phi_boundary[patch][i] = mesh_flux.boundaryField()[patch][i];
+      rAtUf_boundary[patch][i] *= 1e-9;
+    });
+    return;
+  }
   const auto &Sf = mesh.Sf();
   const auto &u_normal = interfaceVelocity_->primitiveField();
   const auto outward = [&](label f, label body, bool body_is_owner) { // the body's normal flux out of it
@@ -123,6 +141,21 @@ Foam::labelList OpenFoamFlow::trapped_free_cells() const {
     open[regions[pRefCell_]] = true;
   Pstream::listCombineGather(open, orEqOp<bool>());
   Pstream::listCombineScatter(open);
+  // regionSplit does not cross an AMI (its faces do not match one to one): the free regions on
+  // either side of one are one water, open when any of them is (a rotor turning behind an AMI).
+  boolList at_ami(n_regions, false);
+  forAll(mesh.boundaryMesh(), patch) {
+    if (!isA<cyclicAMIPolyPatch>(mesh.boundaryMesh()[patch]))
+      continue;
+    for (const label c : mesh.boundaryMesh()[patch].faceCells())
+      if (rate[c] <= 0.0)
+        at_ami[regions[c]] = true;
+  }
+  Pstream::listCombineGather(at_ami, orEqOp<bool>());
+  Pstream::listCombineScatter(at_ami);
+  bool ami_open = false;
+  forAll(open, r) ami_open = ami_open || (at_ami[r] && open[r]);
+  forAll(open, r) open[r] = open[r] || (ami_open && at_ami[r]);
   if (!std::any_of(open.begin(), open.end(), [](bool o) { return o; })) {
     // No fixed pressure and the reference cell inside a body: the largest free region is the water.
     labelList size(n_regions, 0);

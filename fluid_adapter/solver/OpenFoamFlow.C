@@ -27,10 +27,12 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   runTime_ = std::make_unique<Time>(Time::controlDictName, *args_);
   runTime_->setDeltaT(settings.time_step_s, false);
   runTime_->setEndTime(settings.end_time_s);
-  mesh_ =
-      std::make_unique<fvMesh>(IOobject(fvMesh::defaultRegion, runTime_->timeName(), *runTime_, IOobject::MUST_READ));
-  fvMesh &mesh = *mesh_;
+  // pimpleFoam's createDynamicFvMesh.H: a static mesh unless constant/dynamicMeshDict says otherwise.
+  mesh_.reset(dynamicFvMesh::New(IOobject(fvMesh::defaultRegion, runTime_->timeName(), *runTime_, IOobject::MUST_READ))
+                  .ptr());
+  dynamicFvMesh &mesh = *mesh_;
   pimple_ = std::make_unique<pimpleControl>(mesh);
+  correctPhi_ = pimple_->dict().lookupOrDefault<bool>("correctPhi", mesh.dynamic());
   p_ = std::make_unique<volScalarField>(
       IOobject("p", runTime_->timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE), mesh);
   U_ = std::make_unique<volVectorField>(
@@ -40,6 +42,10 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   fsiAcceleration_ = std::make_unique<volVectorField>(
       IOobject("fsiAcceleration", runTime_->timeName(), mesh, IOobject::NO_READ, IOobject::AUTO_WRITE), mesh,
       dimensionedVector(dimAcceleration, Zero));
+  if (mesh.dynamic()) // pimpleFoam's createUfIfPresent.H
+    Uf_.reset(new surfaceVectorField(
+        IOobject("Uf", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::AUTO_WRITE),
+        fvc::interpolate(*U_)));
   setRefCell(*p_, pimple_->dict(), pRefCell_, pRefValue_);
   mesh.setFluxRequired(p_->name());
   laminarTransport_ = std::make_unique<singlePhaseTransportModel>(*U_, *phi_);
@@ -51,17 +57,22 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   runTime_->functionObjects().start();
 }
 
+void OpenFoamFlow::record_cells() {
+  const Foam::fvMesh &mesh = *mesh_;
+  centres_.resize(mesh.nCells(), 3);
+  volumes_.resize(mesh.nCells());
+  forAll(mesh.C(), c) {
+    const Foam::vector &x = mesh.C()[c];
+    centres_.row(c) << x.x(), x.y(), x.z();
+    volumes_[c] = mesh.V()[c];
+  }
+}
+
 void OpenFoamFlow::record_cells_and_limits(const FoamFlowSettings &settings) {
   using namespace Foam;
   const fvMesh &mesh = *mesh_;
   const label n = mesh.nCells();
-  centres_.resize(n, 3);
-  volumes_.resize(n);
-  forAll(mesh.C(), c) {
-    const vector &x = mesh.C()[c];
-    centres_.row(c) << x.x(), x.y(), x.z();
-    volumes_[c] = mesh.V()[c];
-  }
+  record_cells();
   Foam::scalar initial_speed = 0.0;
   forAll(U_->primitiveField(), c) initial_speed = Foam::max(initial_speed, Foam::mag(U_->primitiveField()[c]));
   forAll(U_->boundaryField(), patch) {
@@ -73,6 +84,8 @@ void OpenFoamFlow::record_cells_and_limits(const FoamFlowSettings &settings) {
   text << "OpenFOAM v1912 PIMPLE, " << returnReduce(n, sumOp<label>()) << " cells";
   if (Pstream::parRun())
     text << " on " << Pstream::nProcs() << " MPI ranks";
+  if (mesh_->dynamic())
+    text << ", moving mesh " << mesh_->type() << (correctPhi_ ? " (correctPhi)" : "");
   text << ", turbulence " << turbulence_->type() << ", case " << settings.case_directory.string();
   description_ = text.str();
 }

@@ -6,11 +6,28 @@
 
 #include "InterfaceFaces.H"
 
+#include "CorrectPhi.H"
+
 namespace fsi::fluid {
 
-void OpenFoamFlow::step(double dt_s) {
-  runTime_->setDeltaT(dt_s, false); // exactly the coupled dt: never stretched to hit a write time
-  ++(*runTime_);
+void OpenFoamFlow::after_mesh_motion() {
+  // pimpleFoam's loop after mesh.controlledUpdate() (moveMeshOuterCorrectors no: once a step).
+  using namespace Foam;
+  if (correctPhi_) {
+    // The absolute flux from the mapped face velocity, made divergence-free, then relative.
+    *phi_ = mesh_->Sf() & Uf_();
+    CorrectPhi(*U_, *phi_, *p_, dimensionedScalar("rAUf", dimTime, 1), geometricZeroField(), *pimple_);
+    fvc::makeRelative(*phi_, *U_);
+  }
+  record_cells();
+  if (patchWallDistance_) {
+    // wallDist recomputed the distance to the mesh's walls as the points moved (its default
+    // updateInterval 1): the immersed walls' part is applied again by set_immersed_walls.
+    patchWallDistance_ = std::make_unique<Foam::scalarField>(Foam::wallDist::New(*mesh_).y().primitiveField());
+  }
+}
+
+void OpenFoamFlow::step() {
   while (pimple_->loop()) {
     solve_momentum_and_pressure();
     if (pimple_->turbCorr()) {
@@ -54,7 +71,8 @@ Foam::tmp<Foam::fvVectorMatrix> OpenFoamFlow::momentum_equation() {
 
 
 void OpenFoamFlow::correct_pressure(Foam::fvVectorMatrix &UEqn, const Foam::labelList &trapped) {
-  // pEqn.H of pimpleFoam (static mesh, no MRF): one corrector.
+  // pEqn.H of pimpleFoam (no MRF): one corrector. phiHbyA is absolute (the bodies' interface
+  // fluxes too); phi leaves relative to a moving mesh.
   using namespace Foam;
   fvMesh &mesh = *mesh_;
   volScalarField &p = *p_;
@@ -63,9 +81,12 @@ void OpenFoamFlow::correct_pressure(Foam::fvVectorMatrix &UEqn, const Foam::labe
   pimpleControl &pimple = *pimple_;
   volScalarField rAU(1.0 / UEqn.A());
   volVectorField HbyA(constrainHbyA(rAU * UEqn.H(), U, p));
-  surfaceScalarField phiHbyA("phiHbyA", fvc::flux(HbyA) + fvc::interpolate(rAU) * fvc::ddtCorr(U, phi));
-  if (p.needReference())
+  surfaceScalarField phiHbyA("phiHbyA", fvc::flux(HbyA) + fvc::interpolate(rAU) * fvc::ddtCorr(U, phi, Uf_));
+  if (p.needReference()) {
+    fvc::makeRelative(phiHbyA, U);
     adjustPhi(phiHbyA, U, p);
+    fvc::makeAbsolute(phiHbyA, U);
+  }
   tmp<volScalarField> rAtU(rAU);
   if (pimple.consistent()) {
     rAtU = 1.0 / max(1.0 / rAU - UEqn.H1(), 0.1 / rAU);
@@ -95,6 +116,10 @@ void OpenFoamFlow::correct_pressure(Foam::fvVectorMatrix &UEqn, const Foam::labe
   p.relax();
   U = HbyA - rAtU * pressure_gradient();
   U.correctBoundaryConditions();
+  // A moving mesh: the face velocity follows, and the flux becomes relative to the mesh motion
+  // (the convective flux of the next momentum equation). Nothing on a static mesh.
+  fvc::correctUf(Uf_, U, phi);
+  fvc::makeRelative(phi, U);
 }
 
 Foam::tmp<Foam::volVectorField> OpenFoamFlow::pressure_gradient() const {

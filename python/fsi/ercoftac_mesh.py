@@ -107,10 +107,11 @@ def _patch_of(surface, region):
     return "blades" if region == "rotor" else "vanes"
 
 
-def write_msh(path, region, h_near_m, h_far_m, thickness_m=None):
+def write_msh(path, region, h_near_m, h_far_m, thickness_m=None, cut_blades=True):
     """Meshes one region (REGIONS) and writes it as gmsh 2.2 (gmshToFoam's format) to path.
     Returns {"cells": n, "patches": {name: surfaces}}. The slab is thickness_m thick (default
-    h_near_m: cubes in the rotor)."""
+    h_near_m: cubes in the rotor). cut_blades=False: the rotor region without its blades (they
+    are penalized in it, turning with its cells)."""
     import gmsh
     if region not in REGIONS:
         raise ValueError("region %r: one of %s" % (region, ", ".join(REGIONS)))
@@ -127,7 +128,7 @@ def write_msh(path, region, h_near_m, h_far_m, thickness_m=None):
         walls, surfaces = list(interface_arcs), []
         if region in ("penalized", "rotor"):
             holes = []
-            for k in range(ecp.BLADES if region == "rotor" else 0):
+            for k in range(ecp.BLADES if region == "rotor" and cut_blades else 0):
                 loop, curves = _profile_loop(geo, ecp.blade().rotated(2 * math.pi * k / ecp.BLADES), h_near_m)
                 holes.append(loop)
                 walls += curves
@@ -175,10 +176,12 @@ PATCH_TYPES = {"frontAndBack": "empty", "inlet": "patch", "outlet": "patch", "va
 AMI_PAIRS = {"ami_rotor": "ami_stator", "ami_stator": "ami_rotor"}
 
 
-def write_boundary_types(foam_case):
+def write_boundary_types(foam_case, patch_types=None):
     """constant/polyMesh/boundary with the patches' OpenFOAM types (gmshToFoam writes them all as
-    `patch`): the slab's faces empty, the walls walls, the two sides of the interface a cyclicAMI
-    pair (noOrdering: their faces do not match one to one)."""
+    `patch`; patch_types: {name: type}, default PATCH_TYPES): the slab's faces empty, the walls
+    walls, the two sides of the interface (ami_rotor, ami_stator) a cyclicAMI pair (noOrdering:
+    their faces do not match one to one)."""
+    patch_types = patch_types or PATCH_TYPES
     path = os.path.join(foam_case, "constant", "polyMesh", "boundary")
     with open(path) as f:
         text = f.read()
@@ -187,13 +190,13 @@ def write_boundary_types(foam_case):
         raise ValueError("%s: no patches found (gmshToFoam's output expected)" % path)
     lines = [text[:text.index("// * *")].rstrip() + "\n" + "// " + "* " * 37 + "//\n", "%d\n(" % len(patches)]
     for name, faces, start in patches:
-        if name not in PATCH_TYPES and name not in AMI_PAIRS:
-            raise ValueError("%s: patch %r is none of %s" % (path, name, ", ".join(list(PATCH_TYPES) + list(AMI_PAIRS))))
-        body = ["type %s;" % ("cyclicAMI" if name in AMI_PAIRS else PATCH_TYPES[name])]
+        if name not in patch_types and name not in AMI_PAIRS:
+            raise ValueError("%s: patch %r is none of %s" % (path, name, ", ".join(list(patch_types) + list(AMI_PAIRS))))
+        body = ["type %s;" % ("cyclicAMI" if name in AMI_PAIRS else patch_types[name])]
         if name in AMI_PAIRS:
             body += ["inGroups (cyclicAMI);", "neighbourPatch %s;" % AMI_PAIRS[name], "transform noOrdering;"]
-        elif PATCH_TYPES[name] in ("empty", "wall"):
-            body.append("inGroups (%s);" % PATCH_TYPES[name])
+        elif patch_types[name] in ("empty", "wall"):
+            body.append("inGroups (%s);" % patch_types[name])
         body += ["nFaces %s;" % faces, "startFace %s;" % start]
         lines.append("    %s\n    {\n%s\n    }" % (name, "\n".join("        " + b for b in body)))
     lines.append(")\n")
@@ -201,16 +204,21 @@ def write_boundary_types(foam_case):
         f.write("\n".join(lines))
 
 
+METHODS = ("penalized", "turning", "ami")
+
+
 def foam_mesh(foam_case, method, h_near_m, h_far_m, logs):
     """The slab's OpenFOAM mesh in foam_case/constant/polyMesh: gmsh (write_msh), gmshToFoam,
-    for the body-fitted method the rotor merged into the stator (mergeMeshes), the patch types
-    (write_boundary_types), checkMesh. method: penalized or ami. Returns the cell count."""
+    for a rotor behind the AMI the rotor merged into the stator (mergeMeshes), the patch types
+    (write_boundary_types), checkMesh. method (METHODS): penalized (one fixed mesh, the blades
+    penalized in it), turning (the blades penalized in a rotor mesh turning with them behind the
+    AMI) or ami (the blades cut out of that rotor, body-fitted). Returns the cell count."""
     from fsi import pump_ami_run
 
     def run_tool(tool, case, logs, options=()):
         pump_ami_run.run_tool(tool, case, logs, options, who="ercoftac-mesh")
-    if method not in ("penalized", "ami"):
-        raise ValueError("method %r: penalized or ami" % method)
+    if method not in METHODS:
+        raise ValueError("method %r: one of %s" % (method, ", ".join(METHODS)))
     os.makedirs(logs, exist_ok=True)
     shutil.rmtree(os.path.join(foam_case, "constant", "polyMesh"), ignore_errors=True)
     with tempfile.TemporaryDirectory() as tmp:
@@ -224,7 +232,8 @@ def foam_mesh(foam_case, method, h_near_m, h_far_m, logs):
             shutil.copytree(os.path.join(foam_case, "system"), os.path.join(rotor_case, "system"))
             cells = 0
             for region, case in (("stator", foam_case), ("rotor", rotor_case)):
-                cells += write_msh(os.path.join(tmp, region + ".msh"), region, h_near_m, h_far_m)["cells"]
+                cells += write_msh(os.path.join(tmp, region + ".msh"), region, h_near_m, h_far_m,
+                                   cut_blades=method == "ami")["cells"]
                 run_tool("gmshToFoam", case, logs, [os.path.join(tmp, region + ".msh")])
                 os.rename(os.path.join(logs, "log.gmshToFoam"), os.path.join(logs, "log.gmshToFoam." + region))
             run_tool("mergeMeshes", foam_case, logs, ["-overwrite", foam_case, rotor_case])

@@ -315,7 +315,7 @@ class Casing(unittest.TestCase):
 
 class Mesh(unittest.TestCase):
     """python/fsi/ercoftac_mesh.py at h = 3.3 mm (3 cells across the 10 mm blade): hexahedra only,
-    the patches of each method, and the body-fitted reference's stator the penalized mesh's outer
+    the patches of each method (the turning rotor: the body-fitted one's region with its blades), and the body-fitted reference's stator the penalized mesh's outer
     part cell for cell (issue 31's same cells elsewhere). About 15 s."""
 
     @classmethod
@@ -325,6 +325,9 @@ class Mesh(unittest.TestCase):
         cls.tmp = tempfile.TemporaryDirectory()
         cls.made = {r: ercoftac_mesh.write_msh(os.path.join(cls.tmp.name, r + ".msh"), r, 0.0033, 0.03)
                     for r in ercoftac_mesh.REGIONS}
+        # The turning method's rotor: the same region with the blades left in (penalized in it).
+        cls.made["rotor-open"] = ercoftac_mesh.write_msh(os.path.join(cls.tmp.name, "rotor-open.msh"), "rotor", 0.0033,
+                                                         0.03, cut_blades=False)
 
     @classmethod
     def tearDownClass(cls):
@@ -336,6 +339,9 @@ class Mesh(unittest.TestCase):
         self.assertEqual(sorted(self.made["penalized"]["patches"]), ["frontAndBack", "inlet", "outlet", "vanes"])
         self.assertEqual(sorted(self.made["rotor"]["patches"]), ["ami_rotor", "blades", "frontAndBack", "inlet"])
         self.assertEqual(sorted(self.made["stator"]["patches"]), ["ami_stator", "frontAndBack", "outlet", "vanes"])
+        self.assertEqual(sorted(self.made["rotor-open"]["patches"]), ["ami_rotor", "frontAndBack", "inlet"])
+        # The blades' cells are in it: more cells than the rotor they are cut out of.
+        self.assertGreater(self.made["rotor-open"]["cells"], self.made["rotor"]["cells"])
 
     def cell_centres(self, region, zone):
         import gmsh

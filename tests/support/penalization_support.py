@@ -154,7 +154,8 @@ def latest_time_dir(foam_case):
 
 
 def read_internal_field(path, n_cells):
-    """internalField of an ascii volScalarField or volVectorField: (N,) or (N, 3)."""
+    """internalField of an ascii volScalarField or volVectorField: (N,) or (N, 3); n_cells None:
+    as many as the file holds (not uniform)."""
     with open(path) as f:
         text = f.read()
     uniform = re.search(r"internalField\s+uniform\s+(\([^)]*\)|[^;\s]+)\s*;", text)
@@ -166,7 +167,7 @@ def read_internal_field(path, n_cells):
     if not match:
         raise AssertionError(path + ": no ascii internalField (writeFormat ascii?)")
     n = int(match.group(2))
-    if n != n_cells:
+    if n_cells is not None and n != n_cells:
         raise AssertionError("%s: %d values, expected %d cells" % (path, n, n_cells))
     body = text[match.end():]
     if match.group(1) == "scalar":
@@ -303,3 +304,91 @@ class PenalizationTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, stderr[-3000:])
         self.assertEqual(status_of(os.path.join(out, "coupling.h5")), "completed", stderr[-3000:])
         return wall
+
+
+# ---- a rotor's cells turning behind an AMI --------------------------------------------------
+
+def _gmsh_disc_region(path, r_in, r_out, h, thickness, zone, inner_patch, outer_patch):
+    """One region of a quasi-2D disc slab (r_in = 0: a full disc) meshed by gmsh with quads, one
+    layer of hexahedra `thickness` thick, written as gmsh 2.2: its cells the zone `zone`, its
+    circles the patches inner_patch / outer_patch, its two faces frontAndBack."""
+    import gmsh
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add(zone)
+        occ = gmsh.model.occ
+        disc = occ.addDisk(0, 0, 0, r_out, r_out)
+        if r_in > 0:
+            disc = occ.cut([(2, disc)], [(2, occ.addDisk(0, 0, 0, r_in, r_in))])[0][0][1]
+        occ.synchronize()
+        gmsh.model.mesh.setRecombine(2, disc)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", h)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+        gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)
+        extruded = occ.extrude([(2, disc)], 0, 0, thickness, numElements=[1], recombine=True)
+        occ.synchronize()
+        volume = [tag for dim, tag in extruded if dim == 3][0]
+        walls = {}
+        for _dim, surface in gmsh.model.getEntities(2):
+            box = gmsh.model.getBoundingBox(2, surface)     # OpenCASCADE pads it by its tolerance
+            if abs(box[5] - box[2]) < 0.5 * thickness:
+                walls.setdefault("frontAndBack", []).append(surface)
+            else:
+                radius = max(abs(box[3]), abs(box[4]))
+                walls.setdefault(outer_patch if abs(radius - r_out) < 0.1 * h else inner_patch, []).append(surface)
+        for name, tags in walls.items():
+            gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, tags), name)
+        gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, [volume]), zone)
+        gmsh.model.mesh.generate(3)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
+        gmsh.write(path)
+    finally:
+        gmsh.finalize()
+
+
+def write_turning_disc_mesh(foam_case, r_rotor, r_domain, h, omega, logs):
+    """constant/polyMesh of a quasi-2D disc of radius r_domain (one cell h thick, walls `walls`
+    around it, `empty` front and back): the cell zone `rotor` (r < r_rotor) turning at omega
+    rad/s about +z behind a cyclicAMI pair (ami_rotor, ami_stator), the zone `stator` fixed
+    (constant/dynamicMeshDict: pimpleFoam's solidBody rotatingMotion). gmsh, gmshToFoam and
+    mergeMeshes, their logs in `logs`."""
+    from fsi import ercoftac_mesh
+    from fsi.pump_ami_run import run_tool
+    os.makedirs(logs, exist_ok=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        rotor_case = os.path.join(tmp, "rotor")
+        os.makedirs(os.path.join(rotor_case, "constant"))
+        shutil.copytree(os.path.join(foam_case, "system"), os.path.join(rotor_case, "system"))
+        for zone, case, r_in, r_out, inner, outer in (("stator", foam_case, r_rotor, r_domain, "ami_stator", "walls"),
+                                                      ("rotor", rotor_case, 0.0, r_rotor, "none", "ami_rotor")):
+            msh = os.path.join(tmp, zone + ".msh")
+            _gmsh_disc_region(msh, r_in, r_out, h, h, zone, inner, outer)
+            run_tool("gmshToFoam", case, logs, [msh], who="turning-disc")
+            os.rename(os.path.join(logs, "log.gmshToFoam"), os.path.join(logs, "log.gmshToFoam." + zone))
+        run_tool("mergeMeshes", foam_case, logs, ["-overwrite", foam_case, rotor_case], who="turning-disc")
+    ercoftac_mesh.write_boundary_types(foam_case, {"walls": "wall", "frontAndBack": "empty"})
+    with open(os.path.join(foam_case, "constant", "dynamicMeshDict"), "w") as f:
+        f.write(foam_header("dictionary", "dynamicMeshDict") + """
+dynamicFvMesh   dynamicMotionSolverFvMesh;
+motionSolverLibs ("libfvMotionSolvers.so");
+motionSolver    solidBody;
+cellZone        rotor;
+solidBodyMotionFunction rotatingMotion;
+origin          (0 0 0);
+axis            (0 0 1);
+omega           %r;
+""" % omega)
+
+
+
+def cell_centres_and_volumes(foam_case, time_name, logs):
+    """The cell centres (N x 3, m) and volumes (N, m^3) of a case's mesh at a time (a moving
+    mesh's points of that time): OpenFOAM's writeCellCentres and writeCellVolumes."""
+    from fsi.pump_ami_run import run_tool
+    for function in ("writeCellCentres", "writeCellVolumes"):
+        run_tool("postProcess", foam_case, logs, ["-func", function, "-time", time_name], who="turning-disc")
+        os.rename(os.path.join(logs, "log.postProcess"), os.path.join(logs, "log.postProcess." + function))
+    folder = os.path.join(foam_case, time_name)
+    volumes = read_internal_field(os.path.join(folder, "V"), None)
+    return read_internal_field(os.path.join(folder, "C"), len(volumes)), volumes
