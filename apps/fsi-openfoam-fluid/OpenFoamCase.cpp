@@ -44,7 +44,8 @@ fs::path mesh_cache_root() {
 /// The hash of what a snappyHexMesh mesh is made from.
 std::string mesh_inputs_hash(const fs::path &foam_case) {
   common::Fnv1a hash;
-  for (const char *dict : {"blockMeshDict", "snappyHexMeshDict", "surfaceFeatureExtractDict", "meshQualityDict"})
+  for (const char *dict :
+       {"blockMeshDict", "snappyHexMeshDict", "surfaceFeatureExtractDict", "meshQualityDict", "createBafflesDict"})
     hash.add_file(foam_case / "system" / dict);
   std::vector<fs::path> surfaces;
   if (fs::is_directory(foam_case / "constant" / "triSurface"))
@@ -106,6 +107,12 @@ void snappy_mesh(const fs::path &foam_case) {
   if (fs::exists(foam_case / "system" / "surfaceFeatureExtractDict"))
     run_tool("surfaceFeatureExtract", foam_case);
   run_tool("snappyHexMesh", foam_case, " -overwrite");
+  if (fs::exists(foam_case / "system" / "createBafflesDict")) {
+    // A rotor behind an AMI (the turning penalized impeller): its faceZone becomes the cyclicAMI
+    // pair, and each side gets its own points so that the rotor can turn (as the AMI tutorials).
+    run_tool("createBaffles", foam_case, " -overwrite");
+    run_tool("mergeOrSplitBaffles", foam_case, " -split -overwrite");
+  }
   run_tool("checkMesh", foam_case, " -constant");
   check_not_clipped_by_the_background(foam_case, mesh);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

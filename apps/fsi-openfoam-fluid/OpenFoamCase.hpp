@@ -13,8 +13,9 @@ namespace fsi::apps {
 /// Copies case_dir/foam.case_directory to out/openfoam (replacing an earlier copy), writes its
 /// operating point (constant/operatingPoint) when the case gives one, and meshes it when it has
 /// no constant/polyMesh: blockMesh, then (with system/snappyHexMeshDict)
-/// surfaceFeatureExtract when the case has its dictionary, snappyHexMesh -overwrite and
-/// checkMesh. A snappyHexMesh mesh is kept in the mesh cache ($FSI_MESH_CACHE, default
+/// surfaceFeatureExtract when the case has its dictionary, snappyHexMesh -overwrite, (with
+/// system/createBafflesDict: a rotor's faceZone made a cyclicAMI pair) createBaffles -overwrite
+/// and mergeOrSplitBaffles -split -overwrite, and checkMesh. A snappyHexMesh mesh is kept in the mesh cache ($FSI_MESH_CACHE, default
 /// ~/.cache/fsi/meshes) under a hash of the files it is made from (system/ dictionaries of the
 /// meshing tools, constant/triSurface): the next run with the same inputs reuses it. Returns the
 /// copy. Throws common::ConfigError for a folder that is not an OpenFOAM case,

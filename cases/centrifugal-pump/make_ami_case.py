@@ -22,7 +22,9 @@ The gaps between impeller and casing (5 mm radially and axially) are thinner tha
 cell (8 mm): the cells within GAP_BAND of the rotor cylinder are refined to GAP_CELL (2 mm, the
 paper's cell size) so that each half-gap has a cell between wall and interface; elsewhere the
 cells are the penalized mesh's h (the impeller surface one level finer, IMPELLER_LEVELS).
-It also writes openfoam-coarse-ami-mesh, the penalized case (preset coarse-ami-mesh) meshed by
+It also writes openfoam-coarse-turning-mesh (preset coarse-turning-mesh): that penalized case with
+the rotor's faceZone made the AMI pair and its cells turning with the impeller, so that the blades
+never switch cells (docs/model.md). And openfoam-coarse-ami-mesh, the penalized case (preset coarse-ami-mesh) meshed by
 the same snappyHexMeshDict except for the impeller, kept and refined as a region (IMPELLER_REGION):
 the same background cells and the same 2 mm band in the gaps as the AMI mesh, the impeller's
 surroundings one level finer in both (measured on the single blade: 177,626 cells, the AMI mesh
@@ -330,15 +332,42 @@ def snappy_dict(design, h, casing, impeller, penalized=False, blade_cell=None):
     return text, (r, z0, z1), gap
 
 
-def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None):
+def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None, solution=None):
     """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
     solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
-    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True)
+    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True, solution=solution)
     text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True,
                                      blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
     if fine_blade:
         link(folder, "impeller-blade.stl", fine_blade[0])
+
+
+def write_turning_case(folder, design, case, h, casing, impeller):
+    """openfoam-<resolution>-turning-mesh: the penalized impeller in the AMI mesh's rotor, whose
+    cells turn with it (docs/model.md, "the cells a moving body switches"): the penalized case on
+    the AMI case's mesh (write_penalized_case), its rotor faceZone made the cyclicAMI pair
+    (createBafflesDict: fsi-openfoam-fluid runs createBaffles and mergeOrSplitBaffles after
+    snappyHexMesh), the rotor cell zone turning at case.yaml's rate (dynamicMeshDict), correctPhi
+    and pcorr as the AMI case's."""
+    solution = {"more_solvers": "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n", "more_pimple": MOVING}
+    write_penalized_case(folder, design, h, casing, impeller, solution=solution)
+    write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
+    write_dynamic_mesh_dict(folder, case)
+    for name in os.listdir(os.path.join(folder, "0")):
+        path = os.path.join(folder, "0", name)
+        with open(path) as f:
+            text = f.read()
+        with open(path, "w") as f:
+            f.write(add_before_last_brace(text, AMI_ENTRIES))
+
+
+def write_dynamic_mesh_dict(folder, case):
+    """constant/dynamicMeshDict: the rotor cell zone turning with the impeller of case.yaml."""
+    rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
+    write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
+        "o": " ".join("%r" % float(v) for v in rot["axis_point_m"]),
+        "a": " ".join("%r" % float(v) for v in rot["axis_direction"]), "w": float(rot["rate_rad_per_s"])})
 
 
 def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=None):
@@ -367,10 +396,7 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=Non
     if fine_blade:
         link(folder, "impeller-blade.stl", fine_blade[0])
     write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
-    rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
-    write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
-        "o": " ".join("%r" % float(v) for v in rot["axis_point_m"]),
-        "a": " ".join("%r" % float(v) for v in rot["axis_direction"]), "w": float(rot["rate_rad_per_s"])})
+    write_dynamic_mesh_dict(folder, case)
     # 0/: the same fields, the AMI pair in each, and the impeller walls moving for U.
     for name in os.listdir(os.path.join(folder, "0")):
         path = os.path.join(folder, "0", name)
@@ -412,6 +438,10 @@ def main(argv):
     write_penalized_case(os.path.join(args.output, "openfoam-coarse-ami-mesh"), design, d2 / RESOLUTIONS["coarse"],
                          casing, impeller)
     print("openfoam-coarse-ami-mesh: the penalized case on openfoam-ami-coarse's mesh")
+    # The penalized impeller in that mesh's rotor, turning with it (preset coarse-turning-mesh).
+    write_turning_case(os.path.join(args.output, "openfoam-coarse-turning-mesh"), design, case,
+                       d2 / RESOLUTIONS["coarse"], casing, impeller)
+    print("openfoam-coarse-turning-mesh: the penalized impeller in openfoam-ami-coarse's rotor, turning with it")
     blade_stl = write_blade_stl(impeller) if FINE_BLADE else None   # once, for every variant and both methods
     for name, (base, blade_cell, dt_factor) in FINE_BLADE.items():
         h = d2 / RESOLUTIONS[base]

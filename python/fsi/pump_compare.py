@@ -1,19 +1,20 @@
 #!/usr/bin/python3
 """./fsi pump-compare: the penalized impeller against the body-fitted (AMI) one at one flow rate,
 as the credible-pump issue asks a fair comparison to be made: the same mesh (the penalized
-impeller on the AMI reference's snappyHexMesh mesh, preset <resolution>-ami-mesh, against
-openfoam-ami-<resolution>), the same history (both start from one settled state, the fields of a
+impeller in the AMI reference's snappyHexMesh mesh, its rotor turning with it behind the same
+AMI, preset <resolution>-turning-mesh, against openfoam-ami-<resolution>; --penalized-mesh fixed:
+the impeller turning through that mesh held still, preset <resolution>-ami-mesh), the same history (both start from one settled state, the fields of a
 pump-curve point), the same number of revolutions, averaged the same way (all revolutions but
 the first, each revolution's mean with the standard error of their scatter), and stopped only
 when the last three revolution means of head and torque drift by under 2 %.
 
     pump_compare.py --bin-dir BIN [--flow-fraction 1.0] [--revolutions 8] [--ranks 2]
-                    [--resolution coarse] [--from OPENFOAM_CASE] [--set KEY=VALUE] [--summarize] [-o DIR]
+                    [--resolution coarse] [--penalized-mesh turning|fixed] [--from OPENFOAM_CASE] [--set KEY=VALUE] [--summarize] [-o DIR]
                     CASE_DIR
 
 --from: the settled state (default CASE_DIR/output/pump-curve/q<fraction>/openfoam, which
 ./fsi pump-curve writes). DIR (default CASE_DIR/output/pump-compare/q<fraction>, with -<resolution> after it for another
-resolution than coarse, e.g. q1.00-coarse-fine-blade: the blade's cells 2 mm) gets ibm/ (the
+resolution than coarse, e.g. q1.00-coarse-fine-blade: the blade's cells 2 mm, and -fixed-mesh for --penalized-mesh fixed) gets ibm/ (the
 penalized run, fsi_launch.py), ami/ (python/fsi/pump_ami_run.py), comparison.yaml (both points,
 their differences and the issue's goals: head within 5 % at the design flow, 10 % at part load,
 torque within 10 %), comparison.md (the table) and comparison.png (the revolution means, the
@@ -64,13 +65,21 @@ def load_yaml(path):
         return yaml.safe_load(f)
 
 
-def run_fingerprint(case_dir, method, resolution):
+def penalized_preset(args):
+    """The penalized run's preset: <res>-turning-mesh (the impeller in the AMI mesh's rotor, turning
+    with it) or <res>-ami-mesh (--penalized-mesh fixed: the impeller turning through the AMI
+    mesh's cells, held still)."""
+    return args.resolution + ("-turning-mesh" if args.penalized_mesh == "turning" else "-ami-mesh")
+
+
+def run_fingerprint(case_dir, method, resolution, preset=None):
     """A hash of what one method's run is made of: case.yaml, pump.yaml and its OpenFOAM folder
-    (the penalized run: presets/<res>-ami-mesh.yaml and openfoam-<res>-ami-mesh; the AMI run:
+    (the penalized run: presets/<preset>.yaml and openfoam-<preset>; the AMI run:
     openfoam-ami-<res>), links followed to the geometry they name. Other files of the case (another
     resolution's folders, a new preset, the scripts) do not make a finished run stale."""
     if method == "ibm":
-        inputs = [os.path.join("presets", resolution + "-ami-mesh.yaml"), "openfoam-%s-ami-mesh" % resolution]
+        preset = preset or resolution + "-ami-mesh"
+        inputs = [os.path.join("presets", preset + ".yaml"), "openfoam-" + preset]
     else:
         inputs = ["openfoam-ami-" + resolution]
     paths = []
@@ -83,7 +92,7 @@ def run_fingerprint(case_dir, method, resolution):
 
 def run_inputs(args, method, flow_rate):
     """What makes a run: equal inputs, equal run (the end time aside, which the AMI run extends)."""
-    inputs = {"method": method, "case": run_fingerprint(args.case_dir, method, args.resolution),
+    inputs = {"method": method, "case": run_fingerprint(args.case_dir, method, args.resolution, penalized_preset(args)),
               "flow_rate_m3_per_s": flow_rate, "from": os.path.abspath(args.settled), "resolution": args.resolution,
               "ranks": args.ranks}
     if method == "ibm" and getattr(args, "assignments", None):
@@ -163,7 +172,7 @@ def run_method(args, method, flow_rate, end_time):
             command += ["--initial-fields-from", args.settled]
     else:
         command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", folder, "--preset",
-                   args.resolution + "-ami-mesh", "--end-time", repr(end_time), "--set",
+                   penalized_preset(args), "--end-time", repr(end_time), "--set",
                    flow_rate_assignment(flow_rate), "--set", "fluid.openfoam.initial_fields_from=" + args.settled,
                    "--set", "fluid.openfoam.mpi_ranks=%d" % args.ranks]
         for assignment in args.assignments:
@@ -356,6 +365,9 @@ def main(argv):
     parser.add_argument("--revolutions", type=int, default=8, help="each method's, from the settled state (>= 4)")
     parser.add_argument("--ranks", type=int, default=2, help="MPI ranks of each run (they run one after the other)")
     parser.add_argument("--resolution", default="coarse")
+    parser.add_argument("--penalized-mesh", choices=("turning", "fixed"), default="turning",
+                        help="the penalized impeller in the AMI mesh's rotor turning with it (default), or turning "
+                             "through its cells held still (the cells it switches: docs/model.md)")
     parser.add_argument("--from", dest="settled", default="", help="the settled state: an OpenFOAM case whose latest "
                         "fields start both runs (default: CASE_DIR/output/pump-curve/q<fraction>/openfoam)")
     parser.add_argument("--set", metavar="KEY=VALUE", dest="assignments", action="append", default=[],
@@ -375,17 +387,19 @@ def main(argv):
     if args.revolutions < 4:
         raise SystemExit("pump-compare: --revolutions %d: at least 4 (one to settle, three for the drift rule)"
                          % args.revolutions)
-    preset = os.path.join(args.case_dir, "presets", args.resolution + "-ami-mesh.yaml")
+    preset = os.path.join(args.case_dir, "presets", penalized_preset(args) + ".yaml")
     if not os.path.isfile(preset):
-        raise SystemExit("pump-compare: --resolution %s: %s does not exist (the penalized impeller on the AMI "
-                         "mesh; make_ami_case.py writes the coarse one)" % (args.resolution, preset))
+        raise SystemExit("pump-compare: --resolution %s --penalized-mesh %s: %s does not exist (the penalized "
+                         "impeller on the AMI mesh; make_ami_case.py writes the coarse one)"
+                         % (args.resolution, args.penalized_mesh, preset))
     tag = "q%.2f" % args.flow_fraction
     args.settled = os.path.abspath(args.settled or os.path.join(args.case_dir, "output", "pump-curve", tag, "openfoam"))
     if not os.path.isdir(args.settled):
         raise SystemExit("pump-compare: the settled state %s does not exist: run ./fsi pump-curve --points %g %s "
                          "first, or give --from" % (args.settled, args.flow_fraction, args.case_dir))
     # One folder per flow rate and mesh: another resolution never takes over a finished pair's runs.
-    folder = tag if args.resolution == "coarse" else "%s-%s" % (tag, args.resolution)
+    folder = (tag if args.resolution == "coarse" else "%s-%s" % (tag, args.resolution)) + (
+        "" if args.penalized_mesh == "turning" else "-fixed-mesh")
     args.output = os.path.abspath(args.output or os.path.join(args.case_dir, "output", "pump-compare", folder))
     os.makedirs(args.output, exist_ok=True)
     design = load_yaml(os.path.join(args.case_dir, "pump.yaml"))

@@ -183,14 +183,20 @@ class Refusals(unittest.TestCase):
             for name in ("case.yaml", "pump.yaml", os.path.join("presets", "coarse-fine-blade-ami-mesh.yaml")):
                 shutil.copy(os.path.join(case, name), os.path.join(copy, name))
             os.makedirs(os.path.join(copy, "output", "pump-curve", "q1.00", "openfoam"))
-            # The coarse pair's default folder is q1.00; the fine-blade pair's, q1.00-coarse-fine-blade
-            # (held here, so the comparison stops before it runs anything and names it).
-            fine = os.path.join(copy, "output", "pump-compare", "q1.00-coarse-fine-blade", "ibm")
+            # The coarse pair's default folder is q1.00; the fine-blade pair's with the penalized impeller
+            # on the fixed mesh, q1.00-coarse-fine-blade-fixed-mesh (held here, so the comparison stops
+            # before it runs anything and names it).
+            fine = os.path.join(copy, "output", "pump-compare", "q1.00-coarse-fine-blade-fixed-mesh", "ibm")
             os.makedirs(fine)
             with open(os.path.join(fine, ".pump-compare.lock"), "w") as held:
                 fcntl.flock(held, fcntl.LOCK_EX)
                 made = self.run_module("fsi.pump_compare", "--bin-dir", tmp, "--resolution", "coarse-fine-blade",
-                                       copy)
+                                       "--penalized-mesh", "fixed", copy)
+            # No turning-mesh preset at that resolution: refused, naming the option.
+            missing = self.run_module("fsi.pump_compare", "--bin-dir", tmp, "--resolution", "coarse-fine-blade", copy)
+            self.assertNotEqual(missing.returncode, 0)
+            self.assertIn("--penalized-mesh turning", missing.stderr)
+            self.assertIn("coarse-fine-blade-turning-mesh.yaml does not exist", missing.stderr)
             self.assertFalse(os.path.exists(os.path.join(copy, "output", "pump-compare", "q1.00")))
         self.assertNotEqual(made.returncode, 0)
         self.assertIn("is in use by another pump-compare", made.stderr)
