@@ -426,9 +426,9 @@ class TurningMesh(PenalizationTest):
             return f.read()
 
     def budget(self, dt):
-        """One revolution from rest at 64 cells across (StirredTube's coarse h) and time step dt:
-        the budget's error relative to the paddle's integrated torque."""
-        h = 2.0 * self.R_DOMAIN / 64
+        """One revolution from rest at 32 cells across (h = 1.6 mm, the paddle 2.5 cells thick)
+        and time step dt: the budget's error relative to the paddle's integrated torque."""
+        h = 2.0 * self.R_DOMAIN / 32
         end = 2.0 * math.pi / self.OMEGA
         name = "dt%g" % dt
         case = self.write(name, h, dt, end, self.OMEGA)
@@ -457,21 +457,22 @@ class TurningMesh(PenalizationTest):
               % (len(volumes), h, len(paddle), self.OMEGA * dt, momentum, given, driven, error, int(inside.sum()),
                  paddle_error, wall))
         sys.stdout.flush()
-        self.assertGreater(int(inside.sum()), 10)
+        self.assertGreater(int(inside.sum()), 3)
         self.assertLess(paddle_error, 1e-3)
         self.assertGreater(driven, 0.0)
         return error
 
     def test_paddle_on_cells_turning_with_it_switches_none_and_keeps_the_budget(self):
         # No cell switches (the adapter would stop the run). The budget's error is that of the
-        # implicit Euler step in the turning frame, first order in dt (measured -14.5 %, -8.3 %,
-        # -4.1 %, -2.5 % at omega dt = 0.031 to 0.0039; the fixed mesh's +2.5 % at 0.031, -0.9 %
-        # at 0.0079, where both meshes' paddle torques agree within 0.3 %).
-        coarse, fine = self.budget(2.5e-3), self.budget(1.25e-3)
+        # implicit Euler step in the turning frame, first order in dt: measured -14.6 % and -8.3 %
+        # at omega dt = 0.031 and 0.016 here; at h = 0.8 mm -14.5 %, -8.3 %, -4.1 %, -2.5 % at
+        # omega dt = 0.031 to 0.0039, where the fixed mesh errs by +2.5 % at 0.031 and -0.9 % at
+        # 0.0079, and both meshes' paddle torques agree within 0.3 % at 0.0079.
+        coarse, fine = self.budget(5.0e-3), self.budget(2.5e-3)
         print("turning mesh: budget error %.2e -> %.2e as dt halves" % (coarse, fine))
-        self.assertLess(abs(coarse), 0.12)
-        self.assertLess(abs(fine), 0.06)
-        self.assertLess(abs(fine), 0.75 * abs(coarse))
+        self.assertLess(abs(coarse), 0.17)
+        self.assertLess(abs(fine), 0.10)
+        self.assertLess(abs(fine), 0.7 * abs(coarse))
 
     def test_a_mesh_turning_unlike_its_body_or_under_a_static_one_is_refused(self):
         h, dt = 2.0 * self.R_DOMAIN / 32, 5.0e-3
