@@ -19,20 +19,7 @@ void OpenFoamFlow::fix_interface_fluxes(Foam::surfaceScalarField &phiHbyA, Foam:
   const fvMesh &mesh = *mesh_;
   const auto &rate = penalizationRate_->primitiveField();
   if (mesh.moving()) {
-    // The bodies turn with their cells (or stand in fixed ones): each interface face carries
-    // the volume it sweeps, so that no water crosses it relative to the mesh (exactly, where the
-    // body velocity at the penalized cell's centre would miss the face's by omega h / 2).
-    const surfaceScalarField &mesh_flux = mesh.phi();
-    for_each_interface_face(mesh, rate, [&](label f, label, label, bool) {
-      phiHbyA[f] = mesh_flux[f];
-      rAtUf[f] *= 1e-9;
-    });
-    auto &phi_boundary = phiHbyA.boundaryFieldRef();
-    auto &rAtUf_boundary = rAtUf.boundaryFieldRef();
-    for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label, bool) {
-      phi_boundary[patch][i] = mesh_flux.boundaryField()[patch][i];
-      rAtUf_boundary[patch][i] *= 1e-9;
-    });
+    sweep_interface_fluxes(phiHbyA, rAtUf);
     return;
   }
   const auto &Sf = mesh.Sf();
@@ -78,6 +65,24 @@ void OpenFoamFlow::fix_interface_fluxes(Foam::surfaceScalarField &phiHbyA, Foam:
     const double body_side = cell_is_body ? 1.0 : -1.0;
     phi_boundary[patch][i] = coupled_out_of_cell(patch, i, cell, cell_is_body) -
                              body_side * correction * mag(Sf.boundaryField()[patch][i]);
+    rAtUf_boundary[patch][i] *= 1e-9;
+  });
+}
+
+void OpenFoamFlow::sweep_interface_fluxes(Foam::surfaceScalarField &phiHbyA, Foam::surfaceScalarField &rAtUf) const {
+  // The bodies turn with their cells (or stand in fixed ones): each interface face carries the
+  // volume it sweeps, so that no water crosses it relative to the mesh (exactly, where the body
+  // velocity at the penalized cell's centre would miss the face's by omega h / 2).
+  using namespace Foam;
+  const surfaceScalarField &mesh_flux = mesh_->phi();
+  for_each_interface_face(*mesh_, penalizationRate_->primitiveField(), [&](label f, label, label, bool) {
+    phiHbyA[f] = mesh_flux[f];
+    rAtUf[f] *= 1e-9;
+  });
+  auto &phi_boundary = phiHbyA.boundaryFieldRef();
+  auto &rAtUf_boundary = rAtUf.boundaryFieldRef();
+  for_each_coupled_interface_face(*penalizationRate_, [&](label patch, label i, label, bool) {
+    phi_boundary[patch][i] = mesh_flux.boundaryField()[patch][i];
     rAtUf_boundary[patch][i] *= 1e-9;
   });
 }
