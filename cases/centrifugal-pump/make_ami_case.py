@@ -214,6 +214,8 @@ MOVING = """
     checkMeshCourantNo no;
 """
 
+PCORR = "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n"   # correctPhi's pressure solver
+
 AMI_ENTRIES = """    AMI1   { type cyclicAMI; value $internalField; }
     AMI2   { type cyclicAMI; value $internalField; }
 """
@@ -350,24 +352,25 @@ def write_turning_case(folder, design, case, h, casing, impeller):
     (createBafflesDict: fsi-openfoam-fluid runs createBaffles and mergeOrSplitBaffles after
     snappyHexMesh), the rotor cell zone turning at case.yaml's rate (dynamicMeshDict), correctPhi
     and pcorr as the AMI case's."""
-    solution = {"more_solvers": "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n", "more_pimple": MOVING}
-    write_penalized_case(folder, design, h, casing, impeller, solution=solution)
+    write_penalized_case(folder, design, h, casing, impeller, solution={"more_solvers": PCORR, "more_pimple": MOVING})
+    write_rotor_motion(folder, case)
+
+
+def write_rotor_motion(folder, case, more_u=""):
+    """What turns the rotor behind the AMI, in both cases: its faceZone made the cyclicAMI pair
+    (createBafflesDict), the cell zone turning with the impeller of case.yaml (dynamicMeshDict),
+    and the pair in every field of 0/ (more_u: U's further entries)."""
     write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
-    write_dynamic_mesh_dict(folder, case)
+    rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
+    write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
+        "o": " ".join("%r" % float(v) for v in rot["axis_point_m"]),
+        "a": " ".join("%r" % float(v) for v in rot["axis_direction"]), "w": float(rot["rate_rad_per_s"])})
     for name in os.listdir(os.path.join(folder, "0")):
         path = os.path.join(folder, "0", name)
         with open(path) as f:
             text = f.read()
         with open(path, "w") as f:
-            f.write(add_before_last_brace(text, AMI_ENTRIES))
-
-
-def write_dynamic_mesh_dict(folder, case):
-    """constant/dynamicMeshDict: the rotor cell zone turning with the impeller of case.yaml."""
-    rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
-    write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
-        "o": " ".join("%r" % float(v) for v in rot["axis_point_m"]),
-        "a": " ".join("%r" % float(v) for v in rot["axis_direction"]), "w": float(rot["rate_rad_per_s"])})
+            f.write(add_before_last_brace(text, AMI_ENTRIES + (more_u if name == "U" else "")))
 
 
 def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=None):
@@ -387,26 +390,16 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=Non
     # diagonally dominant and Gauss-Seidel diverges (U to 1e268 in the first step). A Krylov
     # solver takes the same equations to the same tolerance.
     solution = {"p": "{ solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.01; }",
-                "more_solvers": "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n", "u": make_case.U_KRYLOV,
-                "more_pimple": MOVING}
+                "more_solvers": PCORR, "u": make_case.U_KRYLOV, "more_pimple": MOVING}
     box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution)
     link(folder, "impeller.stl", impeller)
     text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller, blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
     if fine_blade:
         link(folder, "impeller-blade.stl", fine_blade[0])
-    write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
-    write_dynamic_mesh_dict(folder, case)
     # 0/: the same fields, the AMI pair in each, and the impeller walls moving for U.
-    for name in os.listdir(os.path.join(folder, "0")):
-        path = os.path.join(folder, "0", name)
-        with open(path) as f:
-            text = f.read()
-        more = AMI_ENTRIES
-        if name == "U":
-            more += "".join("    %s { type movingWallVelocity; value uniform (0 0 0); }\n" % b for b in blade)
-        with open(path, "w") as f:
-            f.write(add_before_last_brace(text, more))
+    write_rotor_motion(folder, case, "".join("    %s { type movingWallVelocity; value uniform (0 0 0); }\n" % b
+                                             for b in blade))
     return box, (r, z0, z1), gap
 
 
