@@ -13,8 +13,8 @@ void setup_logging(const std::string &role, bool verbose) {
   spdlog::set_default_logger(logger);
 }
 
-void add_log_file(const std::filesystem::path &file) {
-  auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string(), true);
+void add_log_file(const std::filesystem::path &file, LogFile mode) {
+  auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string(), mode == LogFile::truncate);
   sink->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%n] [%l] %v");
   spdlog::default_logger()->sinks().push_back(sink);
   // A log file is for following a run as it goes (tail -f) and for reading after a kill:

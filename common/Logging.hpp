@@ -12,7 +12,10 @@ namespace fsi::common {
 /// Sets the default logger: "[time] [role] [level] message" on stderr.
 void setup_logging(const std::string &role, bool verbose = false);
 
-/// Adds a log file (truncated) to the default logger.
-void add_log_file(const std::filesystem::path &file);
+enum class LogFile { truncate, append };
+
+/// Adds a log file to the default logger: a new log (truncated), or continued (a restart's, or
+/// an MPI rank's after the process that prepared its case).
+void add_log_file(const std::filesystem::path &file, LogFile mode = LogFile::truncate);
 
 } // namespace fsi::common

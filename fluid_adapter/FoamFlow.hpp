@@ -108,6 +108,9 @@ public:
   virtual void write_now() = 0;
   /// The name of the current time's folder ("0.07").
   virtual std::string time_name() const = 0;
+  /// Whether it writes its fields in binary (system/controlDict's writeFormat): exactly, so that
+  /// a checkpoint resumes bit for bit; ascii keeps writePrecision digits.
+  virtual bool writes_binary() const = 0;
   /// The OpenFOAM case folder it runs in.
   virtual std::filesystem::path case_directory() const = 0;
 

@@ -82,6 +82,14 @@ void OpenFoamFluidModel::set_checkpoints(std::filesystem::path root, long restar
   restart_step_ = restart_step;
 }
 
+void OpenFoamFluidModel::warn_unless_checkpoints_exact() const {
+  if (!flow_.writes_binary())
+    spdlog::warn("checkpoints: {} writes its fields in ascii (system/controlDict: writeFormat ascii), so a restart "
+                 "resumes from them rounded to writePrecision digits and differs from the uninterrupted run; "
+                 "writeFormat binary makes it exact",
+                 flow_.case_directory().string());
+}
+
 checkpoint::CheckpointPart OpenFoamFluidModel::write_checkpoint(long n_completed) {
   if (checkpoints_root_.empty())
     throw std::logic_error("OpenFoamFluidModel::write_checkpoint before set_checkpoints");
@@ -89,12 +97,18 @@ checkpoint::CheckpointPart OpenFoamFluidModel::write_checkpoint(long n_completed
   // then the master copies them all into the set (the ranks share the case folder).
   message_.clear();
   broadcast(Command::write_now, message_);
+  return checkpoint_on_every_rank(n_completed);
+}
+
+checkpoint::CheckpointPart OpenFoamFluidModel::checkpoint_on_every_rank(long n_completed) {
+  if (checkpoints_root_.empty())
+    throw std::logic_error("OpenFoamFluidModel::checkpoint_on_every_rank before set_checkpoints");
   write_fields_on_every_rank();
+  if (flow_.rank() != 0)
+    return {};
   const auto folder = checkpoint::CheckpointSet::folder_of(checkpoints_root_, n_completed);
   std::filesystem::create_directories(folder);
-  const auto part =
-      FoamCheckpoint::write(flow_.case_directory(), flow_.time_name(), flow_.n_ranks(), folder, n_completed);
-  return part;
+  return FoamCheckpoint::write(flow_.case_directory(), flow_.time_name(), flow_.n_ranks(), folder, n_completed);
 }
 
 void OpenFoamFluidModel::write_fields_on_every_rank() {

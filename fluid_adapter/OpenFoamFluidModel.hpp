@@ -83,6 +83,12 @@ public:
   /// Where checkpoints go (<output>/checkpoints), and the step whose fields this run started
   /// from (0: not a restart). Without it the model does not checkpoint.
   void set_checkpoints(std::filesystem::path root, long restart_step);
+  /// The flow alone (no coupler; every rank calls it at the same step): every rank writes its
+  /// fields, then the master copies them into the set of step n and returns the part (the other
+  /// ranks: an empty part).
+  checkpoint::CheckpointPart checkpoint_on_every_rank(long n_completed);
+  /// Says so (a warning) when its checkpoints cannot resume exactly: fields written in ascii.
+  void warn_unless_checkpoints_exact() const;
 
   /// Ranks other than the master: serve the master's broadcasts until it finishes.
   void follow();

@@ -3,6 +3,7 @@
 // rank: the precursor of a coupled run (section 3.2, at Precursor::step_sizes), and a case
 // without structures (a pump's single-phase performance, at run.time_step_s).
 
+#include "FlowAloneCheckpoints.hpp"
 #include "fluid_adapter/FoamFlow.hpp"
 #include "fluid_adapter/OpenFoamFluidModel.hpp"
 
@@ -16,6 +17,9 @@ struct FlowAloneSchedule {
   std::string label;                ///< what the log calls it ("precursor", "flow")
   std::filesystem::path folder;     ///< where forces.csv goes
   std::vector<double> step_sizes_s; ///< the time steps, in order
+  /// The case's checkpoints (the flow alone; none for the precursor): sets written as due, and
+  /// a restart's first step, after which the run resumes and its tables are continued.
+  const FlowAloneCheckpoints *checkpoints = nullptr;
 };
 
 /// Steps through the schedule; progress with ETA and the rigid-body loads (folder/forces.csv:
@@ -23,8 +27,9 @@ struct FlowAloneSchedule {
 /// folder/parts.csv: that torque split among the named parts of each body whose STL has
 /// several `solid NAME` blocks, columns body<b>.<part>.t{x,y,z}_n_m, BodyPartLoads)
 /// and the split of each step's wall time (folder/timings.csv, s: penalization, fluid solve,
-/// loads; the master's) from the master, a line per step; writes the fields at the end. Returns the exit code
-/// (common::exit_code_interrupted when stopped by a signal).
+/// loads; the master's) from the master, a line per step; writes the fields at the end. A
+/// restart keeps the tables' rows up to its first step and appends. Returns the exit code
+/// (common::exit_code_interrupted when stopped by a signal, after a checkpoint when it has them).
 int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, const FlowAloneSchedule &schedule);
 
 /// n steps of dt to end_time_s (the last one shortened to land on it).

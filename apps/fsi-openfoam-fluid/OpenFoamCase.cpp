@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace fsi::apps {
 
@@ -88,6 +89,39 @@ void check_not_clipped_by_the_background(const fs::path &foam_case, const fs::pa
                                "'): the box of system/blockMeshDict does not enclose the surface, so the part "
                                "outside it is cut off. Enlarge the box, or regenerate the case's files from its "
                                "geometry (cases/centrifugal-pump: make_case.py).");
+}
+
+/// The patch names of a case's mesh (constant/polyMesh/boundary), in order.
+std::vector<std::string> patch_names(const fs::path &foam_case) {
+  const std::string boundary = read_text(foam_case / "constant" / "polyMesh" / "boundary");
+  const std::regex patch(R"((\w+)\s*\{[^}]*?nFaces)");
+  std::vector<std::string> names;
+  for (auto it = std::sregex_iterator(boundary.begin(), boundary.end(), patch); it != std::sregex_iterator(); ++it)
+    names.push_back((*it)[1]);
+  return names;
+}
+
+/// mapFields' options onto foam_case from source: -consistent when both meshes have the same
+/// patches; else a system/mapFieldsDict mapping the patches they share (a patch the source does
+/// not have, e.g. the AMI pair of a rotor turning with its body, keeps this case's condition).
+std::string map_fields_options(const fs::path &foam_case, const fs::path &source) {
+  const auto ours = patch_names(foam_case), theirs = patch_names(source);
+  if (std::set<std::string>(ours.begin(), ours.end()) == std::set<std::string>(theirs.begin(), theirs.end()))
+    return " -consistent";
+  std::string shared, kept, pairs;
+  for (const auto &name : ours) {
+    const bool in_source = std::find(theirs.begin(), theirs.end(), name) != theirs.end();
+    (in_source ? shared : kept) += " " + name;
+    if (in_source)
+      pairs += " " + name + " " + name;
+  }
+  std::ofstream(foam_case / "system" / "mapFieldsDict")
+      << "FoamFile { version 2.0; format ascii; class dictionary; object mapFieldsDict; }\n"
+      << "// Written by fsi-openfoam-fluid: the warm start maps the patches shared with the source.\n"
+      << "patchMap (" << pairs << " );\ncuttingPatches ( );\n";
+  spdlog::info("warm start: the meshes' patches differ; mapped:{}; kept as this case has them:{}", shared,
+               kept.empty() ? std::string(" none") : kept);
+  return "";
 }
 
 /// blockMesh, snappyHexMesh and checkMesh, or the same mesh from the cache.
@@ -181,7 +215,8 @@ double map_initial_fields(const std::filesystem::path &foam_case, const std::fil
   if (latest_name.empty())
     throw common::ConfigError(source.string() + ": fluid.openfoam.initial_fields_from has no time folder after 0 "
                                                 "with fields (U): run it first, to its end.");
-  run_tool("mapFields", foam_case, " -consistent -sourceTime " + latest_name + " '" + source.string() + "'");
+  run_tool("mapFields", foam_case,
+           map_fields_options(foam_case, source) + " -sourceTime " + latest_name + " '" + source.string() + "'");
   // The fields a run must not inherit: the forcing of the source run is recomputed each step.
   for (const char *stale : {"fsiAcceleration", "phi"})
     fs::remove(foam_case / "0" / stale);

@@ -15,6 +15,7 @@
 // failed), 2 bad input, 130 interrupted.
 
 #include "fluid_adapter/FoamCheckpoint.hpp"
+#include "FlowAloneCheckpoints.hpp"
 #include "FlowAloneRun.hpp"
 #include "fluid_adapter/FoamFlow.hpp"
 #include "OpenFoamCase.hpp"
@@ -60,7 +61,7 @@ enum class Role { coupled, precursor, alone };
 struct Process {
   Role role = Role::coupled;
   bool under_mpirun = false;
-  bool restart = false; ///< --restart (a coupled run): start from the newest complete checkpoint
+  bool restart = false; ///< --restart (a coupled run, the flow alone): start from the newest complete checkpoint
   int argc = 0;
   char **argv = nullptr;
 };
@@ -71,9 +72,9 @@ struct Process {
 fs::path prepare_case(const Process &process, const CaseConfig &config, const std::string &case_dir,
                       const fs::path &base, const Precursor &precursor, long &restart_step) {
   const auto &foam = *config.fluid->openfoam;
-  if (process.restart && process.role == Role::coupled) {
+  if (process.restart && process.role != Role::precursor) {
     // The case of the run it resumes, as it is (its mesh, the fields it wrote), started from the
-    // newest complete checkpoint's fields; the coupler must name the same checkpoint.
+    // newest complete checkpoint's fields; in a coupled run the coupler must name the same one.
     const fs::path foam_case = base / "openfoam";
     if (!fs::exists(foam_case / "constant" / "polyMesh" / "owner"))
       throw fsi::common::UserError("--restart: " + foam_case.string() + " has no mesh: there is no run to resume");
@@ -84,7 +85,12 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     for (const auto &why : skipped)
       spdlog::warn("restart: skipped a checkpoint: {}", why);
     if (!found)
-      throw fsi::common::UserError("--restart: no complete checkpoint of this case in " + sets.root().string());
+      throw fsi::common::UserError("--restart: no complete checkpoint of this case in " + sets.root().string() +
+                                   (config.run.checkpoint_every() == 0 ? " (run.checkpoint_interval_s makes them)" : ""));
+    if (process.role == Role::alone && found->step >= config.run.n_steps())
+      throw fsi::common::UserError("--restart: the newest checkpoint is of step " + std::to_string(found->step) +
+                                   " (t = " + std::to_string(found->time_s) + " s), the run's end at run.end_time_s = " +
+                                   std::to_string(config.run.end_time_s) + " s: give a later --end-time to run further");
     try {
       const std::string time =
           fsi::fluid::FoamCheckpoint::install(found->folder, foam_case, foam.mpi_ranks, found->step,
@@ -135,7 +141,7 @@ int run_precursor(const Process &process, fsi::fluid::OpenFoamFluidModel &model,
   if (flow.rank() != 0)
     spdlog::set_level(spdlog::level::warn);
   else if (process.under_mpirun)
-    fsi::common::add_log_file(precursor.folder() / "fluid.log");
+    fsi::common::add_log_file(precursor.folder() / "fluid.log", fsi::common::LogFile::append); // begun before mpirun
   spdlog::info("precursor: {} to t = {} s, dt = {} s (the last {} steps at the coupled run's {} s)", flow.describe(),
                precursor.end_time_s(), precursor.time_step_s(), Precursor::handover_steps, coupled_time_step_s);
   const int code = fsi::apps::run_flow_alone(model, flow, {"precursor", precursor.folder(), precursor.step_sizes()});
@@ -146,21 +152,27 @@ int run_precursor(const Process &process, fsi::fluid::OpenFoamFluidModel &model,
   return code;
 }
 
-/// A case without structures: the flow with its rigid bodies to run.end_time_s, every rank.
+/// A case without structures: the flow with its rigid bodies to run.end_time_s, every rank,
+/// checkpointed every run.checkpoint_interval_s; a restart resumes after restart_step.
 int run_alone(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi::fluid::FoamFlow &flow,
-              const CaseConfig &config, const fs::path &out) {
+              const CaseConfig &config, const fs::path &out, long restart_step) {
   if (flow.rank() != 0)
     spdlog::set_level(spdlog::level::warn);
   else if (process.under_mpirun)
-    fsi::common::add_log_file(out / "fluid.log");
+    fsi::common::add_log_file(out / "fluid.log", fsi::common::LogFile::append);
   spdlog::info("flow alone (no structure): {} to t = {} s, dt = {} s", flow.describe(), config.run.end_time_s,
                config.run.time_step_s);
   // What this run ran with (the structure saves it in a coupled run): its postprocessing reads
   // the operating point from here.
   if (flow.rank() == 0)
     std::ofstream(out / "config.effective.yaml") << fsi::common::to_yaml(const_cast<CaseConfig &>(config)) << "\n";
-  return fsi::apps::run_flow_alone(
-      model, flow, {"flow", out, fsi::apps::uniform_steps(config.run.time_step_s, config.run.end_time_s)});
+  const auto steps = fsi::apps::uniform_steps(config.run.time_step_s, config.run.end_time_s);
+  const fsi::apps::FlowAloneCheckpoints checkpoints(out / "checkpoints", config.restart_fingerprint(),
+                                                    config.run.checkpoint_keep, config.run.checkpoint_every(),
+                                                    restart_step);
+  if (restart_step > 0)
+    spdlog::info("restart: resumed from the checkpoint of step {} (t = {:.6g} s)", restart_step, flow.time_s());
+  return fsi::apps::run_flow_alone(model, flow, {"flow", out, steps, &checkpoints});
 }
 
 /// The coupled participant: rank 0 talks to the coupler, the other ranks follow it.
@@ -173,7 +185,7 @@ int run_coupled(const Process &process, fsi::fluid::OpenFoamFluidModel &model, f
     return fsi::common::exit_code_success;
   }
   if (process.under_mpirun)
-    fsi::common::add_log_file(out / "fluid.log");
+    fsi::common::add_log_file(out / "fluid.log", fsi::common::LogFile::append); // begun before mpirun
   fsi::participant::FluidParticipant participant(
       model, fsi::case_config::participant_settings(config, endpoint, case_dir, fsi::proto::v2::ROLE_FLUID));
   return participant.run();
@@ -245,7 +257,9 @@ int main(int argc, char **argv) {
     }
     if (!process.under_mpirun) {
       fs::create_directories(base);
-      fsi::common::add_log_file(base / "fluid.log");
+      fsi::common::add_log_file(base / "fluid.log", process.restart && process.role != Role::precursor
+                                                        ? fsi::common::LogFile::append
+                                                        : fsi::common::LogFile::truncate);
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
@@ -253,7 +267,7 @@ int main(int argc, char **argv) {
     const fs::path foam_case = process.under_mpirun
                                    ? base / "openfoam"
                                    : prepare_case(process, config, case_dir, base, precursor, restart_step);
-    if (process.under_mpirun && process.restart && process.role == Role::coupled) {
+    if (process.under_mpirun && process.restart && process.role != Role::precursor) {
       // The ranks started by mpirun after the install: the same newest set (its step only).
       std::vector<std::string> skipped;
       const auto found =
@@ -266,10 +280,13 @@ int main(int argc, char **argv) {
     const double end_time = precursor_run ? precursor.end_time_s() : config.run.end_time_s;
     auto flow = fsi::fluid::FoamFlow::create({fs::absolute(foam_case), dt, end_time, process.under_mpirun});
     fsi::fluid::OpenFoamFluidModel model(*config.fluid->openfoam, *flow, bodies_for(process.role, config));
-    if (process.role == Role::coupled)
+    if (process.role != Role::precursor) {
       model.set_checkpoints(out / "checkpoints", restart_step);
+      if (config.run.checkpoint_every() > 0 && flow->rank() == 0)
+        model.warn_unless_checkpoints_exact();
+    }
     if (process.role == Role::alone)
-      return run_alone(process, model, *flow, config, out);
+      return run_alone(process, model, *flow, config, out, restart_step);
     return precursor_run ? run_precursor(process, model, *flow, precursor, config.run.time_step_s)
                          : run_coupled(process, model, *flow, config, case_dir, out, options.endpoint);
   }));

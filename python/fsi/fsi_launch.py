@@ -251,17 +251,50 @@ def run_precursors(args, plan):
                             code if code in (EXIT_BAD_INPUT, EXIT_INTERRUPTED) else EXIT_RUN_FAILED)
 
 
-def run_flow_alone(command, output_dir, verbose):
+def run_flow_alone(command, output_dir, verbose, restart=False):
     """A case without structures: the OpenFOAM flow alone with its rigid bodies (a pump's
     operating point). Its progress lines (stderr) show; the solver's residuals (stdout) go to
-    <output>/logs/fluid.console unless -v."""
+    <output>/logs/fluid.console unless -v (continued by a restart). Ctrl-C or SIGTERM reaches the
+    fluid, which finishes its step and checkpoints it when the case has checkpoints: the launcher
+    waits for it (FSI_INTERRUPT_GRACE_S, default 65 s); a second signal stops it at once."""
     os.makedirs(os.path.join(output_dir, "logs"), exist_ok=True)
     console_path = os.path.join(output_dir, "logs", "fluid.console")
-    with open(console_path, "wb") as console:
-        code = subprocess.call(command, stdin=subprocess.DEVNULL, stdout=None if verbose else console)
+    grace_s = env_seconds("FSI_INTERRUPT_GRACE_S", 65.0)
+    signals = []
+    with open(console_path, "ab" if restart else "wb") as console:
+        child = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=None if verbose else console)
+
+        def on_signal(signum, _frame):
+            signals.append(signum)
+            if len(signals) == 1:
+                child.send_signal(signum)   # a terminal's Ctrl-C reached it already: a flag set twice
+            else:
+                child.kill()
+
+        previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+        try:
+            signalled_at = None
+            while True:
+                try:
+                    code = child.wait(timeout=0.5)
+                    break
+                except subprocess.TimeoutExpired:
+                    if signals and signalled_at is None:
+                        signalled_at = time.monotonic()
+                    if signalled_at is not None and time.monotonic() - signalled_at > grace_s:
+                        say("the fluid did not stop within %g s of the signal (FSI_INTERRUPT_GRACE_S): killed"
+                            % grace_s)
+                        child.kill()
+                        signalled_at = float("inf")
+        finally:
+            for s, handler in previous.items():
+                signal.signal(s, handler)
     if code < 0:
         code = 128 - code
-    if code not in (EXIT_OK, EXIT_BAD_INPUT, EXIT_INTERRUPTED):
+    if signals and code == EXIT_INTERRUPTED:
+        say("interrupted: the fluid stopped at a step boundary (with a checkpoint when run.checkpoint_interval_s "
+            "is set: ./fsi run --restart resumes)")
+    elif code not in (EXIT_OK, EXIT_BAD_INPUT, EXIT_INTERRUPTED):
         say("the fluid stopped with exit code %d (logs: %s, %s)"
             % (code, os.path.join(output_dir, "fluid.log"), console_path))
     return code
@@ -550,8 +583,6 @@ def main(argv):
         print(plan.output_dir)
         return EXIT_OK
     coupled = "coupler" in plan.names()
-    if args.restart and plan.names() == ["fluid"]:
-        raise UserError("--restart: the flow alone does not resume from checkpoints yet (docs/restart.md)")
 
     if args.endpoint and not coupled:
         raise UserError("--endpoint applies only to coupled scenes (this case runs %s alone)"
@@ -568,7 +599,7 @@ def main(argv):
         name = plan.names()[0]
         command = command_for(name, plan.executable(name), args, None, coupled=False)
         if name == "fluid":
-            return run_flow_alone(command, plan.output_dir, args.verbose)
+            return run_flow_alone(command, plan.output_dir, args.verbose, args.restart)
         exec_process(command)
 
     make_missing_keys(args, plan)

@@ -20,8 +20,9 @@ their differences and the issue's goals: head within 5 % at the design flow, 10 
 torque within 10 %), comparison.md (the table) and comparison.png (the revolution means, the
 torque by part). The two runs go one after the other, each on --ranks MPI ranks: their wall
 seconds per revolution are the cost ratio at (nearly) equal cells. A run already made with the
-same inputs is reused; asked for more revolutions, the AMI run continues from its last
-revolution (pump_ami_run.py --restart) and the penalized one, the cheap one, is run again.
+same inputs is reused; interrupted, or asked for more revolutions, the AMI run continues from its
+last revolution (pump_ami_run.py --restart) and the penalized one from its newest checkpoint
+(every quarter revolution; ./fsi run --restart).
 --set changes the penalized run only (a variant of the method against the same reference: give
 it its own -o and link DIR/ami to the first comparison's, which is then reused). A run is
 "the same" when case.yaml, pump.yaml and its own OpenFOAM folder (and preset) are (run_fingerprint);
@@ -29,6 +30,7 @@ it its own -o and link DIR/ami to the first comparison's, which is then reused).
 
 import argparse
 import fcntl
+import glob
 import json
 import math
 import os
@@ -52,6 +54,7 @@ AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
 DRIFT_LIMIT = 0.02      # the issue's settling rule: the last 3 revolution means within 2 %
 HEAD_GOAL = {"design": 0.05, "part load": 0.10}     # ISO 9906 class 2 at the BEP; part load
 TORQUE_GOAL = 0.10
+CHECKPOINTS_PER_REVOLUTION = 4   # the penalized run's (it resumes from the newest)
 LOCKS = []              # the run folders' locks, held to the end of the process
 
 
@@ -133,7 +136,7 @@ def run_logged(command, log_path):
     return time.monotonic() - start
 
 
-def run_method(args, method, flow_rate, end_time):
+def run_method(args, method, flow_rate, end_time, period):
     """The run of one method in OUT/<method>, reused or extended when it can be. A lock on the
     folder (held until this process ends) refuses a second comparison on the same run (a
     variant's linked ami/ included) while it runs."""
@@ -171,12 +174,18 @@ def run_method(args, method, flow_rate, end_time):
         else:
             command += ["--initial-fields-from", args.settled]
     else:
+        # Checkpointed every quarter revolution: an interrupted run (or a finished one asked for
+        # more revolutions) of the same inputs continues from its newest checkpoint.
         command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", folder, "--preset",
                    penalized_preset(args), "--end-time", repr(end_time), "--set",
                    flow_rate_assignment(flow_rate), "--set", "fluid.openfoam.initial_fields_from=" + args.settled,
-                   "--set", "fluid.openfoam.mpi_ranks=%d" % args.ranks]
+                   "--set", "fluid.openfoam.mpi_ranks=%d" % args.ranks,
+                   "--set", "run.checkpoint_interval_s=%.6g" % (period / CHECKPOINTS_PER_REVOLUTION)]
         for assignment in args.assignments:
             command += ["--set", assignment]
+        if (same or started == inputs) and glob.glob(os.path.join(folder, "checkpoints", "step-*", "manifest.ckpt")):
+            command.append("--restart")
+            say("ibm: continuing from its newest checkpoint to t = %g s" % end_time)
         command.append(args.case_dir)
     if os.path.exists(os.path.join(folder, "run.json")):
         os.remove(os.path.join(folder, "run.json"))
@@ -184,7 +193,8 @@ def run_method(args, method, flow_rate, end_time):
         json.dump(inputs, f, indent=1)
     say("%s: running to t = %g s (%d ranks; log %s)" % (method, end_time, args.ranks, log))
     wall = run_logged(command, log)
-    write_stamp(folder, inputs, end_time, wall + (stamp["wall_s"] if same and method == "ami" else 0.0))
+    resumed = "--restart" in command
+    write_stamp(folder, inputs, end_time, wall + (stamp["wall_s"] if same and (method == "ami" or resumed) else 0.0))
     return folder
 
 
@@ -411,7 +421,7 @@ def main(argv):
     if args.summarize:
         folders = {m: finished_run(args, m, end_time) for m in ("ibm", "ami")}
     else:
-        folders = {m: run_method(args, m, flow_rate, end_time) for m in ("ibm", "ami")}
+        folders = {m: run_method(args, m, flow_rate, end_time, period) for m in ("ibm", "ami")}
     points = {m: summary(folders[m], design, omega, axis, flow_rate, args.revolutions) for m in folders}
     ami_cost = load_yaml(os.path.join(folders["ami"], "cost.yaml"))
     ibm_cells, ibm_per_rev = penalized_cost(folders["ibm"], period)

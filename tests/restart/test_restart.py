@@ -7,7 +7,8 @@ uninterrupted run bit for bit: every dataset of structure.h5, probes.csv and the
 The negative controls show that the comparison can fail and that damaged checkpoints are
 caught: a checkpoint without X^{n-1} is refused, one rounded to 6 digits resumes but differs,
 a truncated, bit-flipped or other-case newest set is skipped (with a message naming the file)
-and the previous one used.
+and the previous one used. The flow alone (OpenFOAM with a penalized rigid body, no structure,
+no coupler) checkpoints and resumes the same way, its tables (forces.csv ...) continued.
 
 FSI_BIN_DIR: the executables (set by ctest; default <source>/build/bin)."""
 
@@ -676,6 +677,123 @@ class CoupledOpenFoamRanks(unittest.TestCase):
         self.assertEqual(made.returncode, 2, made.stdout[-2000:])
         self.assertIn("written by another case", made.stdout)
         self.assertIn("--restart: no complete checkpoint of this case", made.stdout)
+
+
+def make_flow_alone_case(folder, write_format="binary"):
+    """rotating-disc (the flow alone: OpenFOAM with the penalized disc turning), 2 s (100 steps of
+    0.02 s), a checkpoint every 0.2 s (10 steps), its fields written in write_format."""
+    case = os.path.join(folder, "flow_alone_" + write_format)
+    shutil.copytree(os.path.join(ROOT, "cases", "rotating-disc"), case,
+                    ignore=shutil.ignore_patterns("output", "*.png", "*.gif", "openfoam-*"))
+    path = os.path.join(case, "case.yaml")
+    with open(path) as f:
+        text = f.read()
+    text = re.sub(r"end_time_s: [0-9.e-]+", "end_time_s: 2.0", text, count=1)
+    text = text.replace("output_interval_s: 4.0", "output_interval_s: 2.0\n  checkpoint_interval_s: 0.2")
+    with open(path, "w") as f:
+        f.write(text)
+    control = os.path.join(case, "openfoam", "system", "controlDict")
+    with open(control) as f:
+        text = f.read()
+    assert "writeFormat     ascii;" in text
+    with open(control, "w") as f:
+        f.write(text.replace("writeFormat     ascii;", "writeFormat     %s;" % write_format))
+    return case
+
+
+FLOW_ALONE_TABLES = ("forces.csv", "parts.csv", "penalization.csv")
+
+
+class FlowAloneOpenFoam(unittest.TestCase):
+    """A case without structures (a pump's operating point): the fluid checkpoints by itself
+    (no coupler asks it), every interval, at the end and on Ctrl-C; a restart starts OpenFOAM
+    from the newest set and continues forces.csv, parts.csv, penalization.csv and timings.csv
+    from its step. Bitwise on a static mesh with binary fields; ascii fields are warned of."""
+
+    @classmethod
+    def setUpClass(cls):
+        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
+            raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
+        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_alone_")
+        cls.case = make_flow_alone_case(cls.tmp)
+        cls.full = os.path.join(cls.tmp, "full")
+        made = launch(cls.case, cls.full)
+        if made.returncode != 0:
+            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+        cls.full_log = made.stdout
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def assert_equals_the_uninterrupted_run(self, out):
+        for table in FLOW_ALONE_TABLES:
+            with open(os.path.join(self.full, table), "rb") as a, open(os.path.join(out, table), "rb") as b:
+                self.assertEqual(a.read(), b.read(), table)
+        with open(os.path.join(out, "timings.csv")) as f:
+            self.assertEqual([line.split(",")[0] for line in f], [line.split(",")[0] for line in open(
+                os.path.join(self.full, "timings.csv"))])
+        for field in ("U", "p", "phi"):
+            with open(os.path.join(self.full, "openfoam", "2", field), "rb") as a, \
+                    open(os.path.join(out, "openfoam", "2", field), "rb") as b:
+                self.assertEqual(a.read(), b.read(), field)
+
+    def test_a_run_stopped_by_its_end_time_and_restarted_equals_the_uninterrupted_run(self):
+        self.assertIn("checkpoint: step 100 (t = 2 s)", self.full_log)
+        self.assertNotIn("writeFormat ascii", self.full_log)
+        out = os.path.join(self.tmp, "end_time")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.7").returncode, 0)
+        # The end of the run is a set (step 35), the periodic ones before it: the last 2 kept.
+        self.assertEqual(sorted(os.listdir(os.path.join(out, "checkpoints"))),
+                         ["step-000000030", "step-000000035"])
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step 35 (t = 0.7 s)", made.stdout)
+        self.assert_equals_the_uninterrupted_run(out)
+        with open(os.path.join(out, "fluid.log")) as f:
+            log = f.read()
+        self.assertIn("flow: t = 0.7 of 0.7 s", log)   # the first run's log is continued, not replaced
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 2, made.stdout[-2000:])
+        self.assertIn("the newest checkpoint is of step 100", made.stdout)
+        self.assertIn("give a later --end-time", made.stdout)
+
+    def test_rows_written_after_the_checkpoint_and_a_line_cut_short_are_dropped(self):
+        """A run killed after its tables were flushed past its last set: the restart keeps
+        their rows up to the set's time only."""
+        out = os.path.join(self.tmp, "rows_after")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.6").returncode, 0)
+        for table in FLOW_ALONE_TABLES + ("timings.csv",):
+            with open(os.path.join(out, table), "a") as f:
+                f.write("0.62,1,2,3,4,5,6\n0.64,1,2")
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assert_equals_the_uninterrupted_run(out)
+
+    def test_ctrl_c_ends_the_flow_at_a_step_boundary_with_its_checkpoint(self):
+        out = os.path.join(self.tmp, "ctrl-c")
+        child = start_until_first_set(self.case, out, 10, new_session=True)
+        time.sleep(random.Random(80).uniform(0.3, 1.5))
+        os.killpg(child.pid, signal.SIGINT)
+        self.assertEqual(child.wait(timeout=90), 130)
+        with open(os.path.join(out, "fluid.log")) as f:
+            found = re.search(r"flow interrupted at t = \S+ s after step (\d+)", f.read())
+        self.assertTrue(found, "the fluid did not say where it stopped")
+        step = int(found.group(1))
+        self.assertLess(step, 100)
+        self.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % step)
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step %d" % step, made.stdout)
+        self.assert_equals_the_uninterrupted_run(out)
+        print("Ctrl-C: the flow alone stopped after step %d, checkpointed, resumed equal" % step)
+
+    def test_fields_written_in_ascii_are_warned_of(self):
+        case = make_flow_alone_case(self.tmp, "ascii")
+        made = launch(case, os.path.join(self.tmp, "ascii"), "--end-time", "0.04")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("writeFormat ascii", made.stdout)
+        self.assertIn("writeFormat binary makes it exact", made.stdout)
 
 
 if __name__ == "__main__":
