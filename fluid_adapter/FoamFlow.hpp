@@ -81,6 +81,11 @@ public:
   /// relative to the body's, tangential to the face, at the free cell's distance to the
   /// immersed surface (set_immersed_walls, which must then be given that distance).
   virtual void use_immersed_wall_function(bool on) = 0;
+  /// A k-omega model's omega and production G held in the free cells next to the immersed
+  /// walls as omegaWallFunction holds them next to mesh walls (ImmersedWallOmega), from the free
+  /// cell's distance to the immersed surface (set_immersed_walls). Throws when the model has no
+  /// omega.
+  virtual void use_immersed_omega_wall_function() = 0;
   /// The PIMPLE settings of system/fvSolution that decide the time-step limit (PisoLimit).
   virtual PisoSettings piso_settings() const = 0;
   /// The largest viscous number nu_eff dt sum 1/dx^2 over the cells of every rank (collective).

@@ -14,6 +14,7 @@ enum class InterfaceFlux { interpolated, body_normal };
 enum class BodyIndicatorChoice { sharp, inside_smoothed };
 enum class ViscousLimitChoice { refuse, warn };
 enum class ImmersedWallModelChoice { none, spalding };
+enum class ImmersedWallTurbulenceChoice { none, omega_wall_function };
 
 struct OpenFoamConfig {
   std::string case_directory = "openfoam";
@@ -31,6 +32,7 @@ struct OpenFoamConfig {
   std::optional<OperatingPoint> operating_point;
   ViscousLimitChoice viscous_limit = ViscousLimitChoice::refuse;
   ImmersedWallModelChoice immersed_wall_model = ImmersedWallModelChoice::none;
+  ImmersedWallTurbulenceChoice immersed_wall_turbulence = ImmersedWallTurbulenceChoice::none;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,
@@ -105,6 +107,15 @@ struct OpenFoamConfig {
              "law (as nutUSpaldingWallFunction) for the free cell's velocity relative to the body, tangential to the "
              "face, at its distance from the true surface; laminar or turbulent (docs/model.md). Faces between MPI "
              "ranks keep the resolved shear.");
+    v.choice("immersed_wall_turbulence", immersed_wall_turbulence,
+             {{"none", ImmersedWallTurbulenceChoice::none},
+              {"omega_wall_function", ImmersedWallTurbulenceChoice::omega_wall_function}},
+             "Rigid bodies in a k-omega model (kOmegaSST): none: omega and k see no wall at an immersed surface "
+             "(nut = 0 inside the bodies only). omega_wall_function: in the free cells next to a body, omega and "
+             "its production G held as OpenFOAM's omegaWallFunction holds them next to a mesh wall (blended "
+             "viscous and log-layer omega at the cell's distance from the true surface; G from Spalding's wall "
+             "shear), so that the interface's velocity jump does not produce turbulence a wall would damp "
+             "(docs/model.md). Faces between MPI ranks are left out.");
     v.optional_section("operating_point", operating_point,
                        "The inlet's volume flow rate, for an OpenFOAM case whose 0/U takes it from "
                        "constant/operatingPoint (the pump cases): required there, refused elsewhere.");

@@ -6,7 +6,13 @@
 
 #include "InterfaceFaces.H"
 
+#include "common/UserError.hpp"
 #include "fluid_adapter/rigid/SpaldingLaw.hpp"
+
+#include "fvOptions.H"
+
+#include <array>
+#include <map>
 
 namespace fsi::fluid {
 
@@ -205,6 +211,63 @@ void OpenFoamFlow::update_immersed_wall_viscosity() {
                             (1.0 - w_owner) * nu_eff[body_is_owner ? free : body];
     extra[f] = wanted - resolved;
   });
+}
+
+void OpenFoamFlow::use_immersed_omega_wall_function() {
+  if (!mesh_->foundObject<Foam::volScalarField>("omega") || !mesh_->foundObject<Foam::volScalarField>("k"))
+    throw common::UserError("fluid.openfoam.immersed_wall_turbulence: omega_wall_function needs a k-omega turbulence "
+                            "model (constant/turbulenceProperties); this case runs " +
+                            std::string(turbulence_->type()) + ", which has no omega: use none");
+  immersedWallOmega_ = new ImmersedWallOmega(*mesh_, turbulence_->GName());
+  // The options own it (a PtrList; its other base, IOdictionary, has an append too).
+  static_cast<Foam::PtrList<Foam::fv::option> &>(Foam::fv::options::New(*mesh_)).append(immersedWallOmega_);
+}
+
+void OpenFoamFlow::update_immersed_wall_omega() {
+  using namespace Foam;
+  constexpr double kappa = 0.41, beta1 = 0.075;       // omegaWallFunction's, kOmegaSST's beta1
+  const double cmu25 = std::pow(0.09, 0.25);
+  const auto &rate = penalizationRate_->primitiveField();
+  const auto &u = U_->primitiveField();
+  const auto &u_rib = rigidVelocity_->primitiveField();
+  const auto &sf = mesh_->Sf().primitiveField();
+  const auto &k = mesh_->lookupObject<volScalarField>("k").primitiveField();
+  const tmp<volScalarField> tnu = laminarTransport_->nu();
+  const auto &nu = tnu().primitiveField();
+  const rigid::SpaldingLaw law;
+  // Per free cell next to a body: the sums of omega and G over its interface faces, and their
+  // number (each face weighs 1/n, as omegaWallFunction's corner weights).
+  std::map<label, std::array<double, 3>> sums;
+  const auto &delta = mesh_->nonOrthDeltaCoeffs().primitiveField(); // 1 / the centres' distance along Sf
+  for_each_interface_face(*mesh_, rate, [&](label f, label body, label free, bool) {
+    const double measured = free < immersedWallDistance_.size() ? immersedWallDistance_[free] : 0.0;
+    if (!(measured > 0.0) || !std::isfinite(measured))
+      return;
+    // A free centre a staircase leaves next to a thin edge can be any distance from the surface:
+    // no closer than a quarter of the centres' spacing (a face-aligned wall is at half), where
+    // G ~ 1 / y^2 would make k without bound (omegaWallFunction's y is never below a cell's half).
+    const double y = std::max(measured, 0.25 / delta[f]);
+    const vector n = sf[f] / mag(sf[f]);
+    vector slip = u[free] - u_rib[body];
+    slip -= (slip & n) * n;
+    const double sqrt_k = std::sqrt(std::max(k[free], 0.0));
+    const double omega_vis = 6.0 * nu[free] / (beta1 * y * y), omega_log = sqrt_k / (cmu25 * kappa * y);
+    const double tau_w = law.wall_shear_per_density(mag(slip), y, nu[free]);
+    auto &sum = sums[free];
+    sum[0] += std::hypot(omega_vis, omega_log);
+    sum[1] += tau_w * cmu25 * sqrt_k / (kappa * y);
+    sum[2] += 1.0;
+  });
+  labelList cells(static_cast<label>(sums.size()));
+  scalarField omega(cells.size()), production(cells.size());
+  label i = 0;
+  for (const auto &[cell, sum] : sums) {
+    cells[i] = cell;
+    omega[i] = sum[0] / sum[2];
+    production[i] = sum[1] / sum[2];
+    ++i;
+  }
+  immersedWallOmega_->hold(std::move(cells), std::move(omega), std::move(production));
 }
 
 } // namespace fsi::fluid

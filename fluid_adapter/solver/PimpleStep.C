@@ -32,6 +32,8 @@ void OpenFoamFlow::step() {
     solve_momentum_and_pressure();
     if (pimple_->turbCorr()) {
       laminarTransport_->correct();
+      if (immersedWallOmega_)
+        update_immersed_wall_omega();
       turbulence_->correct();
       zero_turbulence_inside_bodies();
     }
