@@ -237,7 +237,7 @@ void OpenFoamFlow::update_immersed_wall_omega() {
   const rigid::SpaldingLaw law;
   // Per free cell next to a body: the sums of omega and G over its interface faces, and their
   // number (each face weighs 1/n, as omegaWallFunction's corner weights).
-  std::map<label, std::array<double, 3>> sums;
+  std::map<label, std::array<double, 4>> sums;
   const auto &delta = mesh_->nonOrthDeltaCoeffs().primitiveField(); // 1 / the centres' distance along Sf
   for_each_interface_face(*mesh_, rate, [&](label f, label body, label free, bool) {
     const double measured = free < immersedWallDistance_.size() ? immersedWallDistance_[free] : 0.0;
@@ -257,17 +257,61 @@ void OpenFoamFlow::update_immersed_wall_omega() {
     sum[0] += std::hypot(omega_vis, omega_log);
     sum[1] += tau_w * cmu25 * sqrt_k / (kappa * y);
     sum[2] += 1.0;
+    sum[3] = y;
   });
+  immersedWallCells_.clear();
   labelList cells(static_cast<label>(sums.size()));
   scalarField omega(cells.size()), production(cells.size());
   label i = 0;
   for (const auto &[cell, sum] : sums) {
     cells[i] = cell;
+    immersedWallCells_.emplace_back(cell, sum[3]);
     omega[i] = sum[0] / sum[2];
     production[i] = sum[1] / sum[2];
     ++i;
   }
   immersedWallOmega_->hold(std::move(cells), std::move(omega), std::move(production));
+}
+
+void OpenFoamFlow::correct_immersed_wall_nut() {
+  using namespace Foam;
+  if (turbulence_->type() != "kOmegaSST" || immersedWallCells_.empty())
+    return;
+  constexpr double a1 = 0.31, b1 = 1.0, beta_star = 0.09; // kOmegaSST's
+  auto &nut = mesh_->lookupObjectRef<volScalarField>("nut");
+  const auto &k = mesh_->lookupObject<volScalarField>("k").primitiveField();
+  const auto &omega = mesh_->lookupObject<volScalarField>("omega").primitiveField();
+  const tmp<volTensorField> tgrad = fvc::grad(*U_);
+  const auto &grad = tgrad().primitiveField();
+  const auto &rate = penalizationRate_->primitiveField();
+  const auto &u = U_->primitiveField();
+  const auto &u_rib = rigidVelocity_->primitiveField();
+  const auto &sf = mesh_->Sf().primitiveField();
+  const auto &weights = mesh_->weights().primitiveField();
+  const auto &volume = mesh_->V();
+  const tmp<volScalarField> tnu = laminarTransport_->nu();
+  const auto &nu = tnu().primitiveField();
+  // The Gauss gradient's interface face values replaced by the body's velocity.
+  std::map<label, tensor> correction;
+  for_each_interface_face(*mesh_, rate, [&](label f, label body, label free, bool body_is_owner) {
+    const label owner = body_is_owner ? body : free, neighbour = body_is_owner ? free : body;
+    const vector u_face = weights[f] * u[owner] + (1.0 - weights[f]) * u[neighbour];
+    const vector out_of_free = body_is_owner ? vector(-sf[f]) : sf[f];
+    auto [at, fresh] = correction.try_emplace(free, Zero);
+    at->second += out_of_free * (u_rib[body] - u_face) / volume[free];
+  });
+  auto &values = nut.primitiveFieldRef();
+  for (const auto &[cell, y] : immersedWallCells_) {
+    const auto found = correction.find(cell);
+    const tensor g = grad[cell] + (found != correction.end() ? found->second : tensor(Zero));
+    const double s = std::sqrt(2.0) * mag(symm(g));
+    const double w = std::max(omega[cell], VSMALL);
+    const double arg2 = std::max(2.0 * std::sqrt(std::max(k[cell], 0.0)) / (beta_star * w * y),
+                                 500.0 * nu[cell] / (y * y * w));
+    const double f2 = std::tanh(arg2 * arg2);
+    values[cell] = a1 * std::max(k[cell], 0.0) / std::max(a1 * w, b1 * f2 * s);
+  }
+  nut.correctBoundaryConditions();
 }
 
 } // namespace fsi::fluid

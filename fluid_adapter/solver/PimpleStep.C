@@ -36,6 +36,8 @@ void OpenFoamFlow::step() {
         update_immersed_wall_omega();
       turbulence_->correct();
       zero_turbulence_inside_bodies();
+      if (immersedWallOmega_)
+        correct_immersed_wall_nut();
     }
   }
 }
