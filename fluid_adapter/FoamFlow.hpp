@@ -83,9 +83,9 @@ public:
   virtual void use_immersed_wall_function(bool on) = 0;
   /// A k-omega model's omega and production G held in the free cells next to the immersed
   /// walls as omegaWallFunction holds them next to mesh walls (ImmersedWallOmega), from the free
-  /// cell's distance to the immersed surface (set_immersed_walls). Throws when the model has no
-  /// omega.
-  virtual void use_immersed_omega_wall_function() = 0;
+  /// cell's distance to the immersed surface (set_immersed_walls). Returns whether it does: a
+  /// model without omega does not, and throws common::UserError when `required`.
+  virtual bool use_immersed_omega_wall_function(bool required) = 0;
   /// The PIMPLE settings of system/fvSolution that decide the time-step limit (PisoLimit).
   virtual PisoSettings piso_settings() const = 0;
   /// The largest viscous number nu_eff dt sum 1/dx^2 over the cells of every rank (collective).

@@ -14,7 +14,7 @@ enum class InterfaceFlux { interpolated, body_normal };
 enum class BodyIndicatorChoice { sharp, inside_smoothed };
 enum class ViscousLimitChoice { refuse, warn };
 enum class ImmersedWallModelChoice { none, spalding };
-enum class ImmersedWallTurbulenceChoice { none, omega_wall_function };
+enum class ImmersedWallTurbulenceChoice { automatic, none, omega_wall_function };
 
 struct OpenFoamConfig {
   std::string case_directory = "openfoam";
@@ -108,14 +108,16 @@ struct OpenFoamConfig {
              "face, at its distance from the true surface; laminar or turbulent (docs/model.md). Faces between MPI "
              "ranks keep the resolved shear.");
     v.choice("immersed_wall_turbulence", immersed_wall_turbulence,
-             {{"none", ImmersedWallTurbulenceChoice::none},
+             {{"auto", ImmersedWallTurbulenceChoice::automatic}, {"none", ImmersedWallTurbulenceChoice::none},
               {"omega_wall_function", ImmersedWallTurbulenceChoice::omega_wall_function}},
              "Rigid bodies in a k-omega model (kOmegaSST): none: omega and k see no wall at an immersed surface "
-             "(nut = 0 inside the bodies only). omega_wall_function: in the free cells next to a body, omega and "
-             "its production G held as OpenFOAM's omegaWallFunction holds them next to a mesh wall (blended "
-             "viscous and log-layer omega at the cell's distance from the true surface; G from Spalding's wall "
-             "shear), so that the interface's velocity jump does not produce turbulence a wall would damp "
-             "(docs/model.md). Faces between MPI ranks are left out.");
+             "(nut = 0 inside the bodies only; nu_t next to them grows to 11 times a mesh wall's). "
+             "omega_wall_function: in the free cells next to a body, omega and its production G held as OpenFOAM's "
+             "omegaWallFunction holds them next to a mesh wall (blended viscous and log-layer omega at the cell's "
+             "distance from the true surface; G from Spalding's wall shear) and kOmegaSST's nu_t computed with "
+             "the body's velocity on the interface faces (docs/model.md); refused with a model without omega. "
+             "auto: omega_wall_function with a k-omega model, none with any other (Spalart-Allmaras has its "
+             "immersed walls through the wall distance, section 2.6). Faces between MPI ranks are left out.");
     v.optional_section("operating_point", operating_point,
                        "The inlet's volume flow rate, for an OpenFOAM case whose 0/U takes it from "
                        "constant/operatingPoint (the pump cases): required there, refused elsewhere.");

@@ -66,11 +66,13 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
                    "(immersed_wall_model: spalding)");
       flow_.use_immersed_wall_function(true);
     }
-    if (config_.immersed_wall_turbulence == ImmersedWallTurbulenceChoice::omega_wall_function) {
-      spdlog::info("immersed walls: omega and its production held next to them as omegaWallFunction does at mesh "
-                   "walls (immersed_wall_turbulence: omega_wall_function)");
-      flow_.use_immersed_omega_wall_function();
-    }
+    if (config_.immersed_wall_turbulence != ImmersedWallTurbulenceChoice::none &&
+        flow_.use_immersed_omega_wall_function(config_.immersed_wall_turbulence ==
+                                               ImmersedWallTurbulenceChoice::omega_wall_function))
+      spdlog::info("immersed walls: omega, its production and kOmegaSST's nu_t next to them as the wall functions "
+                   "make them next to mesh walls (immersed_wall_turbulence: {})",
+                   config_.immersed_wall_turbulence == ImmersedWallTurbulenceChoice::automatic ? "auto"
+                                                                                                : "omega_wall_function");
   }
 }
 

@@ -213,14 +213,19 @@ void OpenFoamFlow::update_immersed_wall_viscosity() {
   });
 }
 
-void OpenFoamFlow::use_immersed_omega_wall_function() {
-  if (!mesh_->foundObject<Foam::volScalarField>("omega") || !mesh_->foundObject<Foam::volScalarField>("k"))
+bool OpenFoamFlow::use_immersed_omega_wall_function(bool required) {
+  const bool has_omega =
+      mesh_->foundObject<Foam::volScalarField>("omega") && mesh_->foundObject<Foam::volScalarField>("k");
+  if (!has_omega && !required)
+    return false;
+  if (!has_omega)
     throw common::UserError("fluid.openfoam.immersed_wall_turbulence: omega_wall_function needs a k-omega turbulence "
                             "model (constant/turbulenceProperties); this case runs " +
                             std::string(turbulence_->type()) + ", which has no omega: use none");
   immersedWallOmega_ = new ImmersedWallOmega(*mesh_, turbulence_->GName());
   // The options own it (a PtrList; its other base, IOdictionary, has an append too).
   static_cast<Foam::PtrList<Foam::fv::option> &>(Foam::fv::options::New(*mesh_)).append(immersedWallOmega_);
+  return true;
 }
 
 void OpenFoamFlow::update_immersed_wall_omega() {
