@@ -167,6 +167,8 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
   for (long step = first; step < n_steps; ++step) {
     if (stop_requested(flow)) {
       spdlog::warn("{} interrupted at t = {:.6g} s after step {}", schedule.label, t, step);
+      if (flow.rank() == 0)
+        tables.flush(); // the set's tables hold its step
       if (checkpoints && checkpoints->enabled() && step > first)
         checkpoints->write(model, flow.rank(), step, t);
       else
