@@ -32,7 +32,7 @@ struct OpenFoamConfig {
   std::optional<OperatingPoint> operating_point;
   ViscousLimitChoice viscous_limit = ViscousLimitChoice::refuse;
   ImmersedWallModelChoice immersed_wall_model = ImmersedWallModelChoice::none;
-  ImmersedWallTurbulenceChoice immersed_wall_turbulence = ImmersedWallTurbulenceChoice::none;
+  ImmersedWallTurbulenceChoice immersed_wall_turbulence = ImmersedWallTurbulenceChoice::automatic;
 
   template <class V> void visit(V &v) {
     v.text("case_directory", case_directory,

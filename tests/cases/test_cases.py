@@ -260,6 +260,8 @@ class ErcoftacPump(CaseTest):
         result = subprocess.run(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                 timeout=900)
         self.assertEqual(result.returncode, 0, result.stderr.decode("utf-8", "replace")[-3000:])
+        # k-omega SST: the immersed blades are walls for omega too (immersed_wall_turbulence: auto)
+        self.assertIn("(immersed_wall_turbulence: auto)", result.stderr.decode("utf-8", "replace"))
         foam = os.path.join(out, "openfoam")
         with open(os.path.join(foam, "constant", "polyMesh", "boundary")) as f:
             boundary = re.sub(r"\s+", " ", f.read())
