@@ -32,7 +32,8 @@ def outlet(foam, measured):
     ours = ecc.impeller_outlet(foam, 0.5 * revolutions, samples=samples)
     result = {"revolutions_run": round(revolutions, 3), "averaged_from_s": ours["from_s"],
               "averaged_to_s": ours["to_s"], "samples": ours["samples"],
-              "cu_over_u2": ours["cu_over_u2"], "cr_over_u2": ours["cr_over_u2"],
+              "cu_over_u2": ours["cu_over_u2"], "cu_over_u2_flux_weighted": ours["cu_over_u2_flux_weighted"],
+              "cr_over_u2": ours["cr_over_u2"],
               "cr_over_continuity": ours["cr_over_continuity"],
               "cu_over_u2_vane_phase_min": min(ours["cu_over_u2_by_vane_phase"]),
               "cu_over_u2_vane_phase_max": max(ours["cu_over_u2_by_vane_phase"])}

@@ -87,7 +87,8 @@ def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None, vane_
     (all 7 pitches) and over the samples after settle_revolutions; and across one pitch in the
     impeller's frame (phase-averaged over the blades and the samples: bins across the pitch,
     the fraction growing against the rotation from the blade-fixed origin phi = 0). Over U2.
-    Also the mean c_r against the flow rate's (continuity): the sampling's check; and the
+    Also the c_r-weighted c_u (the swirl the flow carries out), the mean c_r against the flow
+    rate's (continuity): the sampling's check; and the
     passage-averaged c_u by the vanes' phase against the passage (the position of the nearest vane
     leading edge behind the passage's first blade, in `vane_phases` bins of the vane pitch): the
     measurement holds four such phases (its instants), this average all of them. samples:
@@ -117,7 +118,11 @@ def impeller_outlet(foam_case, settle_revolutions, bins=100, samples=None, vane_
     by_phase = by_phase[in_phase > 0] / in_phase[in_phase > 0] / u2
     continuity = ecp.design_flow_rate_m3_per_s() / (2 * math.pi * ecp.MEASUREMENT_RADIUS_M * ecp.SPAN_M)
     cr_mean = float(np.mean([np.mean(s[2]) for s in used]))
+    # The swirl the flow carries out (weighted by c_r): where the plain average, the probes', also
+    # counts the near wake's slow fluid at the blade's speed (README: "Where the excess is").
+    carried = float(sum(np.sum(s[2] * s[3]) for s in used) / sum(np.sum(s[2]) for s in used)) / u2
     return {"cr_over_u2": cr_mean / u2, "cu_over_u2": float(np.mean([np.mean(s[3]) for s in used])) / u2,
+            "cu_over_u2_flux_weighted": carried,
             "cr_over_continuity": cr_mean / continuity, "samples": len(used),
             "from_s": used[0][0], "to_s": used[-1][0],
             "cu_over_u2_by_vane_phase": by_phase.tolist(),
