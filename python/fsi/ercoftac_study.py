@@ -129,17 +129,20 @@ def report(runs, out, measured, failed=()):
              "torque is all the flow gets); wall seconds per revolution of each run on one core, as it ran (beside "
              "the study's other runs: compare costs from runs that ran side by side)." % (measured["cu_over_u2_midspan"],
                                                          measured["cu_over_u2_span_average"]), "",
-             "| level | method | cells | c_u/U2 | vs midspan | vs span average | c_r / continuity | profile RMS c_u, c_r "
+             "| level | method | cells | c_u/U2 | vs midspan | vs span average | c_u/U2 c_r-weighted | c_r / continuity "
+             "| profile RMS c_u, c_r "
              "| casing cp RMS | cp rise (measured %s) | angular momentum flux / torque | s per revolution |" % (
                  next(("%.3f" % r.result["casing"]["cp_rise_measured"][-1] for r in runs if "casing" in r.result), "-")),
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in runs:
         res = r.result
         casing = res.get("casing")
         balance = res.get("angular_momentum")
-        lines.append("| %s | %s | %d | %.4f | %+.1f %% | %+.1f %% | %.3f | %.3f, %.3f | %s | %s | %s | %.0f |" % (
+        weighted = res.get("cu_over_u2_flux_weighted")
+        lines.append("| %s | %s | %d | %.4f | %+.1f %% | %+.1f %% | %s | %.3f | %.3f, %.3f | %s | %s | %s | %.0f |" % (
             r.level, r.method, res["cells"], res["cu_over_u2"], 100 * res["cu_error_against_midspan"],
-            100 * res["cu_error_against_span_average"], res["cr_over_continuity"], res["cu_profile_rms_midspan"],
+            100 * res["cu_error_against_span_average"], "%.4f" % weighted if weighted is not None else "-",
+            res["cr_over_continuity"], res["cu_profile_rms_midspan"],
             res["cr_profile_rms_midspan"], "%.3f" % casing["cp_rms"] if casing else "-",
             "%.3f" % casing["cp_rise_ours"][-1] if casing else "-",
             "%.3f" % balance["flux_over_torque"] if balance else "-", res["wall_s_per_revolution"]))
@@ -160,8 +163,11 @@ def report(runs, out, measured, failed=()):
         pair = {r.method: r for r in runs if r.level == level}
         if len(pair) == 2:
             pen, ami = pair["penalized"].result, pair["body-fitted"].result
-            lines.append("- %s: penalized against body-fitted c_u/U2 %+.1f %%; cost per revolution %.2f (cells %.2f)." % (
-                level, 100 * (pen["cu_over_u2"] / ami["cu_over_u2"] - 1), ami["wall_s_per_revolution"]
+            weighted = ("" if "cu_over_u2_flux_weighted" not in pen or "cu_over_u2_flux_weighted" not in ami else
+                        " (c_r-weighted %+.1f %%)" % (100 * (pen["cu_over_u2_flux_weighted"]
+                                                             / ami["cu_over_u2_flux_weighted"] - 1)))
+            lines.append("- %s: penalized against body-fitted c_u/U2 %+.1f %%%s; cost per revolution %.2f (cells %.2f)." % (
+                level, 100 * (pen["cu_over_u2"] / ami["cu_over_u2"] - 1), weighted, ami["wall_s_per_revolution"]
                 / pen["wall_s_per_revolution"], ami["cells"] / pen["cells"]))
     if failed:
         lines += ["", "## Failed runs", ""] + ["- %s: %s" % (r.name, r.error) for r in failed]
