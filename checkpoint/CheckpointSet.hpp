@@ -46,6 +46,12 @@ public:
   std::optional<Found> newest(std::vector<std::string> &skipped) const;
 
   std::filesystem::path folder(long step) const { return folder_of(root_, step); }
+  /// Whether step n of n_steps ends with a set when sets come every `every` steps (0: never):
+  /// every interval, at the run's end (a later --restart with a later end time runs further),
+  /// and when a signal stops the run.
+  static bool due(long n, long every, long n_steps, bool stopping) {
+    return every > 0 && (n % every == 0 || n == n_steps || stopping);
+  }
   /// <root>/step-<9 digits>: where every process of a run puts its part of step n's set.
   static std::filesystem::path folder_of(const std::filesystem::path &root, long step);
   const std::filesystem::path &root() const { return root_; }

@@ -31,7 +31,7 @@ public:
   /// Step n ends with a set: every interval, at the run's end (a later --restart with a later
   /// end time runs further), and when a signal stops the run.
   bool due(long n, long n_steps, bool stopping) const {
-    return every_ > 0 && (n % every_ == 0 || n == n_steps || stopping);
+    return checkpoint::CheckpointSet::due(n, every_, n_steps, stopping);
   }
   /// The set of step n: asks both participants for their parts and waits for them
   /// (coupling.step_timeout_s), writes `own` (the coupler's part), flushes coupling.h5 and

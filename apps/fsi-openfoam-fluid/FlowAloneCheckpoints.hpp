@@ -25,7 +25,7 @@ public:
   bool enabled() const { return every_ > 0; }
   /// Step n ends with a set: every interval, at the run's end, and when a signal stops the run.
   bool due(long n, long n_steps, bool stopping) const {
-    return every_ > 0 && (n % every_ == 0 || n == n_steps || stopping);
+    return checkpoint::CheckpointSet::due(n, every_, n_steps, stopping);
   }
   /// The set of step n at time_s (every rank calls it; the master completes the manifest).
   void write(fluid::OpenFoamFluidModel &model, int rank, long n, double time_s) const;

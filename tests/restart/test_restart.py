@@ -520,6 +520,22 @@ class CouplingLawState(unittest.TestCase):
             self.assertEqual(differences(full, out, COUPLED_FILES), [], name)
 
 
+def start_openfoam_fixture(cls, prefix, make):
+    """setUpClass of an OpenFOAM restart class: skips without the fluid; cls.tmp, cls.case =
+    make(cls.tmp), cls.full (the uninterrupted run, which must succeed), its wall time and output."""
+    if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
+        raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
+    cls.tmp = tempfile.mkdtemp(prefix=prefix)
+    cls.case = make(cls.tmp)
+    cls.full = os.path.join(cls.tmp, "full")
+    started = time.time()
+    made = launch(cls.case, cls.full)
+    cls.full_wall_s = time.time() - started
+    if made.returncode != 0:
+        raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+    cls.full_log = made.stdout
+
+
 class CoupledOpenFoam(unittest.TestCase):
     """The OpenFOAM fluid's part: its binary fields of the checkpoint's time with the old-time
     fields and uniform/time; a restart starts OpenFOAM from them. Bitwise, as a static mesh
@@ -527,16 +543,7 @@ class CoupledOpenFoam(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
-            raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
-        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_openfoam_")
-        cls.case = make_openfoam_case(cls.tmp)
-        cls.full = os.path.join(cls.tmp, "full")
-        started = time.time()
-        made = launch(cls.case, cls.full)
-        cls.full_wall_s = time.time() - started
-        if made.returncode != 0:
-            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+        start_openfoam_fixture(cls, "fsi_restart_openfoam_", make_openfoam_case)
 
     @classmethod
     def tearDownClass(cls):
@@ -623,14 +630,7 @@ class CoupledOpenFoamRanks(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
-            raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
-        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_ranks_")
-        cls.case = make_openfoam_case(cls.tmp, mpi_ranks=2)
-        cls.full = os.path.join(cls.tmp, "full")
-        made = launch(cls.case, cls.full)
-        if made.returncode != 0:
-            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
+        start_openfoam_fixture(cls, "fsi_restart_ranks_", lambda tmp: make_openfoam_case(tmp, mpi_ranks=2))
 
     @classmethod
     def tearDownClass(cls):
@@ -712,15 +712,7 @@ class FlowAloneOpenFoam(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        if not os.access(os.path.join(BIN_DIR, "fsi-openfoam-fluid"), os.X_OK):
-            raise unittest.SkipTest("fsi-openfoam-fluid not built (no OpenFOAM)")
-        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_alone_")
-        cls.case = make_flow_alone_case(cls.tmp)
-        cls.full = os.path.join(cls.tmp, "full")
-        made = launch(cls.case, cls.full)
-        if made.returncode != 0:
-            raise AssertionError("the uninterrupted run failed:\n" + made.stdout[-3000:])
-        cls.full_log = made.stdout
+        start_openfoam_fixture(cls, "fsi_restart_alone_", make_flow_alone_case)
 
     @classmethod
     def tearDownClass(cls):
