@@ -77,7 +77,7 @@ CaseConfig CaseConfig::load(const std::filesystem::path &case_dir, const std::st
 namespace {
 
 /// The case's effective configuration without what may differ between runs of the same case.
-std::string fingerprint_of(CaseConfig &config, const std::vector<std::string> &run_keys_left_out) {
+YAML::Node comparable_node(CaseConfig &config, const std::vector<std::string> &run_keys_left_out) {
   // The emitter only reads; visit() is non-const because the reader shares it.
   YAML::Node node = YAML::Load(common::to_yaml(config));
   node["run"].remove("output_directory");
@@ -86,19 +86,57 @@ std::string fingerprint_of(CaseConfig &config, const std::vector<std::string> &r
     node["run"].remove(key);
   if (node["coupling"])
     node["coupling"].remove("endpoint");
-  const std::string text = YAML::Dump(node);
+  return node;
+}
+
+std::string fingerprint_of(CaseConfig &config, const std::vector<std::string> &run_keys_left_out) {
+  const std::string text = YAML::Dump(comparable_node(config, run_keys_left_out));
   common::Fnv1a hash;
   hash.add_bytes(text);
   return hash.hex();
+}
+
+/// `node` as "key = value" lines: maps by dotted keys, lists of sections by index
+/// (structures[0].name), lists of scalars and empty collections as one value ([0, 0, -9.81]).
+void flatten(const YAML::Node &node, const std::string &key, std::string &lines) {
+  const auto inline_value = [](const YAML::Node &n) {
+    YAML::Emitter out;
+    out.SetDoublePrecision(17);
+    out << YAML::Flow << n;
+    return std::string(out.c_str());
+  };
+  bool all_scalars = true;
+  if (node.IsSequence())
+    for (const auto &item : node)
+      all_scalars = all_scalars && item.IsScalar();
+  if (node.IsMap() && node.size() > 0) {
+    for (const auto &entry : node)
+      flatten(entry.second, (key.empty() ? "" : key + ".") + entry.first.Scalar(), lines);
+  } else if (node.IsSequence() && node.size() > 0 && !all_scalars) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      flatten(node[i], key + "[" + std::to_string(i) + "]", lines);
+  } else {
+    lines += key + " = " + (node.IsScalar() ? node.Scalar() : inline_value(node)) + "\n";
+  }
 }
 
 } // namespace
 
 std::string CaseConfig::fingerprint() const { return fingerprint_of(const_cast<CaseConfig &>(*this), {}); }
 
+namespace {
+// What a restart may change: where the run ends and how often it checkpoints.
+const std::vector<std::string> restart_may_change = {"end_time_s", "checkpoint_interval_s", "checkpoint_keep"};
+} // namespace
+
 std::string CaseConfig::restart_fingerprint() const {
-  // What a restart may change: where the run ends and how often it checkpoints.
-  return fingerprint_of(const_cast<CaseConfig &>(*this), {"end_time_s", "checkpoint_interval_s", "checkpoint_keep"});
+  return fingerprint_of(const_cast<CaseConfig &>(*this), restart_may_change);
+}
+
+checkpoint::CaseIdentity CaseConfig::restart_identity() const {
+  std::string keys;
+  flatten(comparable_node(const_cast<CaseConfig &>(*this), restart_may_change), "", keys);
+  return {restart_fingerprint(), keys};
 }
 
 } // namespace fsi::case_config

@@ -6,6 +6,7 @@
 // ModuleSetups.hpp), never the whole case.
 
 #include "FluidConfig.hpp"
+#include "checkpoint/CaseIdentity.hpp"
 #include "common/RunConfig.hpp"
 #include "coupler/CouplingConfig.hpp"
 #include "structure_solver/CollisionConfig.hpp"
@@ -67,6 +68,9 @@ struct CaseConfig {
   /// The fingerprint a checkpoint carries: the case's, without run.end_time_s and the
   /// checkpoint settings (a restart may run further, or checkpoint more often).
   std::string restart_fingerprint() const;
+  /// What a checkpoint records of the case: the restart fingerprint and the keys it hashes
+  /// (checkpoint::CaseIdentity), so that a refused restart can name the keys that changed.
+  checkpoint::CaseIdentity restart_identity() const;
 
 private:
   void validate(common::ConfigReader &v) const;

@@ -19,7 +19,7 @@ structure::StructureSetup structure_setup(CaseConfig config) {
   structure::StructureSetup setup;
   setup.case_yaml = effective_yaml(config);
   setup.case_fingerprint = config.fingerprint();
-  setup.restart_fingerprint = config.restart_fingerprint();
+  setup.restart_identity = config.restart_identity();
   setup.run = config.run;
   setup.gravity_m_per_s2 = config.gravity_m_per_s2;
   setup.collisions = std::move(config.collisions);
@@ -35,7 +35,7 @@ coupler::CouplingSetup coupling_setup(CaseConfig config, const std::filesystem::
   setup.channel = channel_options(config, case_dir, "coupler");
   setup.case_yaml = effective_yaml(config);
   setup.case_fingerprint = config.fingerprint();
-  setup.restart_fingerprint = config.restart_fingerprint();
+  setup.restart_identity = config.restart_identity();
   setup.run = config.run;
   setup.coupling = std::move(*config.coupling);
   if (config.collisions)

@@ -14,8 +14,8 @@ constexpr char manifest_name[] = "manifest.ckpt";
 
 } // namespace
 
-CheckpointSet::CheckpointSet(std::filesystem::path root, std::string fingerprint, int keep)
-    : root_(std::move(root)), fingerprint_(std::move(fingerprint)), keep_(std::max(1, keep)) {}
+CheckpointSet::CheckpointSet(std::filesystem::path root, CaseIdentity identity, int keep)
+    : root_(std::move(root)), identity_(std::move(identity)), keep_(std::max(1, keep)) {}
 
 std::filesystem::path CheckpointSet::folder_of(const std::filesystem::path &root, long step) {
   char name[32];
@@ -41,7 +41,9 @@ void CheckpointSet::complete(long step, double time_s, const std::vector<Checkpo
   const auto dir = folder(step);
   StateArchive manifest;
   manifest.put_integer("format_version", format_version);
-  manifest.put_text("fingerprint", fingerprint_);
+  manifest.put_text("fingerprint", identity_.fingerprint());
+  if (!identity_.keys().empty())
+    manifest.put_text("case_keys", identity_.keys());
   manifest.put_integer("step", step);
   manifest.put_double("time_s", time_s);
   manifest.put_integer("n_parts", static_cast<std::int64_t>(parts.size()));
@@ -77,14 +79,22 @@ CheckpointSet::Found CheckpointSet::verify(long step) const {
   if (manifest.integer("format_version") != format_version)
     throw CheckpointError(where + ": checkpoint format " + std::to_string(manifest.integer("format_version")) +
                           ", this build reads " + std::to_string(format_version));
-  if (manifest.text("fingerprint") != fingerprint_)
-    throw CheckpointError(where + ": written by another case (fingerprint " + manifest.text("fingerprint") +
-                          ", this case's is " + fingerprint_ + "): a change of the case other than run.end_time_s");
+  const auto verdict = identity_.admits(
+      {manifest.text("fingerprint"), manifest.has("case_keys") ? manifest.text("case_keys") : std::string()});
+  if (!verdict.accepted)
+    throw CheckpointError(where + ": " + verdict.refusal);
   if (manifest.integer("step") != step)
     throw CheckpointError(where + ": says step " + std::to_string(manifest.integer("step")) + " in the folder of step " +
                           std::to_string(step));
   const auto n_parts = manifest.integer("n_parts");
-  Found found{step, manifest.number("time_s"), dir, {}};
+  Found found{step, manifest.number("time_s"), dir, {}, {}};
+  if (!verdict.added_keys.empty()) {
+    std::string added;
+    for (const auto &key : verdict.added_keys)
+      added += (added.empty() ? "" : "; ") + key;
+    found.notes.push_back(where + ": written by a build without the keys " + added +
+                          ": continued with them as they are now");
+  }
   for (std::int64_t i = 0; i < n_parts; ++i) {
     const std::string name = manifest.text("parts/" + std::to_string(i) + "/name");
     const std::string expected = manifest.text("parts/" + std::to_string(i) + "/checksum");

@@ -1,11 +1,13 @@
 #pragma once
 // The checkpoint sets of a run, in <output>/checkpoints/: one folder per checkpointed step,
 // step-<9 digits>/, with one state archive per part of the run (structure.ckpt, coupler.ckpt,
-// ...) and, written last, manifest.ckpt: the case's restart fingerprint, the step, the time,
-// the set format and each part with its checksum. A set counts only with its manifest, and only
+// ...) and, written last, manifest.ckpt: the case's identity (its restart fingerprint and keys,
+// CaseIdentity), the step, the time, the set format and each part with its checksum. A set counts only with its manifest, and only
 // when every part it lists is there with that checksum (MUSCLE3's rule: the parts of one
 // snapshot must agree). The newest such set of this case is where a restart starts; newer sets
 // that fail a check are skipped, each with a message naming the file and the fault.
+
+#include "checkpoint/CaseIdentity.hpp"
 
 #include <filesystem>
 #include <optional>
@@ -23,9 +25,9 @@ class CheckpointSet {
 public:
   static constexpr int format_version = 1;
 
-  /// root: <output>/checkpoints; fingerprint: the case's restart fingerprint; keep: the number
-  /// of complete sets kept (older ones are removed when a new one completes; >= 1).
-  CheckpointSet(std::filesystem::path root, std::string fingerprint, int keep);
+  /// root: <output>/checkpoints; identity: the case's (CaseConfig::restart_identity); keep: the
+  /// number of complete sets kept (older ones are removed when a new one completes; >= 1).
+  CheckpointSet(std::filesystem::path root, CaseIdentity identity, int keep);
 
   /// The folder of step n's set, made empty (an incomplete set of the same step is replaced).
   std::filesystem::path begin(long step) const;
@@ -38,6 +40,8 @@ public:
     double time_s = 0.0;
     std::filesystem::path folder;
     std::vector<CheckpointPart> parts;
+    /// What the caller should tell: the keys this build added since the set's (CaseIdentity).
+    std::vector<std::string> notes;
     /// The checksum the manifest gives the part `name`; throws CheckpointError if it has none.
     const std::string &checksum_of(const std::string &name) const;
   };
@@ -62,7 +66,7 @@ private:
   Found verify(long step) const;
 
   std::filesystem::path root_;
-  std::string fingerprint_;
+  CaseIdentity identity_;
   int keep_;
 };
 

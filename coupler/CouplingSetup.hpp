@@ -6,6 +6,7 @@
 // configuration, fingerprint). The executable fills it from case.yaml (case/ModuleSetups.hpp).
 
 #include "CouplingConfig.hpp"
+#include "checkpoint/CaseIdentity.hpp"
 #include "common/RunConfig.hpp"
 #include "common/Types.hpp"
 #include "geometry/SurfaceConfig.hpp"
@@ -25,7 +26,7 @@ struct CouplingSetup {
   std::size_t n_structures = 0;
   std::string case_yaml;        ///< the effective configuration of the whole case (YAML)
   std::string case_fingerprint; ///< what every participant's hello must carry
-  std::string restart_fingerprint; ///< what its checkpoints carry (the case without the end time)
+  checkpoint::CaseIdentity restart_identity{""}; ///< what its checkpoints carry (the case without the end time)
   bool restart = false;            ///< --restart: resume from the newest complete checkpoint
 };
 

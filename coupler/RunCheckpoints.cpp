@@ -15,7 +15,7 @@ using common::seconds_since;
 using common::to_ms;
 
 RunCheckpoints::RunCheckpoints(const std::filesystem::path &output_dir, const CouplingSetup &setup)
-    : set_(output_dir / "checkpoints", setup.restart_fingerprint, setup.run.checkpoint_keep),
+    : set_(output_dir / "checkpoints", setup.restart_identity, setup.run.checkpoint_keep),
       every_(setup.run.checkpoint_every()), step_timeout_s_(setup.coupling.step_timeout_s) {}
 
 void RunCheckpoints::find_restart(long n_steps) {
@@ -23,6 +23,8 @@ void RunCheckpoints::find_restart(long n_steps) {
   restart_ = set_.newest(skipped);
   for (const auto &why : skipped)
     spdlog::warn("restart: skipped a checkpoint: {}", why);
+  for (const auto &note : restart_ ? restart_->notes : std::vector<std::string>{})
+    spdlog::warn("restart: {}", note);
   if (!restart_)
     throw HandshakeRefused("--restart: no complete checkpoint of this case in " + set_.root().string() +
                            (skipped.empty() ? std::string(" (run.checkpoint_interval_s makes them)")

@@ -233,7 +233,7 @@ void StructureRun::start(Resume resume) {
   scene_ = std::make_unique<Scene>(config_);
   for (const auto &warning : time_step_warnings(*scene_, config_.run.time_step_s))
     spdlog::warn("{}", warning);
-  checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_fingerprint,
+  checkpoints_ = std::make_unique<checkpoint::CheckpointSet>(output_dir_ / "checkpoints", config_.restart_identity,
                                                              config_.run.checkpoint_keep);
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
@@ -252,6 +252,8 @@ void StructureRun::start(Resume resume) {
   const auto found = checkpoints_->newest(skipped);
   for (const auto &why : skipped)
     spdlog::warn("restart: skipped a checkpoint: {}", why);
+  for (const auto &note : found ? found->notes : std::vector<std::string>{})
+    spdlog::warn("restart: {}", note);
   if (!found)
     throw common::UserError("--restart: no complete checkpoint of this case in " + checkpoints_->root().string() +
                             (skipped.empty() ? std::string(" (run.checkpoint_interval_s makes them)")

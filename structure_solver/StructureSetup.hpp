@@ -8,6 +8,7 @@
 #include "CollisionConfig.hpp"
 #include "ProbeConfig.hpp"
 #include "StructureConfig.hpp"
+#include "checkpoint/CaseIdentity.hpp"
 #include "common/RunConfig.hpp"
 #include "common/Types.hpp"
 
@@ -25,7 +26,7 @@ struct StructureSetup {
   std::vector<ProbeConfig> probes;
   std::string case_yaml;        ///< the effective configuration of the whole case (YAML)
   std::string case_fingerprint; ///< the case's fingerprint (16 hex digits), as the coupler has it
-  std::string restart_fingerprint; ///< the fingerprint its checkpoints carry (without the end time)
+  checkpoint::CaseIdentity restart_identity{""}; ///< what its checkpoints carry (the case without the end time)
   /// Resume from the newest complete checkpoint of the results folder (--restart).
   bool restart = false;
   /// A coupled run: the moving rigid surfaces take the poses the coupler sends

@@ -4,9 +4,9 @@
 
 namespace fsi::apps {
 
-FlowAloneCheckpoints::FlowAloneCheckpoints(std::filesystem::path root, std::string fingerprint, int keep,
+FlowAloneCheckpoints::FlowAloneCheckpoints(std::filesystem::path root, checkpoint::CaseIdentity identity, int keep,
                                            long every_steps, long first_step)
-    : set_(std::move(root), std::move(fingerprint), keep), every_(every_steps), first_step_(first_step) {}
+    : set_(std::move(root), std::move(identity), keep), every_(every_steps), first_step_(first_step) {}
 
 void FlowAloneCheckpoints::write(fluid::OpenFoamFluidModel &model, int rank, long n, double time_s) const {
   if (rank == 0)

@@ -17,7 +17,7 @@ class FlowAloneCheckpoints {
 public:
   /// every_steps: steps between sets (0: none). A run without checkpoints still resumes from
   /// none: `first_step` 0.
-  FlowAloneCheckpoints(std::filesystem::path root, std::string fingerprint, int keep, long every_steps,
+  FlowAloneCheckpoints(std::filesystem::path root, checkpoint::CaseIdentity identity, int keep, long every_steps,
                        long first_step);
 
   /// The step a restart resumes after (0: from the start).

@@ -78,12 +78,14 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     const fs::path foam_case = base / "openfoam";
     if (!fs::exists(foam_case / "constant" / "polyMesh" / "owner"))
       throw fsi::common::UserError("--restart: " + foam_case.string() + " has no mesh: there is no run to resume");
-    const fsi::checkpoint::CheckpointSet sets(base / "checkpoints", config.restart_fingerprint(),
+    const fsi::checkpoint::CheckpointSet sets(base / "checkpoints", config.restart_identity(),
                                               config.run.checkpoint_keep);
     std::vector<std::string> skipped;
     const auto found = sets.newest(skipped);
     for (const auto &why : skipped)
       spdlog::warn("restart: skipped a checkpoint: {}", why);
+    for (const auto &note : found ? found->notes : std::vector<std::string>{})
+      spdlog::warn("restart: {}", note);
     if (!found)
       throw fsi::common::UserError("--restart: no complete checkpoint of this case in " + sets.root().string() +
                                    (config.run.checkpoint_every() == 0 ? " (run.checkpoint_interval_s makes them)" : ""));
@@ -167,7 +169,7 @@ int run_alone(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi
   if (flow.rank() == 0)
     std::ofstream(out / "config.effective.yaml") << fsi::common::to_yaml(const_cast<CaseConfig &>(config)) << "\n";
   const auto steps = fsi::apps::uniform_steps(config.run.time_step_s, config.run.end_time_s);
-  const fsi::apps::FlowAloneCheckpoints checkpoints(out / "checkpoints", config.restart_fingerprint(),
+  const fsi::apps::FlowAloneCheckpoints checkpoints(out / "checkpoints", config.restart_identity(),
                                                     config.run.checkpoint_keep, config.run.checkpoint_every(),
                                                     restart_step);
   if (restart_step > 0)
@@ -271,7 +273,7 @@ int main(int argc, char **argv) {
       // The ranks started by mpirun after the install: the same newest set (its step only).
       std::vector<std::string> skipped;
       const auto found =
-          fsi::checkpoint::CheckpointSet(base / "checkpoints", config.restart_fingerprint(), config.run.checkpoint_keep)
+          fsi::checkpoint::CheckpointSet(base / "checkpoints", config.restart_identity(), config.run.checkpoint_keep)
               .newest(skipped);
       restart_step = found ? found->step : 0;
     }

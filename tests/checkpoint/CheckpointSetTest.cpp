@@ -12,6 +12,7 @@
 #include <fstream>
 
 namespace fs = std::filesystem;
+using fsi::checkpoint::CaseIdentity;
 using fsi::checkpoint::CheckpointSet;
 using fsi::checkpoint::StateArchive;
 
@@ -54,7 +55,7 @@ bool mentions(const std::vector<std::string> &messages, const std::string &text)
 
 TEST(CheckpointSet, OnlyTheKeptCompleteSetsStayAndTheNewestIsFound) {
   const TempRoot tmp("keep");
-  const CheckpointSet sets(tmp.checkpoints(), "fp", 2);
+  const CheckpointSet sets(tmp.checkpoints(), CaseIdentity("fp"), 2);
   for (long step : {10, 20, 30})
     write_set(sets, step);
   EXPECT_FALSE(fs::exists(sets.folder(10)));
@@ -71,7 +72,7 @@ TEST(CheckpointSet, OnlyTheKeptCompleteSetsStayAndTheNewestIsFound) {
 
 TEST(CheckpointSet, ASetWithoutItsManifestDoesNotCount) {
   const TempRoot tmp("incomplete");
-  const CheckpointSet sets(tmp.checkpoints(), "fp", 3);
+  const CheckpointSet sets(tmp.checkpoints(), CaseIdentity("fp"), 3);
   write_set(sets, 10);
   write_set(sets, 20, false); // a process died before the set was complete
   std::vector<std::string> skipped;
@@ -81,7 +82,7 @@ TEST(CheckpointSet, ASetWithoutItsManifestDoesNotCount) {
 TEST(CheckpointSet, ABadNewestSetIsSkippedWithItsReasonAndThePreviousUsed) {
   const TempRoot tmp("bad");
   const auto root = tmp.checkpoints();
-  const CheckpointSet sets(root, "fp", 3);
+  const CheckpointSet sets(root, CaseIdentity("fp"), 3);
   write_set(sets, 10);
   write_set(sets, 20);
   const fs::path part = sets.folder(20) / "structure.ckpt";
@@ -114,12 +115,12 @@ TEST(CheckpointSet, ABadNewestSetIsSkippedWithItsReasonAndThePreviousUsed) {
 TEST(CheckpointSet, ASetOfAnotherCaseIsSkipped) {
   const TempRoot tmp("other_case");
   const auto root = tmp.checkpoints();
-  write_set(CheckpointSet(root, "this-case", 3), 10);
-  write_set(CheckpointSet(root, "another-case", 3), 20);
+  write_set(CheckpointSet(root, CaseIdentity("this-case"), 3), 10);
+  write_set(CheckpointSet(root, CaseIdentity("another-case"), 3), 20);
   std::vector<std::string> skipped;
-  EXPECT_EQ(newest_step(CheckpointSet(root, "this-case", 3), skipped), 10);
+  EXPECT_EQ(newest_step(CheckpointSet(root, CaseIdentity("this-case"), 3), skipped), 10);
   EXPECT_TRUE(mentions(skipped, "written by another case (fingerprint another-case")) << skipped.front();
   skipped.clear();
-  EXPECT_EQ(newest_step(CheckpointSet(root, "a-third-case", 3), skipped), -1);
+  EXPECT_EQ(newest_step(CheckpointSet(root, CaseIdentity("a-third-case"), 3), skipped), -1);
   EXPECT_EQ(skipped.size(), 2u);
 }

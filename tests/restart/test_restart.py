@@ -676,6 +676,7 @@ class CoupledOpenFoamRanks(unittest.TestCase):
         made = launch(one_rank, out, "--restart")
         self.assertEqual(made.returncode, 2, made.stdout[-2000:])
         self.assertIn("written by another case", made.stdout)
+        self.assertIn("fluid.openfoam.mpi_ranks was 2, is 1 now", made.stdout)  # the key that changed, named
         self.assertIn("--restart: no complete checkpoint of this case", made.stdout)
 
 
