@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <thread>
 
 namespace fsi::apps {
 
@@ -147,6 +148,14 @@ bool stop_requested(const fluid::FoamFlow &flow) {
   return stop > 0.0;
 }
 
+/// Fault hook of the reliability tests: FSI_FAULT_STEP_SLEEP_S=S makes every step S seconds
+/// longer (a pump's step, in a test's small case).
+void sleep_if_asked() {
+  static const char *asked = std::getenv("FSI_FAULT_STEP_SLEEP_S");
+  if (asked)
+    std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(asked)));
+}
+
 } // namespace
 
 int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, const FlowAloneSchedule &schedule) {
@@ -185,6 +194,7 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
       throw;
     }
     t += steps[static_cast<std::size_t>(step)];
+    sleep_if_asked();
     if (flow.rank() == 0)
       tables.write(model, flow.time_s(), loads);
     if (checkpoints && checkpoints->due(step + 1, n_steps, false)) {

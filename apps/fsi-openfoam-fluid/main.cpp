@@ -6,9 +6,9 @@
 // <output>/precursor (section 3.2), once: the result is reused while what it depends on is
 // unchanged (Precursor.hpp). --precursor runs only that (the launcher does so before it starts
 // the coupled processes, so the coupler's handshake does not wait for it).
-// With fluid.openfoam.mpi_ranks = N > 1 it prepares and decomposes the case, then replaces
-// itself by `mpirun -np N fsi-openfoam-fluid ... --mpi-rank` (same process id, so signals and
-// the exit code reach the launcher); rank 0 talks to the coupler, the others follow it.
+// With fluid.openfoam.mpi_ranks = N > 1 it prepares and decomposes the case, then runs
+// `mpirun -np N fsi-openfoam-fluid ... --mpi-rank` and exits with it, passing a stop signal on as
+// SIGUSR1/SIGUSR2 (SelfLaunch.hpp); rank 0 talks to the coupler, the others follow it.
 // A case without structures is the flow alone with its rigid bodies (a pump's single-phase
 // performance): no coupler, run.time_step_s to run.end_time_s, forces.csv in <output>.
 // Exit codes: 0 success, 1 the run stopped (coupler lost, another participant failed, OpenFOAM
@@ -51,6 +51,10 @@ using fsi::case_config::CaseConfig;
 using fsi::fluid::Precursor;
 
 extern "C" void on_stop_signal(int signal) { fsi::participant::FluidParticipant::stop_signal() = signal; }
+/// On a rank under mpirun: the stop signal the supervising process passed on (SelfLaunch.hpp).
+extern "C" void on_rank_stop_signal(int signal) {
+  fsi::participant::FluidParticipant::stop_signal() = fsi::apps::rank_stop_signal(signal);
+}
 
 /// What this process runs: the coupled participant, the precursor (the flow with its rigid
 /// bodies alone, section 3.2), or a case without structures (the flow alone, to its end).
@@ -103,7 +107,7 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     }
     restart_step = found->step;
     if (foam.mpi_ranks > 1) // the same decomposition, its processor folders restored: no decomposePar
-      fsi::apps::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
+      fsi::apps::run_mpirun(foam.mpi_ranks, process.argc, process.argv);
     return foam_case;
   }
   const fs::path foam_case = fsi::apps::prepare_openfoam_case(case_dir, foam, base);
@@ -133,7 +137,7 @@ fs::path prepare_case(const Process &process, const CaseConfig &config, const st
     spdlog::info("precursor: {} fields of t = {} s installed as the initial fields",
                  precursor.install_fields(foam_case, foam.mpi_ranks), precursor.end_time_s());
   if (foam.mpi_ranks > 1)
-    fsi::apps::exec_mpirun(foam.mpi_ranks, process.argc, process.argv);
+    fsi::apps::run_mpirun(foam.mpi_ranks, process.argc, process.argv);
   return foam_case;
 }
 
@@ -265,6 +269,10 @@ int main(int argc, char **argv) {
     }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
+    if (process.under_mpirun) {
+      std::signal(SIGUSR1, on_rank_stop_signal);
+      std::signal(SIGUSR2, on_rank_stop_signal);
+    }
     long restart_step = 0;
     const fs::path foam_case = process.under_mpirun
                                    ? base / "openfoam"

@@ -3,6 +3,9 @@
 
 #include "OpenFoamFlow.H"
 
+#include "common/ExitCodes.hpp"
+
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
@@ -144,9 +147,25 @@ void OpenFoamFlow::set_fsi_acceleration(const PointArray &a) {
   fsiAcceleration_->correctBoundaryConditions();
 }
 
+namespace {
+int collective_exit_code = 0;
+extern "C" void exit_with_collective_code() { std::_Exit(collective_exit_code); }
+} // namespace
+
 int FoamFlow::end_process(int exit_code) {
-  if (Foam::UPstream::parRun())
+  if (Foam::UPstream::parRun()) {
+    if (exit_code == common::exit_code_interrupted) {
+      // Every rank stops here together, after the checkpoint of one step (a collective
+      // decision): MPI ends as on success, not by MPI_Abort, which would have mpirun kill the
+      // ranks still finishing; then the process exits with the code. UPstream::exit(0) ends
+      // with exit(0), whose first handler (the last registered) is this one.
+      collective_exit_code = exit_code;
+      std::fflush(nullptr);
+      std::atexit(exit_with_collective_code);
+      Foam::UPstream::exit(0);
+    }
     Foam::UPstream::exit(exit_code); // MPI_Finalize (or abort with the code), then exit
+  }
   return exit_code;
 }
 

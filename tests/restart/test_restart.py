@@ -781,6 +781,39 @@ class FlowAloneOpenFoam(unittest.TestCase):
         self.assert_equals_the_uninterrupted_run(out)
         print("Ctrl-C: the flow alone stopped after step %d, checkpointed, resumed equal" % step)
 
+    def test_ctrl_c_on_two_ranks_waits_for_a_step_longer_than_mpiruns_kill_delay(self):
+        """mpirun, given SIGINT, passes SIGTERM to the ranks and kills them a second later: a
+        pump's step takes longer. The fluid keeps mpirun out of the terminal's reach and passes
+        the stop on as SIGUSR1, which leaves the ranks running: they finish a 3 s step and
+        checkpoint it."""
+        case = os.path.join(self.tmp, "two_ranks_slow")
+        shutil.copytree(self.case, case)
+        path = os.path.join(case, "case.yaml")
+        with open(path) as f:
+            text = f.read()
+        self.assertIn("  openfoam:\n", text)
+        with open(path, "w") as f:
+            f.write(text.replace("  openfoam:\n", "  openfoam:\n    mpi_ranks: 2\n", 1))
+        out = os.path.join(self.tmp, "two_ranks_slow_out")
+        child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, "--set",
+                                  "run.checkpoint_interval_s=0.04", case], stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
+                                 env=dict(os.environ, FSI_FAULT_STEP_SLEEP_S="3"))
+        wait_for_set(child, out, 2)
+        self.assertIsNone(child.poll(), "the run ended before its first checkpoint")
+        time.sleep(0.5)  # within step 3's 3 s
+        os.killpg(child.pid, signal.SIGINT)
+        self.assertEqual(child.wait(timeout=60), 130)
+        with open(os.path.join(out, "fluid.log")) as f:
+            found = re.search(r"flow interrupted at t = \S+ s after step (\d+)", f.read())
+        self.assertTrue(found, "the ranks did not say where they stopped")
+        step = int(found.group(1))
+        self.assertGreaterEqual(step, 3)
+        self.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % step)
+        made = launch(case, out, "--restart", "--end-time", "0.1")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step %d" % step, made.stdout)
+
     def test_fields_written_in_ascii_are_warned_of(self):
         case = make_flow_alone_case(self.tmp, "ascii")
         made = launch(case, os.path.join(self.tmp, "ascii"), "--end-time", "0.04")
