@@ -11,9 +11,11 @@ Writes DIR/ERCOFTAC.md, DIR/ercoftac.csv and DIR/ercoftac.png (default study/erc
 c_u/U2 at R/R2 = 1.02 against the measured midspan and span average (the acceptance: within
 5 %), the profiles' RMS across a pitch, the casing cp, cells and wall seconds per revolution of
 both methods. Every run stays in DIR/runs/<level>-<method>/; a finished run is reused while the
-case's inputs are unchanged (its postprocessing is redone, a few seconds)."""
+case's inputs are unchanged (its postprocessing is redone, a few seconds); a penalized run
+stopped before its end (checkpointed every revolution) continues from its newest checkpoint."""
 
 import argparse
+import glob
 import math
 import os
 import re
@@ -77,22 +79,32 @@ def penalized_cost(out):
 
 def run_one(run, args, fingerprint):
     stamp = os.path.join(run.out, "study.complete")
+    started = os.path.join(run.out, "study.started")
     expected = "%s %s %d\n" % (fingerprint, run.name, run.revolutions)
     if os.path.exists(stamp) and open(stamp).read() == expected:
         say("%s: up to date, reused" % run.name)
     else:
-        if os.path.exists(run.out):
-            shutil.rmtree(run.out)
-        os.makedirs(run.out)
-        say("%s: running %d revolutions" % (run.name, run.revolutions))
+        # A penalized run of the same inputs that was stopped (a session's end, Ctrl-C) continues
+        # from its newest checkpoint (one a revolution); any other run starts again.
+        resumed = (run.method == "penalized" and os.path.exists(started) and open(started).read() == expected
+                   and bool(glob.glob(os.path.join(run.out, "checkpoints", "step-*", "manifest.ckpt"))))
+        if not resumed:
+            if os.path.exists(run.out):
+                shutil.rmtree(run.out)
+            os.makedirs(run.out)
+            with open(started, "w") as f:
+                f.write(expected)
+        say("%s: %s %d revolutions" % (run.name, "continuing to" if resumed else "running", run.revolutions))
         log_path = os.path.join(run.out, "study.log")
         if run.method == "penalized":
+            period = 2 * math.pi / ecp.omega_rad_per_s()
             command = [sys.executable, LAUNCHER, "--bin-dir", args.bin_dir, "-o", run.out, "--resolution", run.level,
-                       "--end-time", repr(run.end_time_s()), CASE]
+                       "--end-time", repr(run.end_time_s()), "--set", "run.checkpoint_interval_s=%.6g" % period]
+            command += ["--restart", CASE] if resumed else [CASE]
         else:
             command = [sys.executable, os.path.join(HERE, "ercoftac_ami_run.py"), "--resolution", run.level,
                        "--end-time", repr(run.end_time_s()), "-o", run.out, CASE]
-        with open(log_path, "w") as log:
+        with open(log_path, "a" if resumed else "w") as log:
             code = subprocess.call(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
                                    env=fsi_launch.case_script_env())
         if code != 0:
