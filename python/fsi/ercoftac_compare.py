@@ -12,6 +12,7 @@ are Table 2's). A folder with a dynamicMeshDict turns its rotor and the probes' 
 postProcessing folder is named after), a probe in the rotor (r < 0.217 m, the AMI) turns by
 -omega (t - start); the stator's stay."""
 
+import glob
 import math
 import os
 
@@ -136,14 +137,23 @@ def impeller_torque(out, start, end):
     about its box's centre) or the blades' patch's (the forces function object, about the axis).
     None without either."""
     penalized = os.path.join(out, "forces.csv")
-    moment = os.path.join(out, "openfoam", "postProcessing", "forces", "0", "moment.dat")
+    # the forces function object's folders, one per start (a restart's rows replace those it repeats)
+    moments = sorted(glob.glob(os.path.join(out, "openfoam", "postProcessing", "forces", "*", "moment.dat")),
+                     key=lambda path: float(os.path.basename(os.path.dirname(path))))
     if os.path.isfile(penalized):
         loads = np.loadtxt(penalized, delimiter=",", skiprows=1, ndmin=2)
         torque = loads[:, [0, 6]]
-    elif os.path.isfile(moment):
-        with open(moment) as f:
-            torque = np.array([[float(v) for v in line.replace("(", " ").replace(")", " ").split()[:4:3]]
-                               for line in f if not line.startswith("#")])
+    elif moments:
+        rows = {}
+        for moment in moments:
+            begin = float(os.path.basename(os.path.dirname(moment)))
+            rows = {t: m for t, m in rows.items() if t < begin - 1e-12}
+            with open(moment) as f:
+                for line in f:
+                    values = line.replace("(", " ").replace(")", " ").split()
+                    if not line.startswith("#") and len(values) >= 4:
+                        rows[float(values[0])] = float(values[3])
+        torque = np.array(sorted(rows.items()))
     else:
         return None
     window = (torque[:, 0] >= start - 1e-12) & (torque[:, 0] <= end + 1e-12)

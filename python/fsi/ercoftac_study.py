@@ -11,8 +11,9 @@ Writes DIR/ERCOFTAC.md, DIR/ercoftac.csv and DIR/ercoftac.png (default study/erc
 c_u/U2 at R/R2 = 1.02 against the measured midspan and span average (the acceptance: within
 5 %), the profiles' RMS across a pitch, the casing cp, cells and wall seconds per revolution of
 both methods. Every run stays in DIR/runs/<level>-<method>/; a finished run is reused while the
-case's inputs are unchanged (its postprocessing is redone, a few seconds); a penalized run
-stopped before its end (checkpointed every revolution) continues from its newest checkpoint."""
+case's inputs are unchanged (its postprocessing is redone, a few seconds); a run stopped before
+its end continues from its last revolution (the penalized one's checkpoint, the body-fitted one's
+fields)."""
 
 import argparse
 import glob
@@ -25,7 +26,7 @@ import sys
 
 import yaml
 
-from fsi import ROOT, case_module, fsi_launch, study_pool
+from fsi import ROOT, case_module, fsi_launch, pump_ami_run, study_pool
 from fsi import ercoftac_pump as ecp
 from fsi.pump_curve import files_digest
 
@@ -84,10 +85,16 @@ def run_one(run, args, fingerprint):
     if os.path.exists(stamp) and open(stamp).read() == expected:
         say("%s: up to date, reused" % run.name)
     else:
-        # A penalized run of the same inputs that was stopped (a session's end, Ctrl-C) continues
-        # from its newest checkpoint (one a revolution); any other run starts again.
-        resumed = (run.method == "penalized" and os.path.exists(started) and open(started).read() == expected
-                   and bool(glob.glob(os.path.join(run.out, "checkpoints", "step-*", "manifest.ckpt"))))
+        # A run of the same inputs that was stopped (a session's end, Ctrl-C) continues: the
+        # penalized one from its newest checkpoint, the body-fitted one from its latest fields
+        # (both written every revolution).
+        same = os.path.exists(started) and open(started).read() == expected
+        if run.method == "penalized":
+            resumed = same and bool(glob.glob(os.path.join(run.out, "checkpoints", "step-*", "manifest.ckpt")))
+        else:
+            foam = os.path.join(run.out, "openfoam")
+            latest = pump_ami_run.latest_time(foam, 1) if os.path.isdir(foam) else None
+            resumed = same and latest is not None and float(latest) > 0
         if not resumed:
             if os.path.exists(run.out):
                 shutil.rmtree(run.out)
@@ -103,7 +110,7 @@ def run_one(run, args, fingerprint):
             command += ["--restart", CASE] if resumed else [CASE]
         else:
             command = [sys.executable, os.path.join(HERE, "ercoftac_ami_run.py"), "--resolution", run.level,
-                       "--end-time", repr(run.end_time_s()), "-o", run.out, CASE]
+                       "--end-time", repr(run.end_time_s()), "-o", run.out] + (["--restart"] if resumed else []) + [CASE]
         with open(log_path, "a" if resumed else "w") as log:
             code = subprocess.call(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
                                    env=fsi_launch.case_script_env())
