@@ -2,9 +2,9 @@
 // The checkpoint sets of a run, in <output>/checkpoints/: one folder per checkpointed step,
 // step-<9 digits>/, with one state archive per part of the run (structure.ckpt, coupler.ckpt,
 // ...) and, written last, manifest.ckpt: the case's identity (its restart fingerprint and keys,
-// CaseIdentity), the step, the time, the set format and each part with its checksum. A set counts only with its manifest, and only
-// when every part it lists is there with that checksum (MUSCLE3's rule: the parts of one
-// snapshot must agree). The newest such set of this case is where a restart starts; newer sets
+// CaseIdentity), the step, the time, the set format and each part with its checksum. A set
+// counts only with its manifest, and only when every part it lists is there with that checksum
+// (MUSCLE3's rule: the parts of one snapshot must agree). The newest such set of this case is where a restart starts; newer sets
 // that fail a check are skipped, each with a message naming the file and the fault.
 
 #include "checkpoint/CaseIdentity.hpp"

@@ -283,13 +283,13 @@ def launch(case, out, *extra):
                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
 
-def start_until_first_set(case, out, first_step, new_session=False):
-    """The launcher on `case`, running in the background, once the checkpoint set of
-    `first_step` is complete (or the run ended, or 120 s passed). new_session: in a process group
-    of its own, to which a test sends Ctrl-C."""
-    child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, case],
+def start_until_first_set(case, out, first_step, new_session=False, extra=(), env=None):
+    """The launcher on `case` (with the options `extra`, in the environment `env`), running in the
+    background, once the checkpoint set of `first_step` is complete (or the run ended, or 120 s
+    passed). new_session: in a process group of its own, to which a test sends Ctrl-C."""
+    child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out] + list(extra) + [case],
                              stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             start_new_session=new_session)
+                             start_new_session=new_session, env=env)
     wait_for_set(child, out, first_step)
     return child
 
@@ -763,21 +763,27 @@ class FlowAloneOpenFoam(unittest.TestCase):
         self.assertEqual(made.returncode, 0, made.stdout[-3000:])
         self.assert_equals_the_uninterrupted_run(out)
 
-    def test_ctrl_c_ends_the_flow_at_a_step_boundary_with_its_checkpoint(self):
-        out = os.path.join(self.tmp, "ctrl-c")
-        child = start_until_first_set(self.case, out, 10, new_session=True)
-        time.sleep(random.Random(80).uniform(0.3, 1.5))
+    def ctrl_c_then_restart(self, child, case, out, wait_s, *restart_options):
+        """Ctrl-C to the launcher's process group: the fluid exits 130 with the set of the step it
+        says it stopped after, and the restart resumes from that set. Returns the step."""
         os.killpg(child.pid, signal.SIGINT)
-        self.assertEqual(child.wait(timeout=90), 130)
+        self.assertEqual(child.wait(timeout=wait_s), 130)
         with open(os.path.join(out, "fluid.log")) as f:
             found = re.search(r"flow interrupted at t = \S+ s after step (\d+)", f.read())
         self.assertTrue(found, "the fluid did not say where it stopped")
         step = int(found.group(1))
-        self.assertLess(step, 100)
         self.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % step)
-        made = launch(self.case, out, "--restart")
+        made = launch(case, out, "--restart", *restart_options)
         self.assertEqual(made.returncode, 0, made.stdout[-3000:])
         self.assertIn("restart: resumed from the checkpoint of step %d" % step, made.stdout)
+        return step
+
+    def test_ctrl_c_ends_the_flow_at_a_step_boundary_with_its_checkpoint(self):
+        out = os.path.join(self.tmp, "ctrl-c")
+        child = start_until_first_set(self.case, out, 10, new_session=True)
+        time.sleep(random.Random(80).uniform(0.3, 1.5))
+        step = self.ctrl_c_then_restart(child, self.case, out, 90)
+        self.assertLess(step, 100)
         self.assert_equals_the_uninterrupted_run(out)
         print("Ctrl-C: the flow alone stopped after step %d, checkpointed, resumed equal" % step)
 
@@ -795,24 +801,11 @@ class FlowAloneOpenFoam(unittest.TestCase):
         with open(path, "w") as f:
             f.write(text.replace("  openfoam:\n", "  openfoam:\n    mpi_ranks: 2\n", 1))
         out = os.path.join(self.tmp, "two_ranks_slow_out")
-        child = subprocess.Popen([sys.executable, LAUNCH, "--bin-dir", BIN_DIR, "-o", out, "--set",
-                                  "run.checkpoint_interval_s=0.04", case], stdin=subprocess.DEVNULL,
-                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
-                                 env=dict(os.environ, FSI_FAULT_STEP_SLEEP_S="3"))
-        wait_for_set(child, out, 2)
+        child = start_until_first_set(case, out, 2, new_session=True, extra=["--set", "run.checkpoint_interval_s=0.04"],
+                                      env=dict(os.environ, FSI_FAULT_STEP_SLEEP_S="3"))
         self.assertIsNone(child.poll(), "the run ended before its first checkpoint")
         time.sleep(0.5)  # within step 3's 3 s
-        os.killpg(child.pid, signal.SIGINT)
-        self.assertEqual(child.wait(timeout=60), 130)
-        with open(os.path.join(out, "fluid.log")) as f:
-            found = re.search(r"flow interrupted at t = \S+ s after step (\d+)", f.read())
-        self.assertTrue(found, "the ranks did not say where they stopped")
-        step = int(found.group(1))
-        self.assertGreaterEqual(step, 3)
-        self.assertEqual(os.path.basename(newest_set(out)), "step-%09d" % step)
-        made = launch(case, out, "--restart", "--end-time", "0.1")
-        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
-        self.assertIn("restart: resumed from the checkpoint of step %d" % step, made.stdout)
+        self.assertGreaterEqual(self.ctrl_c_then_restart(child, case, out, 60, "--end-time", "0.1"), 3)
 
     def test_fields_written_in_ascii_are_warned_of(self):
         case = make_flow_alone_case(self.tmp, "ascii")
