@@ -35,6 +35,9 @@ public:
   virtual const Eigen::VectorXd &cell_volumes_m3() const = 0;
   /// Cell-centre velocities (m/s), N_cells x 3.
   virtual void cell_velocities(PointArray &u_m_per_s) const = 0;
+  /// After advance(): each cell's discrete velocity derivative in time as the ddt scheme makes
+  /// it, on the cells as they moved (fvc::ddt(U), m/s^2), N_cells x 3.
+  virtual void cell_accelerations(PointArray &a_m_per_s2) const = 0;
   /// Cell-centre velocity gradients, N_cells x 9, row-major J_ij = du_i / dx_j (1/s).
   virtual void cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const = 0;
   /// The FSI source of the next step, per unit mass (f_fsi / rho_f, m/s^2), N_cells x 3.

@@ -167,12 +167,14 @@ void OpenFoamFluidModel::save_step_start() {
   message_.clear();
   broadcast(Command::save_step, message_);
   flow_.save_step_start();
+  rate_at_step_start_ = penalization_rate_;
 }
 
 void OpenFoamFluidModel::restore_step_start() {
   message_.clear();
   broadcast(Command::restore_step, message_);
   flow_.restore_step_start();
+  penalization_rate_ = rate_at_step_start_; // a repeated step's cells switch against the step's start
 }
 
 void OpenFoamFluidModel::advance(const participant::FluidStep &step,
@@ -270,9 +272,11 @@ void OpenFoamFluidModel::follow() {
     }
     case Command::save_step:
       flow_.save_step_start();
+      rate_at_step_start_ = penalization_rate_;
       break;
     case Command::restore_step:
       flow_.restore_step_start();
+      penalization_rate_ = rate_at_step_start_;
       break;
     case Command::spread_at:
       positions_ = Eigen::Map<const PointArray>(payload, static_cast<Eigen::Index>(n / 3), 3);
@@ -450,6 +454,7 @@ void OpenFoamFluidModel::step_flow(long step, double time_s, double dt_s, std::v
   start = Clock::now();
   flow_.penalization_acceleration(penalization_acceleration_);
   penalization_force_ = penalization_acceleration_ * config_.density_kg_per_m3; // N/m^3 on the fluid
+  held_fluid_load_density();
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     loads.push_back(rigid_body_load(b, t_next));
   timings_.loads_s = seconds_since(start);
@@ -616,10 +621,51 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
     }
     flow_.set_interface_velocity(u_normal);
   }
+  // The cells inside a body at both ends of the step hold the body's own fluid (held_fluid_load_density).
+  // A cell of a body whose cells the mesh carries stays inside it, so it is held from the first
+  // step of a process on; elsewhere a cell is held when the previous step covered it too.
+  held_.setZero(n);
+  if (covered_before.size() == n) {
+    for (Eigen::Index c = 0; c < n; ++c)
+      held_[c] = penalization_rate_[c] > 0.0 && covered_before[c] > 0.0 ? 1.0 : 0.0;
+  } else {
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (flow_.mesh_moves() && !bodies_[b]->declared_motion().is_static())
+        for (const auto c : indicators_[b]->inside_cells())
+          held_[c] = 1.0;
+  }
   flow_.sum_over_ranks(switching, 3);
   switching_ = {switching[0], switching[1], switching[2] / dt_s};
   penalization_rate_ /= config_.penalization_time_s;
   flow_.set_penalization(penalization_rate_, rigid_velocity_);
+}
+
+void OpenFoamFluidModel::held_fluid_load_density() {
+  // The fluid of a body cell obeys rho Du/Dt = f_on_fluid + (what crosses the cell's faces), so
+  // the reaction -sum f V over a body's cells is the load across its surface less the rate of
+  // change of the momentum of the fluid it holds. That fluid stands for the body's own solid:
+  // its momentum is the body's inertia, not a load of the flow on it (the correction of Uhlmann
+  // 2005 for the internal fluid, here with the discrete ddt of each held cell). In a body
+  // turning steadily it is the centripetal acceleration, no torque; but implicit Euler on cells
+  // turning with the body keeps cos(omega dt) of their swirl each step, and the penalization
+  // restores it: left in, the load reports rho omega^3 dt / 2 int r^2 dV of torque that no
+  // surface carries (docs/model.md, "The fluid a body holds"). Cells the body took or left in
+  // this step keep their momentum change in the load: the swept fluid's exchange.
+  body_load_density_ = penalization_force_;
+  double power_w = 0.0; // of the held fluid's inertia, at the body's velocity
+  if (held_.size() == body_load_density_.rows() && (held_.array() > 0.0).any()) {
+    flow_.cell_accelerations(cell_acceleration_);
+    for (Eigen::Index c = 0; c < held_.size(); ++c) {
+      if (held_[c] <= 0.0)
+        continue;
+      const Eigen::RowVector3d inertia = config_.density_kg_per_m3 * cell_acceleration_.row(c); // N/m^3
+      body_load_density_.row(c) -= inertia;
+      const double chi = penalization_rate_[c] * config_.penalization_time_s;
+      power_w += cells_.volumes_m3()[c] * inertia.dot(rigid_velocity_.row(c)) / chi;
+    }
+  }
+  flow_.sum_over_ranks(&power_w, 1);
+  switching_.held_fluid_power_w = power_w;
 }
 
 rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s) {
@@ -627,7 +673,7 @@ rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s
   // Torque about the body's centre (the centre of its bounding box, carried by its motion).
   const Vec3 centre = body.motion().pose_at(time_s) * body.body_box_m().center();
   rigid::BodyLoad load = rigid::BodyLoads::from_source_on_fluid(*indicators_[b], cells_.centres_m(),
-                                                                penalization_force_, cells_.volumes_m3(), centre);
+                                                                body_load_density_, cells_.volumes_m3(), centre);
   double sums[6] = {load.force_n.x(),    load.force_n.y(),    load.force_n.z(),
                     load.torque_n_m.x(), load.torque_n_m.y(), load.torque_n_m.z()};
   flow_.sum_over_ranks(sums, 6); // each rank has the part of the body in its cells
@@ -638,7 +684,7 @@ rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s
     // The pressure inside the body pushes its cells against each other: taken off each cell (the
     // total is unchanged), the closest part gets only what crosses the body's surface.
     flow_.interior_pressure_acceleration(interior_pressure_, interior_couple_);
-    across_surface_ = penalization_force_ - config_.density_kg_per_m3 * interior_pressure_;
+    across_surface_ = body_load_density_ - config_.density_kg_per_m3 * interior_pressure_;
     interior_couple_ *= -config_.density_kg_per_m3; // the couple of the removed forces, taken off too
     parts = part_splitters_[b]->from_source_on_fluid(*indicators_[b], cells_.centres_m(), across_surface_,
                                                     cells_.volumes_m3(), centre, time_s, interior_couple_);

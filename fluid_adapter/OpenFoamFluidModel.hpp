@@ -55,6 +55,10 @@ struct PenalizationSwitching {
   /// (m^3/s) and the kinetic energy per second destroyed there (W): FoamFlow::immersed_transpiration.
   double transpiration_m3_per_s = 0.0;
   double transpiration_power_w = 0.0;
+  /// The rate of change of the kinetic energy of the fluid the bodies hold, sum rho V u_rib .
+  /// ddt(u) over the cells inside a body at both ends of the step (W): the inertia left out of
+  /// their loads. A body turning at omega about its axis: its torque is this over omega.
+  double held_fluid_power_w = 0.0;
 };
 
 class OpenFoamFluidModel final : public participant::FluidModel {
@@ -149,6 +153,9 @@ private:
   void log_lagrangian_stats();
   void penalize_rigid_bodies(double time_s, double dt_s);
   rigid::BodyLoad rigid_body_load(std::size_t body, double time_s);
+  /// After the solve: body_load_density_, the penalization force less the inertia of the fluid
+  /// in the held cells (inside a body at both ends of the step).
+  void held_fluid_load_density();
 
   OpenFoamConfig config_;
   FoamFlow &flow_;
@@ -180,6 +187,10 @@ private:
   std::unique_ptr<rigid::ImmersedWallDistance> wall_distance_; ///< only with a wall-distance turbulence model
   Eigen::VectorXd penalization_rate_;
   PointArray rigid_velocity_, penalization_acceleration_, penalization_force_;
+  Eigen::VectorXd rate_at_step_start_; ///< penalization_rate_ at save_step_start (a repeated step restores it)
+  Eigen::VectorXd held_;          ///< per cell: 1 inside a body at both ends of this step, else 0
+  PointArray cell_acceleration_;  ///< scratch: FoamFlow::cell_accelerations (m/s^2)
+  PointArray body_load_density_;  ///< per cell: what the bodies' loads sum (N/m^3; held_fluid_load_density)
   std::vector<double> message_;
   /// Beyond this distance from a rank's cell centres no kernel reaches them (m; < 0 until
   /// the first interpolation computes it over the ranks).

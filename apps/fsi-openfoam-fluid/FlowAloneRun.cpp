@@ -57,17 +57,27 @@ bool has_parts(const fluid::OpenFoamFluidModel &model, std::size_t n_bodies) {
   return false;
 }
 
-/// Keeps the header and the rows of `path` whose time (first column) is at most until_s; a
-/// line cut short by a stopped run goes too. Written aside and renamed: the old file or the new.
-void keep_rows_until(const std::filesystem::path &path, double until_s) {
+/// Keeps the rows of `path` whose time (first column) is at most until_s, under `header`; a line
+/// cut short by a stopped run goes too. A table a build with fewer columns wrote (its header a
+/// prefix of this one's) gets the new columns as nan in its kept rows. Written aside and
+/// renamed: the old file or the new.
+void keep_rows_until(const std::filesystem::path &path, double until_s, const std::string &header) {
   std::ifstream in(path);
   const auto aside = std::filesystem::path(path.string() + ".restart");
   std::ofstream out(aside);
-  std::string line;
-  for (bool header = true; std::getline(in, line); header = false) {
-    if (!header && (in.eof() || std::strtod(line.c_str(), nullptr) > until_s))
+  std::string line, padding;
+  for (bool first = true; std::getline(in, line); first = false) {
+    if (first) {
+      if (line != header && header.rfind(line + ",", 0) == 0)
+        for (const char c : header.substr(line.size()))
+          if (c == ',')
+            padding += ",nan";
+      out << (padding.empty() ? line : header) << "\n";
+      continue;
+    }
+    if (in.eof() || std::strtod(line.c_str(), nullptr) > until_s)
       break; // in.eof(): the last line had no newline (written in part)
-    out << line << "\n";
+    out << line << padding << "\n";
   }
   out.close();
   std::filesystem::rename(aside, path);
@@ -78,7 +88,7 @@ void keep_rows_until(const std::filesystem::path &path, double until_s) {
 void open_table(std::ofstream &table, const std::filesystem::path &path, const std::string &header,
                 double resumed_until_s) {
   if (resumed_until_s >= 0.0 && std::filesystem::exists(path)) {
-    keep_rows_until(path, resumed_until_s);
+    keep_rows_until(path, resumed_until_s, header);
     table.open(path, std::ios::app);
     return;
   }
@@ -113,7 +123,7 @@ public:
     }
     const auto &sw = model.last_step_switching();
     switching_ << time_s << "," << sw.cells_switched_on << "," << sw.cells_switched_off << "," << sw.power_w << ","
-               << sw.transpiration_m3_per_s << "," << sw.transpiration_power_w << "\n";
+               << sw.transpiration_m3_per_s << "," << sw.transpiration_power_w << "," << sw.held_fluid_power_w << "\n";
   }
 
   void flush() {
@@ -131,7 +141,7 @@ private:
       open_table(parts_, folder_ / "parts.csv", parts_header(model, n_bodies), resumed_until_s_);
     open_table(switching_, folder_ / "penalization.csv",
                "time_s,cells_switched_on,cells_switched_off,switching_power_w,transpiration_m3_per_s,"
-               "transpiration_power_w",
+               "transpiration_power_w,held_fluid_power_w",
                resumed_until_s_);
   }
 

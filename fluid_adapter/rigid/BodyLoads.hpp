@@ -10,9 +10,9 @@
 //     F = -sum_c f_c V_c,        T = -sum_c (x_c - p) x f_c V_c    (sum over cells with chi > 0)
 // so that a fluid moving faster than the body pushes the body forward (F along u - u_rib).
 // OpenFOAM's incompressible solvers hold the source per unit density (m/s^2): multiply by
-// rho once, in the adapter, before calling this. The sum does not include the inertia of the
-// fluid held inside a moving body (d/dt of its momentum), which the penalization also
-// carries; for a body spinning at a constant rate about its symmetry axis that term is zero.
+// rho once, in the adapter, before calling this. The adapter also takes off the inertia of the
+// fluid a body holds (its cells covered at both ends of a step, rho times their ddt): that
+// fluid stands for the body's solid (OpenFoamFluidModel::held_fluid_load_density).
 
 #include "common/Types.hpp"
 #include "fluid_adapter/rigid/BodyIndicator.hpp"

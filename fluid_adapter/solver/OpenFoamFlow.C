@@ -129,6 +129,13 @@ void OpenFoamFlow::cell_velocities(PointArray &u) const {
   forAll(field, c) u.row(c) << field[c].x(), field[c].y(), field[c].z();
 }
 
+void OpenFoamFlow::cell_accelerations(PointArray &a) const {
+  const Foam::volVectorField ddt(Foam::fvc::ddt(*U_));
+  const auto &field = ddt.primitiveField();
+  a.resize(field.size(), 3);
+  forAll(field, c) a.row(c) << field[c].x(), field[c].y(), field[c].z();
+}
+
 void OpenFoamFlow::cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const {
   // fvc::grad(U) is T_ij = d u_j / d x_i; the library wants J_ij = d u_i / d x_j = T_ji.
   const Foam::volTensorField T(Foam::fvc::grad(*U_));

@@ -16,7 +16,9 @@ and python/fsi/pump_curve.py. Inputs, all in the run's output folder:
   penalization.csv      (penalized runs) the kinetic energy per second the moving impeller
                         destroys in the cells it newly covers (W): switching_power_w, its mean;
                         and the water its cells swallow through their faces with free cells
-                        (m^3/s) with the energy destroyed there (W): transpiration_*
+                        (m^3/s) with the energy destroyed there (W): transpiration_*; and the
+                        power of the inertia of the water the impeller's cells hold, left out of
+                        its torque (W; divided by omega, the torque it would add): held_fluid_power_w
 Definitions (SI): H = (p_t,out - p_t,in) / (rho g) (m); T = -a . T_fluid (N m, the torque the
 shaft supplies, a the rotation axis); eta = rho g Q H / (T omega); psi = g H / (omega R2)^2 and
 phi = Q / (omega R2^3) (the issue's coefficients); the pulsation is the amplitude of the Fourier
@@ -166,6 +168,7 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         pass
     switching = None  # the penalized runs: the energy their moving impeller destroys as it covers cells
     transpiration = [None, None]  # and the water its staircase swallows through its faces
+    held_power = None  # and the inertia of the water its cells hold, left out of the torque
     path = os.path.join(folder, "penalization.csv")
     if os.path.isfile(path):
         data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
@@ -173,6 +176,8 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
             switching = float(np.mean(window(data[:, 0], data[:, 3])[1]))
             if data.shape[1] >= 6:
                 transpiration = [float(np.mean(window(data[:, 0], data[:, k])[1])) for k in (4, 5)]
+            if data.shape[1] >= 7:
+                held_power = float(np.nanmean(window(data[:, 0], data[:, 6])[1]))
     def part_torques(name):
         """{part: shaft torque (N m) over the window} of FOLDER/name (parts.csv's format), or None."""
         path = os.path.join(folder, name)
@@ -205,6 +210,7 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         "switching_power_w": switching,
         "transpiration_m3_per_s": transpiration[0],
         "transpiration_power_w": transpiration[1],
+        "held_fluid_power_w": held_power,
         "efficiency": rho * G * flow_rate * head / power if power > 0 else float("nan"),
         "head_coefficient_psi": G * head / u2 ** 2,
         "flow_coefficient_phi": flow_rate / (omega * radius_m ** 3),
