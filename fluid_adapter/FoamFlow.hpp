@@ -46,6 +46,9 @@ public:
   /// rate chi / tau (1/s, 0 outside bodies) and the body velocity u_rib (m/s). Until this is
   /// called the momentum equation has no penalization term at all.
   virtual void set_penalization(const Eigen::VectorXd &rate_per_s, const PointArray &u_rib_m_per_s) = 0;
+  /// The rate chi / tau (1/s) per cell as the fields the flow started from hold it (a restart's
+  /// set: that of its last step); empty when they have none.
+  virtual const Eigen::VectorXd &penalization_rate_at_start() const = 0;
   /// After advance(): the penalization source per unit density, -rate (u - u_rib) (m/s^2).
   virtual void penalization_acceleration(PointArray &a_m_per_s2) const = 0;
   /// Per penalized cell, the part of its pressure gradient that its faces with other penalized

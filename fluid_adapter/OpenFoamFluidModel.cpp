@@ -567,11 +567,21 @@ void OpenFoamFluidModel::check_bodies_on_moving_mesh(double time_s) {
   }
 }
 
+bool OpenFoamFluidModel::carries_cells(std::size_t body) const {
+  return flow_.mesh_moves() && !bodies_[body]->declared_motion().is_static();
+}
+
 void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
   // Section 2.3, first bullet: the rigid surfaces move first. chi and u_rib at t^{n+1}, where
   // the implicit penalization enforces u = u_rib.
   const Eigen::Index n = cells_.n_cells();
-  const Eigen::VectorXd covered_before = penalization_rate_; // empty on the first step
+  // The cells the bodies covered at the step's start. On a process's first step: a restart's
+  // from its set (so that it steps as the run it continues), none on a new run's.
+  Eigen::VectorXd covered_before = penalization_rate_;
+  const bool first_step = covered_before.size() != n;
+  const bool before_known = !first_step || (restart_step_ > 0 && flow_.penalization_rate_at_start().size() == n);
+  if (first_step)
+    covered_before = before_known ? flow_.penalization_rate_at_start() : Eigen::VectorXd::Zero(n);
   penalization_rate_.setZero(n);
   rigid_velocity_.setZero(n, 3);
   for (auto &indicator : indicators_) {
@@ -584,12 +594,16 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
       rigid_velocity_.row(c) += chi * indicator->body_velocity_m_per_s().row(c);
     }
   }
+  for (std::size_t b = 0; first_step && b < bodies_.size(); ++b) // the mesh carries them: covered before too
+    if (carries_cells(b))
+      for (const auto c : indicators_[b]->inside_cells())
+        covered_before[c] = 1.0;
   if (wall_distance_) {
     wall_distance_->update(time_s);
     flow_.set_immersed_walls(wall_distance_->distance_m(), penalization_rate_);
   }
   double switching[3] = {0.0, 0.0, 0.0}; // cells on, cells off, energy destroyed (J)
-  if (covered_before.size() == n) {
+  if (before_known) {
     PointArray u_now;
     flow_.cell_velocities(u_now); // u^n, before this step's penalization
     for (Eigen::Index c = 0; c < n; ++c) {
@@ -622,18 +636,9 @@ void OpenFoamFluidModel::penalize_rigid_bodies(double time_s, double dt_s) {
     flow_.set_interface_velocity(u_normal);
   }
   // The cells inside a body at both ends of the step hold the body's own fluid (held_fluid_load_density).
-  // A cell of a body whose cells the mesh carries stays inside it, so it is held from the first
-  // step of a process on; elsewhere a cell is held when the previous step covered it too.
   held_.setZero(n);
-  if (covered_before.size() == n) {
-    for (Eigen::Index c = 0; c < n; ++c)
-      held_[c] = penalization_rate_[c] > 0.0 && covered_before[c] > 0.0 ? 1.0 : 0.0;
-  } else {
-    for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (flow_.mesh_moves() && !bodies_[b]->declared_motion().is_static())
-        for (const auto c : indicators_[b]->inside_cells())
-          held_[c] = 1.0;
-  }
+  for (Eigen::Index c = 0; c < n; ++c)
+    held_[c] = penalization_rate_[c] > 0.0 && covered_before[c] > 0.0 ? 1.0 : 0.0;
   flow_.sum_over_ranks(switching, 3);
   switching_ = {switching[0], switching[1], switching[2] / dt_s};
   penalization_rate_ /= config_.penalization_time_s;

@@ -152,6 +152,8 @@ private:
   /// searches, logged by the master.
   void log_lagrangian_stats();
   void penalize_rigid_bodies(double time_s, double dt_s);
+  /// The mesh carries the body's cells (a moving body on a moving mesh turns with them).
+  bool carries_cells(std::size_t body) const;
   rigid::BodyLoad rigid_body_load(std::size_t body, double time_s);
   /// After the solve: body_load_density_, the penalization force less the inertia of the fluid
   /// in the held cells (inside a body at both ends of the step).

@@ -30,6 +30,13 @@ std::vector<double> uniform_steps(double time_step_s, double end_time_s) {
   return steps;
 }
 
+std::vector<double> resumed_steps(double time_step_s, double end_time_s, long resumed_step, double resumed_at_s) {
+  std::vector<double> steps(static_cast<std::size_t>(resumed_step), resumed_at_s / static_cast<double>(resumed_step));
+  for (const double dt : uniform_steps(time_step_s, end_time_s - resumed_at_s))
+    steps.push_back(dt);
+  return steps;
+}
+
 namespace {
 
 std::string loads_header(std::size_t n_bodies) {

@@ -49,6 +49,16 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
     Uf_.reset(new surfaceVectorField(
         IOobject("Uf", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::AUTO_WRITE),
         fvc::interpolate(*U_)));
+  {
+    // A restart's set has the penalization of its last step (OpenFoamFluidModel: which cells the
+    // bodies covered then). Read aside: set_penalization registers the field of the run.
+    IOobject io("penalizationRate", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false);
+    if (io.typeHeaderOk<volScalarField>(true)) {
+      const volScalarField rate(io, mesh);
+      startRate_.resize(rate.primitiveField().size());
+      forAll(rate.primitiveField(), c) startRate_[c] = rate.primitiveField()[c];
+    }
+  }
   setRefCell(*p_, pimple_->dict(), pRefCell_, pRefValue_);
   mesh.setFluxRequired(p_->name());
   laminarTransport_ = std::make_unique<singlePhaseTransportModel>(*U_, *phi_);

@@ -751,6 +751,21 @@ class FlowAloneOpenFoam(unittest.TestCase):
         self.assertIn("the newest checkpoint is of step 100", made.stdout)
         self.assertIn("give a later --end-time", made.stdout)
 
+    def test_a_run_that_ended_on_a_short_step_goes_on_from_its_own_time(self):
+        # --end-time 0.71: 35 steps of 0.02 s and one of 0.01 s. The restart's steps start there
+        # (not at 36 dt = 0.72 s, where the bodies' poses would run ahead of the mesh's time)
+        # and land on the case's end with a last step of 0.01 s.
+        out = os.path.join(self.tmp, "short_step")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.71").returncode, 0)
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("restart: resumed from the checkpoint of step 36 (t = 0.71 s)", made.stdout)
+        times = numpy.loadtxt(os.path.join(out, "forces.csv"), delimiter=",", skiprows=1, ndmin=2)[:, 0]
+        self.assertAlmostEqual(times[35], 0.71, places=9)
+        numpy.testing.assert_allclose(numpy.diff(times[35:-1]), 0.02, rtol=1e-6)
+        self.assertAlmostEqual(times[-1], 2.0, places=9)
+        self.assertTrue(os.path.isdir(os.path.join(out, "openfoam", "2")))
+
     def test_rows_written_after_the_checkpoint_and_a_line_cut_short_are_dropped(self):
         """A run killed after its tables were flushed past its last set: the restart keeps
         their rows up to the set's time only."""
