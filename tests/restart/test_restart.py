@@ -778,6 +778,26 @@ class FlowAloneOpenFoam(unittest.TestCase):
         self.assertEqual(made.returncode, 0, made.stdout[-3000:])
         self.assert_equals_the_uninterrupted_run(out)
 
+    def test_a_table_an_older_build_wrote_gets_the_new_column_as_nan(self):
+        # penalization.csv without its last column (held_fluid_power_w, added on 2026-12-06), as
+        # a set of a run begun before: the restart keeps its rows with the new column nan.
+        out = os.path.join(self.tmp, "older_table")
+        self.assertEqual(launch(self.case, out, "--end-time", "0.6").returncode, 0)
+        path = os.path.join(out, "penalization.csv")
+        with open(path) as f:
+            lines = [line.rstrip("\n").rsplit(",", 1)[0] for line in f]
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        made = launch(self.case, out, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        with open(path) as f, open(os.path.join(self.full, "penalization.csv")) as g:
+            rows, full = f.read().splitlines(), g.read().splitlines()
+        self.assertEqual(rows[0], full[0])
+        self.assertTrue(rows[0].endswith(",held_fluid_power_w"))
+        self.assertEqual(len(rows), len(full))
+        self.assertEqual(rows[30], lines[30] + ",nan")    # t = 0.6 s, written before
+        self.assertEqual(rows[31:], full[31:])            # after the restart: the run's own
+
     def ctrl_c_then_restart(self, child, case, out, wait_s, *restart_options):
         """Ctrl-C to the launcher's process group: the fluid exits 130 with the set of the step it
         says it stopped after, and the restart resumes from that set. Returns the step."""
