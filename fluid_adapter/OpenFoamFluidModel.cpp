@@ -34,9 +34,10 @@ OpenFoamFluidModel::OpenFoamFluidModel(const OpenFoamConfig &config, FoamFlow &f
     indicator_options.sampling = rigid::IndicatorOptions::Sampling::inside_smoothed;
     indicator_options.smoothing_depth_cells = config_.body_indicator_depth_cells;
   }
-  for (const auto &body : bodies_) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const auto &body = bodies_[b];
     // On a moving mesh a moving body turns with its cells (check_bodies_on_moving_mesh).
-    indicator_options.cells_move_with_body = flow_.mesh_moves() && !body->declared_motion().is_static();
+    indicator_options.cells_move_with_body = carries_cells(b);
     indicators_.push_back(
         std::make_unique<rigid::BodyIndicator>(*body, cells_.centres_m(), indicator_options, cells_.sizes_m()));
     spdlog::info("rigid body '{}': {} candidate cells of {} (swept region), indicator {}", body->name(),
