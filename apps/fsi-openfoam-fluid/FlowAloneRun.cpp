@@ -31,7 +31,13 @@ std::vector<double> uniform_steps(double time_step_s, double end_time_s) {
 }
 
 std::vector<double> resumed_steps(double time_step_s, double end_time_s, long resumed_step, double resumed_at_s) {
-  std::vector<double> steps(static_cast<std::size_t>(resumed_step), resumed_at_s / static_cast<double>(resumed_step));
+  std::vector<double> steps = uniform_steps(time_step_s, end_time_s);
+  double scheduled = 0.0;
+  for (long k = 0; k < resumed_step && k < static_cast<long>(steps.size()); ++k)
+    scheduled += steps[static_cast<std::size_t>(k)];
+  if (std::abs(scheduled - resumed_at_s) <= 1e-6 * time_step_s)
+    return steps; // the set is where the schedule puts it: the uninterrupted run's steps
+  steps.assign(static_cast<std::size_t>(resumed_step), resumed_at_s / static_cast<double>(resumed_step));
   for (const double dt : uniform_steps(time_step_s, end_time_s - resumed_at_s))
     steps.push_back(dt);
   return steps;

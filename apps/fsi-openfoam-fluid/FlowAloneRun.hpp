@@ -34,9 +34,10 @@ int run_flow_alone(fluid::OpenFoamFluidModel &model, fluid::FoamFlow &flow, cons
 
 /// n steps of dt to end_time_s (the last one shortened to land on it).
 std::vector<double> uniform_steps(double time_step_s, double end_time_s);
-/// A restart at step k (k >= 1) and time t_k: k steps that sum to t_k (what they were does not
-/// matter any more), then uniform_steps from t_k. A run that ended on a shorter last step and is
-/// asked for more goes on from its own time, not from k dt.
+/// A restart at step k (k >= 1) and time t_k: uniform_steps when its first k steps reach t_k
+/// (to 1e-6 dt), so that the restart takes the uninterrupted run's steps; otherwise (a run that
+/// ended on a shorter last step, asked for more) k steps that sum to t_k, then uniform_steps
+/// from t_k: it goes on from its own time, not from k dt.
 std::vector<double> resumed_steps(double time_step_s, double end_time_s, long resumed_step, double resumed_at_s);
 
 } // namespace fsi::apps

@@ -39,7 +39,6 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
-#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <cstdlib>
@@ -173,15 +172,10 @@ int run_alone(const Process &process, fsi::fluid::OpenFoamFluidModel &model, fsi
   // the operating point from here.
   if (flow.rank() == 0)
     std::ofstream(out / "config.effective.yaml") << fsi::common::to_yaml(const_cast<CaseConfig &>(config)) << "\n";
-  auto steps = fsi::apps::uniform_steps(config.run.time_step_s, config.run.end_time_s);
-  if (restart_step > 0) {
-    // A set whose run ended on a shorter last step is not at restart_step dt: go on from its time.
-    double scheduled = 0.0;
-    for (long k = 0; k < restart_step && k < static_cast<long>(steps.size()); ++k)
-      scheduled += steps[static_cast<std::size_t>(k)];
-    if (std::abs(scheduled - flow.time_s()) > 1e-6 * config.run.time_step_s)
-      steps = fsi::apps::resumed_steps(config.run.time_step_s, config.run.end_time_s, restart_step, flow.time_s());
-  }
+  const auto steps =
+      restart_step > 0
+          ? fsi::apps::resumed_steps(config.run.time_step_s, config.run.end_time_s, restart_step, flow.time_s())
+          : fsi::apps::uniform_steps(config.run.time_step_s, config.run.end_time_s);
   const fsi::apps::FlowAloneCheckpoints checkpoints(out / "checkpoints", config.restart_identity(),
                                                     config.run.checkpoint_keep, config.run.checkpoint_every(),
                                                     restart_step);
