@@ -133,17 +133,17 @@ void OpenFoamFlow::min_over_ranks(double *data, std::size_t n) const {
   combine_over_ranks(data, n, Foam::minEqOp<Foam::scalar>());
 }
 
-void OpenFoamFlow::cell_velocities(PointArray &u) const {
-  const auto &field = U_->primitiveField();
-  u.resize(field.size(), 3);
-  forAll(field, c) u.row(c) << field[c].x(), field[c].y(), field[c].z();
+namespace {
+void copy_rows(const Foam::vectorField &field, PointArray &rows) {
+  rows.resize(field.size(), 3);
+  forAll(field, c) rows.row(c) << field[c].x(), field[c].y(), field[c].z();
 }
+} // namespace
+
+void OpenFoamFlow::cell_velocities(PointArray &u) const { copy_rows(U_->primitiveField(), u); }
 
 void OpenFoamFlow::cell_accelerations(PointArray &a) const {
-  const Foam::volVectorField ddt(Foam::fvc::ddt(*U_));
-  const auto &field = ddt.primitiveField();
-  a.resize(field.size(), 3);
-  forAll(field, c) a.row(c) << field[c].x(), field[c].y(), field[c].z();
+  copy_rows(Foam::volVectorField(Foam::fvc::ddt(*U_)).primitiveField(), a);
 }
 
 void OpenFoamFlow::cell_velocity_gradients(Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::RowMajor> &grad) const {
