@@ -172,9 +172,20 @@ class CentrifugalPump(CaseTest):
             # kinetic energy it destroys in those it covers (W), and the water its staircase swallows
             # through its faces (m^3/s) with the energy destroyed there (W): finite and >= 0.
             switching = np.loadtxt(os.path.join(out, "penalization.csv"), delimiter=",", skiprows=1, ndmin=2)
-            self.assertEqual(switching.shape, (self.STEPS, 6))
+            self.assertEqual(switching.shape, (self.STEPS, 7))
             self.assertTrue(np.all(switching[1:, 1] > 0) and np.all(switching[1:, 2] > 0))
-            self.assertTrue(np.all(np.isfinite(switching[:, 3:])) and np.all(switching[:, 3:] >= 0))
+            self.assertTrue(np.all(np.isfinite(switching[:, 3:6])) and np.all(switching[:, 3:6] >= 0))
+            # Its last column, the power of the inertia of the water the impeller holds, left out
+            # of the loads (docs/model.md, "The fluid a body holds"): on this fixed mesh a cell
+            # inside the steadily turning impeller keeps u = omega x r at its centre, so once the
+            # start from rest is past (step 3 on) that power is a small part of the shaft's
+            # (measured: at most 35 W, 0.8 % of the last steps' 4.4 kW; bound 2 %). The first step
+            # holds nothing (a fresh run on a fixed mesh knows no covered cells before it).
+            held = switching[:, 6]
+            omega = config["collisions"]["surfaces"][0]["motion"]["rotation"]["rate_rad_per_s"]
+            self.assertEqual(held[0], 0.0)
+            self.assertTrue(np.all(np.isfinite(held)))
+            self.assertLess(np.max(np.abs(held[2:])), 0.02 * omega * np.mean(shaft[-4:]))
             # The case's interface_flux: body_normal lets through the faces only the flux of the
             # surface's normal motion; the solver's interpolated fluxes let through that of its
             # whole velocity, several times more (measured over these steps: 3.8 times; settled,
