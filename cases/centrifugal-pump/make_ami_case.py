@@ -50,6 +50,11 @@ import make_case  # noqa: E402
 from fsi.foam_case import write_foam_file  # noqa: E402
 
 RESOLUTIONS = {"coarse": 25, "medium": 50}   # cells across D2, as make_case.RESOLUTIONS
+# Where the cells turn, backward in time: implicit Euler keeps cos(omega dt) of a turning cell's
+# swirl a step, about 1.96 N m of torque in this rotor's water at omega dt = 0.038 (docs/model.md,
+# "The time scheme on turning cells"). The fixed-mesh cases keep make_case.SCHEMES.
+TURNING_SCHEMES = make_case.SCHEMES.replace("ddtSchemes      { default Euler; }", "ddtSchemes      { default backward; }")
+assert TURNING_SCHEMES != make_case.SCHEMES
 GAP_CELL = 0.002                             # m: the cells in the impeller-casing gaps
 GAP_BAND = 0.004                             # m: refined within this distance of the rotor cylinder
 IMPELLER_LEVELS = 1                          # levels finer than h on the impeller surface
@@ -334,10 +339,11 @@ def snappy_dict(design, h, casing, impeller, penalized=False, blade_cell=None):
     return text, (r, z0, z1), gap
 
 
-def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None, solution=None):
+def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None, solution=None,
+                         schemes=make_case.SCHEMES):
     """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
     solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
-    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True, solution=solution)
+    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True, solution=solution, schemes=schemes)
     text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True,
                                      blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
@@ -352,23 +358,17 @@ def write_turning_case(folder, design, case, h, casing, impeller):
     (createBafflesDict: fsi-openfoam-fluid runs createBaffles and mergeOrSplitBaffles after
     snappyHexMesh), the rotor cell zone turning at case.yaml's rate (dynamicMeshDict), correctPhi
     and pcorr as the AMI case's."""
-    write_penalized_case(folder, design, h, casing, impeller, solution={"more_solvers": PCORR, "more_pimple": MOVING})
+    write_penalized_case(folder, design, h, casing, impeller, solution={"more_solvers": PCORR, "more_pimple": MOVING},
+                         schemes=TURNING_SCHEMES)
     write_rotor_motion(folder, case)
 
 
 def write_rotor_motion(folder, case, more_u=""):
     """What turns the rotor behind the AMI, in both cases: its faceZone made the cyclicAMI pair
     (createBafflesDict), the cell zone turning with the impeller of case.yaml (dynamicMeshDict),
-    the pair in every field of 0/ (more_u: U's further entries), and backward in time: implicit
-    Euler keeps cos(omega dt) of a turning cell's swirl a step, about 1.96 N m of torque in this
-    rotor's water at omega dt = 0.038 (docs/model.md, "The time scheme on turning cells")."""
+    and the pair in every field of 0/ (more_u: U's further entries). Both cases are written with
+    TURNING_SCHEMES."""
     write_foam_file(folder, "system/createBafflesDict", "dictionary", CREATE_BAFFLES)
-    schemes = os.path.join(folder, "system", "fvSchemes")
-    with open(schemes) as f:
-        text = f.read()
-    assert "ddtSchemes      { default Euler; }" in text, schemes
-    with open(schemes, "w") as f:
-        f.write(text.replace("ddtSchemes      { default Euler; }", "ddtSchemes      { default backward; }"))
     rot = case["collisions"]["surfaces"][0]["motion"]["rotation"]
     write_foam_file(folder, "constant/dynamicMeshDict", "dictionary", DYNAMIC_MESH % {
         "o": " ".join("%r" % float(v) for v in rot["axis_point_m"]),
@@ -399,7 +399,8 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=Non
     # solver takes the same equations to the same tolerance.
     solution = {"p": "{ solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.01; }",
                 "more_solvers": PCORR, "u": make_case.U_KRYLOV, "more_pimple": MOVING}
-    box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution)
+    box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution,
+                               schemes=TURNING_SCHEMES)
     link(folder, "impeller.stl", impeller)
     text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller, blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
