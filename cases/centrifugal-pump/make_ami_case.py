@@ -3,7 +3,7 @@
 centrifugal pump: the same casing, flow rate, turbulence, schemes, solver settings, time step and
 function objects as make_case.py's penalized cases, but the impeller is cut out of the mesh (its
 regions are wall patches, group `impeller`) and turns with a rotor cell zone that slides on the
-stator through a cyclicAMI pair (AMI1 in the stator, AMI2 on the rotor), run by stock pimpleFoam:
+stator through a cyclicAMI pair (AMI1 on the rotor's side, AMI2 on the stator's), run by stock pimpleFoam:
 
     /usr/bin/python3 cases/centrifugal-pump/make_ami_case.py [--geometry DIR]
     /usr/bin/python3 python/fsi/pump_ami_run.py cases/centrifugal-pump -o OUT   (meshes and runs)
@@ -24,7 +24,11 @@ paper's cell size) so that each half-gap has a cell between wall and interface; 
 cells are the penalized mesh's h (the impeller surface one level finer, IMPELLER_LEVELS).
 It also writes openfoam-coarse-turning-mesh (preset coarse-turning-mesh): that penalized case with
 the rotor's faceZone made the AMI pair and its cells turning with the impeller, so that the blades
-never switch cells (docs/model.md). And openfoam-coarse-ami-mesh, the penalized case (preset coarse-ami-mesh) meshed by
+never switch cells (docs/model.md); openfoam-coarse-fine-blade-turning-mesh (preset
+coarse-fine-blade-turning-mesh) is the same with the blade's cells refined (FINE_BLADE, below).
+Both methods' turning cases integrate the energy flux out of the rotor every step (ROTOR_BUDGET):
+over a revolution, the shaft power less that flux is the power lost in the rotor's water. And
+openfoam-coarse-ami-mesh, the penalized case (preset coarse-ami-mesh) meshed by
 the same snappyHexMeshDict except for the impeller, kept and refined as a region (IMPELLER_REGION):
 the same background cells and the same 2 mm band in the gaps as the AMI mesh, the impeller's
 surroundings one level finer in both (measured on the single blade: 177,626 cells, the AMI mesh
@@ -208,7 +212,7 @@ FUNCTIONS_MORE = """    // The fluid's force (N) and torque (N m, about the orig
         writeControl    timeStep;
         writeInterval   1;
     }
-"""
+%(rotor_budget)s"""
 
 MOVING = """
     // The moving mesh (pimpleFoam with a dynamicMotionSolverFvMesh): the flux on the AMI is
@@ -220,6 +224,26 @@ MOVING = """
 """
 
 PCORR = "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n"   # correctPhi's pressure solver
+
+# The total-pressure energy flux out of the rotor's water through its AMI face (W: phi in m^3/s
+# times p + rho |U|^2 / 2 in Pa, AMI1's faces point out of the rotor), every step, in both methods'
+# turning cases. Over a revolution the rotor's water stores nothing, so the shaft power less this
+# flux is what the water in the rotor dissipates (python/fsi/pump_point.py, rotor_loss_w).
+ROTOR_BUDGET = """    rotorEnergyFlux
+    {
+        type            surfaceFieldValue;
+        libs            ("libfieldFunctionObjects.so");
+        regionType      patch;
+        name            AMI1;
+        operation       weightedSum;
+        weightField     phi;
+        fields          (totalPressure);
+        writeFields     false;
+        log             false;
+        writeControl    timeStep;
+        writeInterval   1;
+    }
+"""
 
 AMI_ENTRIES = """    AMI1   { type cyclicAMI; value $internalField; }
     AMI2   { type cyclicAMI; value $internalField; }
@@ -340,10 +364,11 @@ def snappy_dict(design, h, casing, impeller, penalized=False, blade_cell=None):
 
 
 def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None, solution=None,
-                         schemes=make_case.SCHEMES):
+                         schemes=make_case.SCHEMES, control=None):
     """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
     solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
-    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True, solution=solution, schemes=schemes)
+    make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True, solution=solution, schemes=schemes,
+                         control=control)
     text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True,
                                      blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
@@ -351,15 +376,17 @@ def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None, s
         link(folder, "impeller-blade.stl", fine_blade[0])
 
 
-def write_turning_case(folder, design, case, h, casing, impeller):
+def write_turning_case(folder, design, case, h, casing, impeller, fine_blade=None):
     """openfoam-<resolution>-turning-mesh: the penalized impeller in the AMI mesh's rotor, whose
     cells turn with it (docs/model.md, "the cells a moving body switches"): the penalized case on
     the AMI case's mesh (write_penalized_case), its rotor faceZone made the cyclicAMI pair
     (createBafflesDict: fsi-openfoam-fluid runs createBaffles and mergeOrSplitBaffles after
     snappyHexMesh), the rotor cell zone turning at case.yaml's rate (dynamicMeshDict), correctPhi
-    and pcorr as the AMI case's."""
-    write_penalized_case(folder, design, h, casing, impeller, solution={"more_solvers": PCORR, "more_pimple": MOVING},
-                         schemes=TURNING_SCHEMES)
+    and pcorr as the AMI case's, and the rotor's energy flux (ROTOR_BUDGET). fine_blade: as
+    write_ami_case's."""
+    write_penalized_case(folder, design, h, casing, impeller, fine_blade=fine_blade,
+                         solution={"more_solvers": PCORR, "more_pimple": MOVING}, schemes=TURNING_SCHEMES,
+                         control={"more_functions": ROTOR_BUDGET})
     write_rotor_motion(folder, case)
 
 
@@ -390,7 +417,8 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=Non
                "more_functions": FUNCTIONS_MORE % {
                    "forces": FORCES % {"name": "forces", "patches": " ".join(blade), "rho": make_case.RHO},
                    "part_forces": "".join(PART_FORCES_COMMENT + FORCES % {"name": "forces_" + part, "patches": part,
-                                                                          "rho": make_case.RHO} for part in blade)}}
+                                                                          "rho": make_case.RHO} for part in blade),
+                   "rotor_budget": ROTOR_BUDGET}}
     # fvSolution: the penalized case's + pcorr and the moving-mesh PIMPLE controls. The
     # body-fitted mesh has no holes in its pressure equation: GAMG alone, as it was measured.
     # The rotor's cells at the gaps are 2 mm: the mesh moves up to 2 cells per step there
@@ -452,8 +480,10 @@ def main(argv):
                        fine_blade=(blade_stl, blade_cell))
         write_penalized_case(os.path.join(args.output, "openfoam-%s-ami-mesh" % name), design, h, casing, impeller,
                              fine_blade=(blade_stl, blade_cell))
-        print("openfoam-ami-%s and openfoam-%s-ami-mesh: %s with %g m cells within %g m of the blade, dt = %.3g s"
-              % (name, name, base, blade_cell, BLADE_BAND, dt))
+        write_turning_case(os.path.join(args.output, "openfoam-%s-turning-mesh" % name), design, case, h, casing,
+                           impeller, fine_blade=(blade_stl, blade_cell))
+        print("openfoam-ami-%s, openfoam-%s-ami-mesh and openfoam-%s-turning-mesh: %s with %g m cells within %g m "
+              "of the blade, dt = %.3g s" % (name, name, name, base, blade_cell, BLADE_BAND, dt))
 
 
 if __name__ == "__main__":

@@ -323,6 +323,13 @@ def table(points, result):
             rows.append("| %s: flow rate (L/s), head above the suction pipe (m) | %.2f, %.2f | %.2f, %.2f | |" % (
                 a["station"].replace("_", " "), 1e3 * a["flow_rate_m3_per_s"], a["head_above_suction_m"],
                 1e3 * b["flow_rate_m3_per_s"], b["head_above_suction_m"]))
+    if ibm.get("rotor") and ami.get("rotor"):
+        a, b = ibm["rotor"], ami["rotor"]
+        rows.append("| energy flux out of the rotor's water (W) | %.0f | %.0f | %+.0f W |" % (
+            a["energy_flux_out_w"], b["energy_flux_out_w"], a["energy_flux_out_w"] - b["energy_flux_out_w"]))
+        rows.append("| lost in the rotor's water: shaft power less that flux (W, fraction of the shaft power) | "
+                    "%.0f (%.2f) | %.0f (%.2f) | %+.0f W |" % (a["loss_w"], a["loss_fraction"], b["loss_w"],
+                                                              b["loss_fraction"], a["loss_w"] - b["loss_w"]))
     for part, v in result["torque_by_part_n_m"].items():
         rows.append("| torque on %s (N m) | %.2f | %.2f | %+.2f N m |" % (part, v["ibm"], v["ami"], v["ibm"] - v["ami"]))
     discs = result.get("ami_pressure_torque_on_surfaces_of_revolution_n_m")

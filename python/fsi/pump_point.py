@@ -19,6 +19,11 @@ and python/fsi/pump_curve.py. Inputs, all in the run's output folder:
                         (m^3/s) with the energy destroyed there (W): transpiration_*; and the
                         power of the inertia of the water the impeller's cells hold, left out of
                         its torque (W; divided by omega, the torque it would add): held_fluid_power_w
+  openfoam/postProcessing/rotorEnergyFlux/*/surfaceFieldValue.dat   (optional, the runs whose
+                        rotor turns behind an AMI) the total-pressure energy flux out of the
+                        rotor's water, sum(phi p_t) over its AMI face (W): rotor.energy_flux_out_w,
+                        and the shaft power less it, the power the rotor's water dissipates (it
+                        stores none over whole revolutions): rotor.loss_w
 Definitions (SI): H = (p_t,out - p_t,in) / (rho g) (m); T = -a . T_fluid (N m, the torque the
 shaft supplies, a the rotation axis); eta = rho g Q H / (T omega); psi = g H / (omega R2)^2 and
 phi = Q / (omega R2^3) (the issue's coefficients); the pulsation is the amplitude of the Fourier
@@ -109,6 +114,23 @@ def station_budget(folder, window, rho):
     for row in rows:
         row["head_above_suction_m"] = (row["total_pressure_pa"] - rows[0]["total_pressure_pa"]) / (rho * G)
     return rows
+
+
+def rotor_budget(folder, window, shaft_power_w):
+    """The rotor's energy budget over the averaging window (None when the run has no
+    rotorEnergyFlux function object): the mean energy flux out of the rotor's water (W), and the
+    shaft power less it, the power lost in that water (W) and as a fraction of the shaft power."""
+    try:
+        t, flux = read_dat(folder, "rotorEnergyFlux")
+    except FileNotFoundError:
+        return None
+    _, fw = window(t, flux[:, 0])
+    if not len(fw):
+        return None
+    out = float(np.mean(fw))
+    loss = shaft_power_w - out
+    return {"energy_flux_out_w": out, "loss_w": loss,
+            "loss_fraction": loss / shaft_power_w if shaft_power_w else float("nan")}
 
 
 def revolution_means(t_torque, torque, t_head, head, t0, period, n):
@@ -226,6 +248,9 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
     stations = station_budget(folder, window, rho)
     if stations:
         point["stations"] = stations
+    rotor = rotor_budget(folder, window, power)
+    if rotor:
+        point["rotor"] = rotor
     if by_part is not None:
         point["torque_by_part_n_m"] = by_part
     if pressure_by_part is not None:

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """cases/centrifugal-pump/make_ami_case.py's fine-blade pair without meshing: the blade's STL holds
 exactly the impeller's blade_* solids, and the AMI and penalized snappyHexMeshDicts refine the same
-band round it to the same level (issue 30's fair comparison: the same cells in both methods).
+band round it to the same level (issue 30's fair comparison: the same cells in both methods); every
+committed case whose cells turn, in both methods, integrates the energy flux out of its rotor.
 
     /usr/bin/python3 tests/cases/test_make_ami_case.py -v
 """
@@ -78,6 +79,35 @@ class FineBlade(unittest.TestCase):
         self.assertEqual(len(blade_lines[0]), 1)
         self.assertEqual(blade_lines[0], blade_lines[1])
         self.assertIn("levels ((0.004 2))", blade_lines[0][0])   # 8 mm / 2^2 = 2 mm
+
+
+class TurningCases(unittest.TestCase):
+    def test_every_case_whose_cells_turn_integrates_the_energy_flux_out_of_its_rotor(self):
+        case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
+        turning = []
+        for name in sorted(os.listdir(case)):
+            folder = os.path.join(case, name)
+            if not (name.startswith("openfoam-") and os.path.isdir(folder)):
+                continue
+            with open(os.path.join(folder, "system", "controlDict")) as f:
+                control = f.read()
+            budget = re.search(r"rotorEnergyFlux\s*\{([^}]*)\}", control)
+            if os.path.exists(os.path.join(folder, "constant", "dynamicMeshDict")):
+                turning.append(name)
+                self.assertIsNotNone(budget, name)
+                self.assertRegex(budget.group(1), r"name\s+AMI1;")       # the rotor's side of the pair
+                self.assertRegex(budget.group(1), r"weightField\s+phi;")
+                self.assertRegex(budget.group(1), r"fields\s+\(totalPressure\);")
+                self.assertLess(control.index("totalPressure"), budget.start())   # the field exists first
+            else:
+                self.assertIsNone(budget, name)
+        # Both methods on each turning mesh: the AMI references and the penalized impeller turning with its cells.
+        self.assertEqual(turning, ["openfoam-ami-coarse", "openfoam-ami-coarse-fine-blade", "openfoam-ami-medium",
+                                   "openfoam-coarse-fine-blade-turning-mesh", "openfoam-coarse-turning-mesh"])
+        for name in ("coarse-turning-mesh", "coarse-fine-blade-turning-mesh"):
+            with open(os.path.join(case, "presets", name + ".yaml")) as f:
+                preset = yaml.safe_load(f)
+            self.assertEqual(preset["fluid"]["openfoam"]["case_directory"], "openfoam-" + name)
 
 
 if __name__ == "__main__":

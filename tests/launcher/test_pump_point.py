@@ -106,6 +106,22 @@ class PartsOfTheBodyFittedRun(unittest.TestCase):
             self.assertAlmostEqual(p["pressure_torque_by_part_n_m"]["blade_suction_side"], 9.8, places=9)
 
 
+class RotorBudget(unittest.TestCase):
+    def test_the_rotor_loses_the_shaft_power_its_water_does_not_carry_out(self):
+        # Shaft 12 N m at OMEGA: 1800 W. The energy flux out of the rotor's water pulsates once a
+        # revolution about 1500 W (it stores nothing over a whole revolution): 300 W lost, 1/6.
+        with tempfile.TemporaryDirectory() as folder:
+            period = write_run(folder, lambda t: 12.0 + 0 * t, lambda t: 5.0 + 0 * t, revolutions=4)
+            t = np.arange(1, 801) * period / 200
+            p = pump_point.operating_point(folder, OMEGA, [0, 0, 1], 0.1, 0.02, average_revolutions=3)
+            self.assertNotIn("rotor", p)   # a run without the function object: no budget
+            write_dat(folder, "rotorEnergyFlux", 0, t, 1500.0 + 400.0 * np.sin(OMEGA * t))
+            p = pump_point.operating_point(folder, OMEGA, [0, 0, 1], 0.1, 0.02, average_revolutions=3)
+            self.assertAlmostEqual(p["rotor"]["energy_flux_out_w"], 1500.0, places=6)
+            self.assertAlmostEqual(p["rotor"]["loss_w"], 300.0, places=6)
+            self.assertAlmostEqual(p["rotor"]["loss_fraction"], 300.0 / 1800.0, places=9)
+
+
 class RunFingerprint(unittest.TestCase):
     def test_a_run_is_stale_when_its_own_inputs_change_and_only_then(self):
         from fsi import pump_compare
