@@ -59,6 +59,10 @@ RESOLUTIONS = {"coarse": 25, "medium": 50}   # cells across D2, as make_case.RES
 # "The time scheme on turning cells"). The fixed-mesh cases keep make_case.SCHEMES.
 TURNING_SCHEMES = make_case.SCHEMES.replace("ddtSchemes      { default Euler; }", "ddtSchemes      { default backward; }")
 assert TURNING_SCHEMES != make_case.SCHEMES
+# Where the cells turn, the stations are sampled every STATION_INTERVAL steps: each sample of a
+# station builds an octree of all the cells (python/fsi/pump_stations.py), a third of every step
+# when they were sampled every step. 16.7 samples a revolution at the coarse step.
+STATION_INTERVAL = 10
 GAP_CELL = 0.002                             # m: the cells in the impeller-casing gaps
 GAP_BAND = 0.004                             # m: refined within this distance of the rotor cylinder
 IMPELLER_LEVELS = 1                          # levels finer than h on the impeller surface
@@ -364,11 +368,11 @@ def snappy_dict(design, h, casing, impeller, penalized=False, blade_cell=None):
 
 
 def write_penalized_case(folder, design, h, casing, impeller, fine_blade=None, solution=None,
-                         schemes=make_case.SCHEMES, control=None):
+                         schemes=make_case.SCHEMES, control=None, station_interval=1):
     """openfoam-<resolution>-ami-mesh: the penalized case (make_case.py's, with the Krylov velocity
     solver of its refined variant) meshed by the AMI case's snappyHexMeshDict."""
     make_case.write_case(folder, design, h, "ddes", casing, refine_gaps=True, solution=solution, schemes=schemes,
-                         control=control)
+                         control=control, station_interval=station_interval)
     text, _rotor, _gap = snappy_dict(design, h, casing, impeller, penalized=True,
                                      blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)
@@ -386,7 +390,7 @@ def write_turning_case(folder, design, case, h, casing, impeller, fine_blade=Non
     write_ami_case's."""
     write_penalized_case(folder, design, h, casing, impeller, fine_blade=fine_blade,
                          solution={"more_solvers": PCORR, "more_pimple": MOVING}, schemes=TURNING_SCHEMES,
-                         control={"more_functions": ROTOR_BUDGET})
+                         control={"more_functions": ROTOR_BUDGET}, station_interval=STATION_INTERVAL)
     write_rotor_motion(folder, case)
 
 
@@ -428,7 +432,7 @@ def write_ami_case(folder, design, case, h, casing, impeller, dt, fine_blade=Non
     solution = {"p": "{ solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.01; }",
                 "more_solvers": PCORR, "u": make_case.U_KRYLOV, "more_pimple": MOVING}
     box = make_case.write_case(folder, design, h, "ddes", casing, control=control, solution=solution,
-                               schemes=TURNING_SCHEMES)
+                               schemes=TURNING_SCHEMES, station_interval=STATION_INTERVAL)
     link(folder, "impeller.stl", impeller)
     text, (r, z0, z1), gap = snappy_dict(design, h, casing, impeller, blade_cell=fine_blade and fine_blade[1])
     write_foam_file(folder, "system/snappyHexMeshDict", "dictionary", text)

@@ -372,11 +372,12 @@ def link_surface(folder, source):
 
 
 def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control=None, solution=None,
-               schemes=SCHEMES):
+               schemes=SCHEMES, station_interval=1):
     """An OpenFOAM case folder of the pump at cell size h. control, solution: entries of the
     CONTROL and SOLUTION templates over the penalized runs' (CONTROL_RUN, SOLUTION_RUN), for
     make_ami_case.py's stock pimpleFoam runs; schemes: its fvSchemes (make_ami_case.py's
-    TURNING_SCHEMES where the cells turn)."""
+    TURNING_SCHEMES where the cells turn); station_interval: steps between the stations' samples
+    (make_ami_case.py's STATION_INTERVAL where the cells turn)."""
     lo, hi = stl_bounds(casing)
     pad = 2.0 * h
     box = {}
@@ -395,7 +396,7 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control
     omega = design["operation"]["rotation_rate_rad_per_s"]
     write_foam_file(folder, "system/controlDict", "dictionary",
                     CONTROL % dict(CONTROL_RUN, **(control or {}), write=round(10 * 2 * math.pi / omega, 6), rho=RHO,
-                                   stations=station_function_objects()))
+                                   stations=station_function_objects(interval=station_interval)))
     write_foam_file(folder, "system/fvSchemes", "dictionary", schemes)
     entries = dict(SOLUTION_RUN, **({"u": U_KRYLOV} if refine_gaps else {}), **(solution or {}))
     write_foam_file(folder, "system/fvSolution", "dictionary", SOLUTION % entries)

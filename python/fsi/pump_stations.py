@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The head budget's stations of a generated pump as surfaces that OpenFOAM samples every step:
+"""The head budget's stations of a generated pump as surfaces that OpenFOAM samples every step
+(every make_ami_case.STATION_INTERVAL steps where the cells turn: function_objects):
 closed-form triangulations (binary STL) of the planes and cylinder bands of
 python/fsi/pump_head_budget.py, and the controlDict function objects that integrate the flow
 rate through each and the flow-weighted total pressure over it, so that the head budget and the
@@ -102,7 +103,7 @@ def write_binary_stl(path, triangles, name):
             f.write(struct.pack("<12fH", *nrm, *t.ravel(), 0))
 
 
-FUNCTIONS = """    // The head budget's stations (python/fsi/pump_stations.py): sampled every step, re-found
+FUNCTIONS = """    // The head budget's stations (python/fsi/pump_stations.py): sampled every %(every)s, re-found
     // after every mesh motion; per station the flow rate (m^3/s, along the station's normal)
     // and the flow-weighted total pressure (Pa).
     stations
@@ -114,7 +115,7 @@ FUNCTIONS = """    // The head budget's stations (python/fsi/pump_stations.py): 
         store           true;
         sampleOnExecute true;
         executeControl  timeStep;
-        executeInterval 1;
+        executeInterval %(interval)d;
         writeControl    none;
         surfaces
         {
@@ -135,8 +136,10 @@ VALUES = """    stationFlowRate_%(name)s
         fields          (U);
         writeFields     false;
         log             false;
+        executeControl  timeStep;
+        executeInterval %(interval)d;
         writeControl    timeStep;
-        writeInterval   1;
+        writeInterval   %(interval)d;
     }
     stationTotalPressure_%(name)s
     {
@@ -148,10 +151,15 @@ VALUES = """    stationFlowRate_%(name)s
 """
 
 
-def function_objects(stations=STATIONS):
-    """The controlDict entries (inside `functions { }`, after the totalPressure object)."""
+def function_objects(stations=STATIONS, interval=1):
+    """The controlDict entries (inside `functions { }`, after the totalPressure object), sampled
+    every `interval` steps. On a moving mesh each sampled surface builds an octree of all the
+    mesh's cells every time it samples (sampledTriSurfaceMesh::update, OpenFOAM v1912): every
+    step, that was a third of a turning case's step (measured with perf on the pump's coarse
+    turning mesh, penalized and AMI alike)."""
     return FUNCTIONS % {"surfaces": "".join(SURFACE % {"name": s} for s in stations),
-                        "values": "".join(VALUES % {"name": s} for s in stations)}
+                        "values": "".join(VALUES % {"name": s, "interval": interval} for s in stations),
+                        "interval": interval, "every": "step" if interval == 1 else "%d steps" % interval}
 
 
 def write_stations(case_dir):

@@ -2,7 +2,8 @@
 """cases/centrifugal-pump/make_ami_case.py's fine-blade pair without meshing: the blade's STL holds
 exactly the impeller's blade_* solids, and the AMI and penalized snappyHexMeshDicts refine the same
 band round it to the same level (issue 30's fair comparison: the same cells in both methods); every
-committed case whose cells turn, in both methods, integrates the energy flux out of its rotor.
+committed case whose cells turn, in both methods, integrates the energy flux out of its rotor and
+samples its stations every STATION_INTERVAL steps.
 
     /usr/bin/python3 tests/cases/test_make_ami_case.py -v
 """
@@ -82,7 +83,7 @@ class FineBlade(unittest.TestCase):
 
 
 class TurningCases(unittest.TestCase):
-    def test_every_case_whose_cells_turn_integrates_the_energy_flux_out_of_its_rotor(self):
+    def test_cases_whose_cells_turn_integrate_the_rotor_energy_flux_and_sample_the_stations_less_often(self):
         case = os.path.join(HERE, "..", "..", "cases", "centrifugal-pump")
         turning = []
         for name in sorted(os.listdir(case)):
@@ -92,7 +93,18 @@ class TurningCases(unittest.TestCase):
             with open(os.path.join(folder, "system", "controlDict")) as f:
                 control = f.read()
             budget = re.search(r"rotorEnergyFlux\s*\{([^}]*)\}", control)
-            if os.path.exists(os.path.join(folder, "constant", "dynamicMeshDict")):
+            moving = os.path.exists(os.path.join(folder, "constant", "dynamicMeshDict"))
+            # The stations: sampled (an octree of all cells each time on a moving mesh) and
+            # integrated together, every STATION_INTERVAL steps where the cells turn, else every step.
+            interval = make_ami_case.STATION_INTERVAL if moving else 1
+            sampling = re.search(r"\n    stations\s*\{(.*?)\n    \}", control, re.S).group(1)
+            self.assertRegex(sampling, r"executeInterval %d;" % interval, name)
+            values = re.findall(r"\n    stationFlowRate_\w+\s*\{([^}]*)\}", control)
+            self.assertEqual(len(values), 5, name)
+            for v in values:
+                self.assertRegex(v, r"executeInterval %d;" % interval, name)
+                self.assertRegex(v, r"writeInterval\s+%d;" % interval, name)
+            if moving:
                 turning.append(name)
                 self.assertIsNotNone(budget, name)
                 self.assertRegex(budget.group(1), r"name\s+AMI1;")       # the rotor's side of the pair
