@@ -20,6 +20,13 @@ struct FoamFlowSettings {
   bool parallel = false; ///< started by mpirun on a decomposed case (processor*/ folders)
 };
 
+/// A face between a penalized cell and a free one, with the free water's pressure force on it.
+struct InterfaceFace {
+  long body_cell = -1;        ///< this rank's penalized cell
+  Vec3 centre_m;              ///< the face centre
+  Vec3 pressure_m4_per_s2;    ///< -p S (p kinematic, the free cell's; S out of the body cell): times rho, N
+};
+
 class FoamFlow {
 public:
   /// Reads the mesh and fields at the case's start time; throws std::runtime_error (with
@@ -59,6 +66,11 @@ public:
   /// per cell, sum (x_f - x_c) x (+-p_f S_f) / V, the torque (per unit density and volume) of
   /// moving those face forces to the cell centre, so that the torques cancel too.
   virtual void interior_pressure_acceleration(PointArray &a_m_per_s2, PointArray &couple_m2_per_s2) const = 0;
+  /// This rank's faces between penalized and free cells (those of its processor patches on the
+  /// body's side), each with the free water's pressure force on it, the face's pressure the free
+  /// cell's (as pressure_gradient takes it). Its part off a body's surface normal is the pressure
+  /// the steps of a staircase take.
+  virtual void interface_pressure_faces(std::vector<InterfaceFace> &faces) const = 0;
   /// InterfaceFlux::body_normal: per cell the velocity whose flux the faces of a penalized cell
   /// with free cells carry (m/s: the body velocity's component along its surface normal); the
   /// penalized cells become holes of the pressure equation (their pressure extrapolated from the

@@ -694,25 +694,64 @@ rigid::BodyLoad OpenFoamFluidModel::rigid_body_load(std::size_t b, double time_s
     interior_couple_ *= -config_.density_kg_per_m3; // the couple of the removed forces, taken off too
     parts = part_splitters_[b]->from_source_on_fluid(*indicators_[b], cells_.centres_m(), across_surface_,
                                                     cells_.volumes_m3(), centre, time_s, interior_couple_);
-    std::vector<double> part_sums;
-    for (const auto &part : parts)
-      for (int k = 0; k < 3; ++k) {
-        part_sums.push_back(part.force_n(k));
-        part_sums.push_back(part.torque_n_m(k));
-      }
-    flow_.sum_over_ranks(part_sums.data(), part_sums.size());
-    for (std::size_t p = 0; p < parts.size(); ++p)
-      for (int k = 0; k < 3; ++k) {
-        parts[p].force_n(k) = part_sums[6 * p + 2 * static_cast<std::size_t>(k)];
-        parts[p].torque_n_m(k) = part_sums[6 * p + 2 * static_cast<std::size_t>(k) + 1];
-      }
+    sum_over_ranks(parts);
+    part_staircase_loads_[b] = staircase_loads(b, time_s, centre);
   }
   return load;
+}
+
+std::vector<rigid::BodyLoad> OpenFoamFluidModel::staircase_loads(std::size_t b, double time_s, const Vec3 &centre) {
+  const auto &body = *bodies_[b];
+  flow_.interface_pressure_faces(interface_faces_);
+  const Eigen::Index n = cells_.centres_m().rows();
+  staircase_.setZero(n, 3);
+  staircase_couple_.setZero(n, 3);
+  in_body_.assign(static_cast<std::size_t>(n), 0);
+  for (const auto c : indicators_[b]->inside_cells())
+    in_body_[static_cast<std::size_t>(c)] = 1;
+  const Eigen::Isometry3d pose = body.motion().pose_at(time_s);
+  const Eigen::Isometry3d to_body = pose.inverse();
+  const double rho = config_.density_kg_per_m3;
+  for (const auto &face : interface_faces_) {
+    if (!in_body_[static_cast<std::size_t>(face.body_cell)])
+      continue;
+    // The surface normal at the face centre's closest point: each face is projected on the
+    // surface it lies on (a cell at an edge has faces on two).
+    const Vec3 normal = pose.linear() * body.surface().distance(to_body * face.centre_m).normal_into_fluid;
+    const Vec3 &f = face.pressure_m4_per_s2;
+    const Vec3 off = f - f.dot(normal) * normal;
+    const double volume = cells_.volumes_m3()[face.body_cell];
+    const Vec3 arm = face.centre_m - cells_.centres_m().row(face.body_cell).transpose();
+    // On the fluid (the reaction of the body's), per unit volume, with the torque of moving it
+    // from the face to the cell centre.
+    staircase_.row(face.body_cell) -= (rho / volume * off).transpose();
+    staircase_couple_.row(face.body_cell) -= (rho / volume * arm.cross(off)).transpose();
+  }
+  auto parts = part_splitters_[b]->from_source_on_fluid(*indicators_[b], cells_.centres_m(), staircase_,
+                                                        cells_.volumes_m3(), centre, time_s, staircase_couple_);
+  sum_over_ranks(parts);
+  return parts;
+}
+
+void OpenFoamFluidModel::sum_over_ranks(std::vector<rigid::BodyLoad> &parts) const {
+  std::vector<double> sums; // each rank has the part of the body in its cells
+  for (const auto &part : parts)
+    for (int k = 0; k < 3; ++k) {
+      sums.push_back(part.force_n(k));
+      sums.push_back(part.torque_n_m(k));
+    }
+  flow_.sum_over_ranks(sums.data(), sums.size());
+  for (std::size_t p = 0; p < parts.size(); ++p)
+    for (int k = 0; k < 3; ++k) {
+      parts[p].force_n(k) = sums[6 * p + 2 * static_cast<std::size_t>(k)];
+      parts[p].torque_n_m(k) = sums[6 * p + 2 * static_cast<std::size_t>(k) + 1];
+    }
 }
 
 void OpenFoamFluidModel::split_loads_by_part() {
   part_splitters_.clear();
   part_loads_.assign(bodies_.size(), {});
+  part_staircase_loads_.assign(bodies_.size(), {});
   for (const auto &body : bodies_)
     part_splitters_.push_back(body->part_names().size() >= 2 ? std::make_unique<rigid::BodyPartLoads>(*body)
                                                              : nullptr);

@@ -110,6 +110,13 @@ public:
   /// Per body: its part names (empty for a body not split) and the last step's load of each.
   const std::vector<std::string> &part_names(std::size_t body) const;
   const std::vector<std::vector<rigid::BodyLoad>> &last_step_part_loads() const { return part_loads_; }
+  /// Per body, per part: the share of its last step's load that the pressure on its staircase
+  /// takes off the surface (each interface face's FoamFlow::interface_pressure_faces force less
+  /// its component along the surface normal at the face centre's closest point): the form drag
+  /// of the steps of a body the cells resolve as a staircase; none on a surface the faces fit.
+  const std::vector<std::vector<rigid::BodyLoad>> &last_step_part_staircase_loads() const {
+    return part_staircase_loads_;
+  }
 
 private:
   FlowStepTimings timings_;
@@ -184,6 +191,14 @@ private:
   std::vector<std::unique_ptr<rigid::BodyIndicator>> indicators_;
   std::vector<std::unique_ptr<rigid::BodyPartLoads>> part_splitters_; ///< per body; null: not split
   std::vector<std::vector<rigid::BodyLoad>> part_loads_;              ///< per body, per part
+  std::vector<std::vector<rigid::BodyLoad>> part_staircase_loads_;    ///< per body, per part
+  /// Per part of body b, the staircase share of its load (last_step_part_staircase_loads).
+  std::vector<rigid::BodyLoad> staircase_loads(std::size_t b, double time_s, const Vec3 &centre);
+  /// Each part's force and torque summed over the MPI ranks (collective).
+  void sum_over_ranks(std::vector<rigid::BodyLoad> &parts) const;
+  std::vector<InterfaceFace> interface_faces_; ///< scratch: FoamFlow::interface_pressure_faces
+  PointArray staircase_, staircase_couple_;    ///< scratch: their off-normal part on the fluid (N/m^3, N m/m^3)
+  std::vector<char> in_body_;                  ///< scratch: per cell, inside the body being split
   PointArray interior_pressure_, interior_couple_; ///< scratch: FoamFlow::interior_pressure_acceleration
   PointArray across_surface_;    ///< scratch: the penalization force less that pressure's (N/m^3)
   std::unique_ptr<rigid::ImmersedWallDistance> wall_distance_; ///< only with a wall-distance turbulence model

@@ -109,7 +109,7 @@ void open_table(std::ofstream &table, const std::filesystem::path &path, const s
   table << header << "\n";
 }
 
-/// The master's tables: forces.csv, parts.csv, timings.csv, penalization.csv.
+/// The master's tables: forces.csv, parts.csv, parts_staircase.csv, timings.csv, penalization.csv.
 class LoadTables {
 public:
   LoadTables(std::filesystem::path folder, double resumed_until_s)
@@ -128,11 +128,8 @@ public:
               << load.torque_n_m.x() << "," << load.torque_n_m.y() << "," << load.torque_n_m.z();
     forces_ << "\n";
     if (parts_.is_open()) {
-      parts_ << time_s;
-      for (const auto &body_parts : model.last_step_part_loads())
-        for (const auto &part : body_parts)
-          parts_ << "," << part.torque_n_m.x() << "," << part.torque_n_m.y() << "," << part.torque_n_m.z();
-      parts_ << "\n";
+      write_part_torques(parts_, time_s, model.last_step_part_loads());
+      write_part_torques(staircase_, time_s, model.last_step_part_staircase_loads());
     }
     const auto &sw = model.last_step_switching();
     switching_ << time_s << "," << sw.cells_switched_on << "," << sw.cells_switched_off << "," << sw.power_w << ","
@@ -140,18 +137,29 @@ public:
   }
 
   void flush() {
-    for (auto *table : {&forces_, &timings_, &switching_, &parts_})
+    for (auto *table : {&forces_, &timings_, &switching_, &parts_, &staircase_})
       table->flush();
   }
 
 private:
+  static void write_part_torques(std::ofstream &table, double time_s,
+                                 const std::vector<std::vector<fluid::rigid::BodyLoad>> &loads) {
+    table << time_s;
+    for (const auto &body_parts : loads)
+      for (const auto &part : body_parts)
+        table << "," << part.torque_n_m.x() << "," << part.torque_n_m.y() << "," << part.torque_n_m.z();
+    table << "\n";
+  }
+
   void open(const fluid::OpenFoamFluidModel &model, std::size_t n_bodies) {
     open_table(timings_, folder_ / "timings.csv", "time_s,penalization_s,fluid_solve_s,loads_s", resumed_until_s_);
     if (n_bodies == 0)
       return;
     open_table(forces_, folder_ / "forces.csv", loads_header(n_bodies), resumed_until_s_);
-    if (has_parts(model, n_bodies))
+    if (has_parts(model, n_bodies)) {
       open_table(parts_, folder_ / "parts.csv", parts_header(model, n_bodies), resumed_until_s_);
+      open_table(staircase_, folder_ / "parts_staircase.csv", parts_header(model, n_bodies), resumed_until_s_);
+    }
     open_table(switching_, folder_ / "penalization.csv",
                "time_s,cells_switched_on,cells_switched_off,switching_power_w,transpiration_m3_per_s,"
                "transpiration_power_w,held_fluid_power_w",
@@ -160,7 +168,7 @@ private:
 
   std::filesystem::path folder_;
   double resumed_until_s_; ///< a restart's time (the rows up to it kept); < 0: a new run
-  std::ofstream forces_, timings_, switching_, parts_;
+  std::ofstream forces_, timings_, switching_, parts_, staircase_;
 };
 
 /// Whether any rank was told to stop (a signal reaches the ranks at different steps; the

@@ -25,7 +25,9 @@ struct FlowAloneSchedule {
 /// Steps through the schedule; progress with ETA and the rigid-body loads (folder/forces.csv:
 /// per body the force of the fluid on it, N, and its torque about the body's box centre, N m;
 /// folder/parts.csv: that torque split among the named parts of each body whose STL has
-/// several `solid NAME` blocks, columns body<b>.<part>.t{x,y,z}_n_m, BodyPartLoads)
+/// several `solid NAME` blocks, columns body<b>.<part>.t{x,y,z}_n_m, BodyPartLoads;
+/// folder/parts_staircase.csv: the same columns, the share of each part's torque that the
+/// pressure on its staircase's steps takes, OpenFoamFluidModel::last_step_part_staircase_loads)
 /// and the split of each step's wall time (folder/timings.csv, s: penalization, fluid solve,
 /// loads; the master's) from the master, a line per step; writes the fields at the end. A
 /// restart keeps the tables' rows up to its first step and appends. Returns the exit code

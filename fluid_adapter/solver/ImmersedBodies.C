@@ -141,6 +141,30 @@ void OpenFoamFlow::interior_pressure_acceleration(PointArray &a, PointArray &cou
   }
 }
 
+void OpenFoamFlow::interface_pressure_faces(std::vector<InterfaceFace> &faces) const {
+  faces.clear();
+  if (!penalizationRate_)
+    return;
+  const auto &p = p_->primitiveField();
+  const auto add = [&faces](Foam::label cell, const Foam::vector &centre, double pressure, const Foam::vector &s_out) {
+    faces.push_back({cell, Vec3(centre.x(), centre.y(), centre.z()),
+                     -pressure * Vec3(s_out.x(), s_out.y(), s_out.z())});
+  };
+  const auto &sf = mesh_->Sf();
+  const auto &cf = mesh_->Cf();
+  for_each_interface_face(*mesh_, penalizationRate_->primitiveField(),
+                          [&](Foam::label face, Foam::label body, Foam::label free, bool body_is_owner) {
+                            add(body, cf[face], p[free], body_is_owner ? sf[face] : Foam::vector(-sf[face]));
+                          });
+  // Across the ranks: the body's rank counts the face, with the free side's pressure.
+  NeighbourValues<Foam::scalar> p_across(*p_);
+  for_each_coupled_interface_face(*penalizationRate_, [&](Foam::label patch, Foam::label i, Foam::label cell,
+                                                          bool cell_is_body) {
+    if (cell_is_body)
+      add(cell, cf.boundaryField()[patch][i], p_across.at(patch, i), sf.boundaryField()[patch][i]);
+  });
+}
+
 bool OpenFoamFlow::uses_wall_distance() const {
   return mesh_->thisDb().foundObject<Foam::wallDist>(Foam::wallDist::typeName);
 }

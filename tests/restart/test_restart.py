@@ -714,14 +714,14 @@ def make_flow_alone_case(folder, write_format="binary"):
     return case
 
 
-FLOW_ALONE_TABLES = ("forces.csv", "parts.csv", "penalization.csv")
+FLOW_ALONE_TABLES = ("forces.csv", "parts.csv", "parts_staircase.csv", "penalization.csv")
 
 
 class FlowAloneOpenFoam(unittest.TestCase):
     """A case without structures (a pump's operating point): the fluid checkpoints by itself
     (no coupler asks it), every interval, at the end and on Ctrl-C; a restart starts OpenFOAM
-    from the newest set and continues forces.csv, parts.csv, penalization.csv and timings.csv
-    from its step. Bitwise on a static mesh with binary fields; ascii fields are warned of."""
+    from the newest set and continues forces.csv, parts.csv, parts_staircase.csv, penalization.csv
+    and timings.csv from its step. Bitwise on a static mesh with binary fields; ascii fields are warned of."""
 
     @classmethod
     def setUpClass(cls):
@@ -795,7 +795,7 @@ class FlowAloneOpenFoam(unittest.TestCase):
                 f.write("0.62,1,2,3,4,5,6\n0.64,1,2")
         made = launch(self.case, out, "--restart")
         self.assertEqual(made.returncode, 0, made.stdout[-3000:])
-        self.assert_equals_the_uninterrupted_run(out, ("forces.csv", "parts.csv"))
+        self.assert_equals_the_uninterrupted_run(out, ("forces.csv", "parts.csv", "parts_staircase.csv"))
         with open(path) as f, open(os.path.join(self.full, "penalization.csv")) as g:
             rows, full = f.read().splitlines(), g.read().splitlines()
         self.assertEqual(rows[0], full[0])
