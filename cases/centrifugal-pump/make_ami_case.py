@@ -232,7 +232,7 @@ PCORR = "    \"pcorr.*\" { $p; tolerance 1e-5; relTol 0; }\n"   # correctPhi's p
 # The total-pressure energy flux out of the rotor's water through its AMI face (W: phi in m^3/s
 # times p + rho |U|^2 / 2 in Pa, AMI1's faces point out of the rotor), every step, in both methods'
 # turning cases. Over a revolution the rotor's water stores nothing, so the shaft power less this
-# flux is what the water in the rotor dissipates (python/fsi/pump_point.py, rotor_loss_w).
+# flux is what the water in the rotor dissipates (python/fsi/pump_point.py: rotor.loss_w).
 ROTOR_BUDGET = """    rotorEnergyFlux
     {
         type            surfaceFieldValue;
