@@ -4,13 +4,15 @@
 body-fitted with the impeller in a rotating zone and an AMI to the casing (stock pimpleFoam,
 python/fsi/pump_ami_run.py), at the same cell size and time step, interleaved in one run:
 
-    bench_pump.py --bin-dir BIN [--resolution coarse] [--ours-resolution coarse-ami-mesh] [--ranks 1]
+    bench_pump.py --bin-dir BIN [--resolution coarse] [--ours-resolution coarse-turning-mesh] [--ranks 1]
                   [--revolutions 1] [--rounds 1] [-o DIR]
 
 Both start from water at rest at the design flow rate (pump.yaml) and run `--revolutions` on
 --ranks MPI ranks each (default 1: the machine's other core idle), one after the other. Ours runs
-by default on the AMI reference's own mesh (preset <resolution>-ami-mesh: the same background,
-gap cells and refinement around the impeller, so nearly the same cells). What the numbers contain:
+by default on the AMI reference's own mesh with the impeller's cells kept and turning with it
+behind the same AMI (preset <resolution>-turning-mesh, `./fsi pump-compare`'s default: the same
+background, gap cells and refinement; the impeller's cells added); <resolution>-ami-mesh holds
+that mesh still and turns the impeller through it. What the numbers contain:
   ours  timings.csv of fsi-openfoam-fluid (per step, wall): penalization = chi and u_rib of the
         rotated impeller (Eq. 10) and the immersed wall distance; fluid solve = the PIMPLE step
         with turbulence, writing and the function objects; loads = the penalization force and the
@@ -81,16 +83,18 @@ def main(argv):
     parser.add_argument("--bin-dir", required=True)
     parser.add_argument("--resolution", default="coarse", help="the AMI reference's mesh (coarse, medium)")
     parser.add_argument("--ours-resolution", default="",
-                        help="our preset (default: <resolution>-ami-mesh, the AMI reference's own mesh)")
+                        help="our preset (default: <resolution>-turning-mesh, the AMI reference's own mesh "
+                             "turning with the impeller)")
     parser.add_argument("--ranks", type=int, default=1, help="MPI ranks of each run")
     parser.add_argument("--revolutions", type=float, default=1.0)
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("-o", "--output", default=os.path.join(ROOT, "build", "bench-pump"))
     args = parser.parse_args(argv)
-    ours_preset = args.ours_resolution or args.resolution + "-ami-mesh"
+    ours_preset = args.ours_resolution or args.resolution + "-turning-mesh"
     if not os.path.isfile(os.path.join(CASE, "presets", ours_preset + ".yaml")):
-        raise SystemExit("bench pump: our preset %s does not exist in %s/presets (make_ami_case.py writes "
-                         "coarse-ami-mesh only): give --ours-resolution" % (ours_preset, CASE))
+        have = sorted(p[:-5] for p in os.listdir(os.path.join(CASE, "presets")) if p.endswith(".yaml"))
+        raise SystemExit("bench pump: our preset %s does not exist in %s/presets (it has %s): give "
+                         "--ours-resolution" % (ours_preset, CASE, ", ".join(have)))
     fsi_launch.prepare_case(CASE, args.bin_dir)  # the geometry, from pump.yaml (both runs use it)
     with open(os.path.join(CASE, "pump.yaml")) as f:
         design = yaml.safe_load(f)
