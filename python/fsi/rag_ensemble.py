@@ -200,15 +200,17 @@ def summarise(members, fraction):
     done = [m for m in members if m.metrics]
     outcomes = [flat(m.metrics).get("outcome") for m in done]
     n, hung = len(done), sum(o == "hung_up" for o in outcomes)
-    decided = sum(o in ("hung_up", "passed") for o in outcomes)
+    decided = sum(o in ("hung_up", "passed", "passed_late") for o in outcomes)
     lo, hi = wilson_interval(hung, decided)
     return {"flow_fraction_of_case": fraction, "runs": len(members), "runs_with_metrics": n,
             "runs_decided": decided, "hung_up": hung, "passed": sum(o == "passed" for o in outcomes),
+            "passed_late": sum(o == "passed_late" for o in outcomes),
             "still_running_at_end": sum(o == "running" for o in outcomes),
             "failed": sum(m.state == "failed" for m in members),
             "p_hang_up": hung / decided if decided else None,
             "p_hang_up_95ci": [lo, hi] if decided else None,
-            "interval": "Wilson score, 95 %, over the runs that passed or hung up"}
+            "interval": "Wilson score, 95 %, over the runs that passed (in time or late) or hung up (still in "
+                        "the pump at the end)"}
 
 
 def write_csv(members, path):
@@ -242,9 +244,10 @@ def draw(members, summary, path, title):
     ax.set_ylim(0, 1)
     ax.set_xticks([])
     ax.set_ylabel("P(hang-up)")
-    ax.set_title("P(hang-up) = %s, 95 %% CI %s\n%d hung up, %d passed, %d not decided, %d failed"
+    ax.set_title("P(hang-up) = %s, 95 %% CI %s\n%d hung up, %d passed, %d late, %d not decided, %d failed"
                  % ("%.2f" % p if p is not None else "n/a", "[%.2f, %.2f]" % tuple(ci) if ci else "n/a",
-                    summary["hung_up"], summary["passed"], summary["still_running_at_end"], summary["failed"]),
+                    summary["hung_up"], summary["passed"], summary["passed_late"], summary["still_running_at_end"],
+                    summary["failed"]),
                  fontsize=9)
     ax = axes[1]
     for key, label, colour in (("residence_time_revolutions", "residence (revolutions)", "C0"),

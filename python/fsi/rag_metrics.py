@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The clogging metrics of a rag carried through a centrifugal pump (issue 13), per run.
 
-    rag_metrics.py RUN_DIR CASE_DIR [--n-max-revolutions N] [--wrap-fraction F]
+    rag_metrics.py RUN_DIR CASE_DIR [--n-max-revolutions N] [--wrap-angle-deg A] [--wrap-reach-m R]
                    [--contact-distance-m D] [--clean-operating-point FILE] [--structure NAME]
 
 RUN_DIR is a coupled run's output folder (structure.h5; forces.csv or coupling.h5 and
@@ -74,7 +74,8 @@ PAPER = {
 
 DEFAULTS = {
     "n_max_revolutions": 10.0,
-    "wrap_fraction": 0.1,
+    "wrap_angle_deg": 90.0,
+    "wrap_reach_m": 0.02,
     "contact_distance_m": None,      # None: 1.5 d_c
     "cut_water_distance_m": None,    # None: 2 d_c
     "site_min_points": 1,
@@ -88,6 +89,7 @@ DEFAULTS = {
 }
 
 G = 9.81
+EDGE_WINDOW_M = 0.02   # the leading edge's triangles within this of a point give its local direction
 
 
 class MetricsError(Exception):
@@ -209,6 +211,8 @@ class PumpGeometry:
         else:
             self.le_hub_axial, self.le_shroud_axial = None, None
             self.hub_above = True
+        self.leading_edge_axes = EdgeAxes(self.impeller["blade_leading_edge"],
+                                          self.sets[("impeller", "blade_leading_edge")], EDGE_WINDOW_M)
         walls = [k for k in self.casing if k not in OPENINGS]
         self.casing_walls = TriangleSet(np.concatenate([self.casing[k] for k in walls]),
                                         np.concatenate([[k] * len(self.casing[k]) for k in walls]))
@@ -322,14 +326,14 @@ def analyse(times, positions, grid_shape, geometry, threshold_m, loads=None, cle
     exit_ = _outcome_and_exit(run, geometry)
     stay = _residence(run, geometry, exit_.t_exit)
     cut_water = _cut_water(run)
-    wrap = _wrap(run, geometry, stay)
+    wrap = _wrap(run, geometry, stay, grid_shape)
     sites = _trap_sites(run, geometry)
     mechanics = _rag_mechanics(run, geometry, grid_shape)
     cost = _cost(run.t, run.edges, wrap.flags, loads, clean, run.rate, opt)
     metrics = {**exit_.metrics, **stay.metrics, **cut_water, **wrap.metrics, **sites.metrics, **cost,
                **mechanics.metrics, **_run_extent(run)}
     series = {"time_s": run.t, "strain": mechanics.strain, "strain_clear": mechanics.strain_clear,
-              "wrap": wrap.flags, "le_fraction": wrap.le_fraction,
+              "wrap": wrap.flags, "wrap_angle_deg": wrap.angle,
               "self_contacts": mechanics.self_contacts, "sites": sites.frames, "entry_time_s": stay.t_entry,
               "exit_time_s": exit_.t_exit, "parameters": _analysis_parameters(run, opt), "period_s": run.period}
     return metrics, series
@@ -368,7 +372,11 @@ class _Trajectory:
         self.cut_water_distance = float(opt["cut_water_distance_m"] or 2.0 * self.d_c)
         self.self_distance = float(opt["self_contact_distance_m"] or self.d_c)
         self.n_max = float(opt["n_max_revolutions"])
-        self.wrap_fraction = float(opt["wrap_fraction"])
+        self.wrap_angle = float(opt["wrap_angle_deg"])
+        self.wrap_reach = float(opt["wrap_reach_m"])
+        if not (0.0 < self.wrap_angle <= 720.0) or not self.wrap_reach > 0.0:
+            raise MetricsError("wrap_angle_deg %g, wrap_reach_m %g: the angle is in (0, 720] deg and the reach "
+                               "above 0 m" % (self.wrap_angle, self.wrap_reach))
         self.min_points = int(opt["site_min_points"])
         self.rate = geometry.rate
         self.period = 2 * math.pi / abs(self.rate) if self.rate else float("inf")
@@ -398,14 +406,19 @@ class _Trajectory:
 
 
 def _outcome_and_exit(run, geometry):
-    """outcome (passed, hung_up, running) and the exit: the first frame with every point in the discharge."""
+    """outcome (passed, passed_late, hung_up, running) and the exit: the first frame with every point
+    in the discharge. The residence rule: a rag still in the pump n_max_revolutions after its
+    release is held; passed_late when it left later in the run, hung_up when it was still in at
+    the run's end."""
     exit_frame = _exit_frame(run, geometry)
     t_exit = float(run.t[exit_frame]) if exit_frame is not None else None
     t_end = float(run.t[-1])
     rate, rev = run.rate, run.rev
     if t_exit is not None and (not rate or rev(t_exit) <= run.n_max + 1e-9):
         outcome = "passed"
-    elif rate and (t_exit is not None or rev(t_end) >= run.n_max - 1e-9):
+    elif t_exit is not None:
+        outcome = "passed_late"
+    elif rate and rev(t_end) >= run.n_max - 1e-9:
         outcome = "hung_up"
     else:
         outcome = "running"
@@ -464,12 +477,14 @@ def _cut_water(run):
     return {"time_to_cut_water_s": _opt(t_cut_water), "time_to_cut_water_revolutions": run.rev(t_cut_water)}
 
 
-def _wrap(run, geometry, stay):
-    """Wrap on the leading edge: the frames with at least wrap_fraction of the points touching
-    blade_leading_edge; their time in the residence and in the run, the episodes, the span."""
+def _wrap(run, geometry, stay, grid_shape):
+    """Wrap on the leading edge: the frames whose rag bends round blade_leading_edge by at least
+    wrap_angle_deg (wrap_angles); their time in the residence and in the run, the episodes, the
+    span."""
     le = run.touch("blade_leading_edge")
-    le_fraction = le.mean(axis=1)
-    wrap = le_fraction >= run.wrap_fraction
+    angle = wrap_angles(run.xi.reshape(run.n_frames, run.n_points, 3), grid_shape, le,
+                        geometry.leading_edge_axes, run.wrap_reach)
+    wrap = angle >= run.wrap_angle
     wrap_in_residence = float(np.sum(stay.in_residence[wrap]))
     wrap_in_run = float(np.sum(stay.in_run[wrap]))
     episodes = runs_of(wrap)
@@ -488,9 +503,117 @@ def _wrap(run, geometry, stay):
         "longest_wrap_s": float(longest),
         "longest_wrap_revolutions": run.rev(float(longest)) if run.rate else None,
         "wrap_episodes": len(episodes),
+        "max_wrap_angle_deg": float(np.max(angle)),
         "wrap_span_fraction": _opt(span),
     }
-    return types.SimpleNamespace(metrics=metrics, flags=wrap, le_fraction=le_fraction)
+    return types.SimpleNamespace(metrics=metrics, flags=wrap, angle=angle)
+
+
+def material_lines(grid_shape):
+    """The rag's material lines as index arrays: the rows (i1 fixed) and the columns (i2 fixed)
+    of the n1 x n2 grid (point index i1 n2 + i2)."""
+    n1, n2 = int(grid_shape[0]), int(grid_shape[1]) if len(grid_shape) > 1 else 1
+    index = np.arange(n1 * n2).reshape(n1, n2)
+    lines = [index[i, :] for i in range(n1)] if n2 > 1 else []
+    return lines + [index[:, j] for j in range(n2)] if n1 > 1 else lines
+
+
+def _signed_angles(u, v, axis):
+    """The angles (rad, in (-pi, pi]) from the vectors u to v [m, 3], about axis."""
+    return np.arctan2(np.cross(u, v) @ axis, np.sum(u * v, axis=1))
+
+
+def turning_angle_deg(points, axis):
+    """|signed turning| (deg) of the polyline points [m, 3] seen along axis: the sum of the
+    angles between consecutive segments projected on the plane normal to axis. Segments that
+    nearly run along the axis (projected length under a fifth of theirs) are skipped. A straight
+    line turns 0, a U 180, a loop 360."""
+    d = np.diff(np.asarray(points, float), axis=0)
+    projected = d - np.outer(d @ axis, axis)
+    q = projected[np.linalg.norm(projected, axis=1) > 0.2 * np.linalg.norm(d, axis=1)]
+    return abs(math.degrees(float(np.sum(_signed_angles(q[:-1], q[1:], axis))))) if len(q) >= 2 else 0.0
+
+
+def winding_angle_deg(points, axis, centre):
+    """|signed angle| (deg) the polyline points [m, 3] sweep round the line through centre
+    along axis: the sum of the angles between consecutive points seen from it."""
+    r = np.asarray(points, float) - centre
+    r = r - np.outer(r @ axis, axis)
+    return abs(math.degrees(float(np.sum(_signed_angles(r[:-1], r[1:], axis))))) if len(r) >= 2 else 0.0
+
+
+def bend_round_edge_deg(points, axis, centre):
+    """How far the polyline bends round the edge through centre along axis (deg): the smaller
+    of its turning (a straight line passing the edge turns 0) and its winding round the edge
+    (a fold beside the edge, not round it, winds little)."""
+    return min(turning_angle_deg(points, axis), winding_angle_deg(points, axis, centre))
+
+
+def wrap_angles(xi, grid_shape, touching, edge_axes, reach):
+    """Per frame, the largest angle (deg) by which a material line of the rag bends round the
+    leading edge: of each row and column of the grid, each stretch of consecutive points within
+    reach of the edge that holds a point touching it (touching [F, N]); its bend round the edge
+    (bend_round_edge_deg) seen along the edge's local direction at its touching point nearest
+    the edge, round the edge's local centre there (EdgeAxes.local). xi [F, N, 3] in the
+    impeller's frame."""
+    n_frames, n_points = xi.shape[:2]
+    near = edge_axes.distance(xi.reshape(-1, 3), reach).reshape(n_frames, n_points) <= reach
+    lines = material_lines(grid_shape)
+    angles = np.zeros(n_frames)
+    for k in np.nonzero(np.any(touching, axis=1))[0]:
+        for line in lines:
+            if not np.any(touching[k, line]):
+                continue
+            for a, b in runs_of(near[k, line]):
+                stretch = line[a:b + 1]
+                hits = stretch[touching[k, stretch]]
+                if len(stretch) < 3 or not len(hits):
+                    continue
+                anchor = xi[k, hits[np.argmin(edge_axes.distance(xi[k, hits], reach))]]
+                axis, centre = edge_axes.local(anchor)
+                angles[k] = max(angles[k], bend_round_edge_deg(xi[k, stretch], axis, centre))
+    return angles
+
+
+class EdgeAxes:
+    """The leading edge's local direction and centre near a point, from the region's triangles
+    within `window` of it. The direction is the one along which the surface does not turn: the
+    eigenvector of the smallest eigenvalue of their area-weighted normals' scatter matrix (a
+    rounded nose's normals turn round the edge, never along it); where the triangles are nearly
+    flat (the two smaller eigenvalues both under a tenth of the largest), the principal
+    direction of their centroids. The centre is their area-weighted centroid, inside a convex
+    nose. Triangles in the impeller's frame."""
+
+    def __init__(self, triangles, tset, window):
+        tri = np.asarray(triangles, float).reshape(-1, 3, 3)
+        n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        area = 0.5 * np.linalg.norm(n, axis=1)
+        ok = area > 0
+        self.normals = n[ok] / (2 * area[ok])[:, None]
+        self.area = area[ok]
+        self.centroids = tri[ok].mean(axis=1)
+        # where a triangle is: its vertices, edge midpoints and centroid (long triangles are found
+        # by the sample nearest the point)
+        t = tri[ok]
+        self.samples = np.concatenate([t, 0.5 * (t + np.roll(t, -1, axis=1)), t.mean(axis=1)[:, None]], axis=1)
+        self.tset, self.window = tset, float(window)
+
+    def distance(self, points, cap):
+        return self.tset.distance(points, cap=cap)
+
+    def local(self, point):
+        """(unit direction, centre) of the edge near point."""
+        near = np.min(np.linalg.norm(self.samples - point, axis=2), axis=1) <= self.window
+        if not np.any(near):
+            near = np.ones(len(self.area), bool)
+        n, w = self.normals[near], self.area[near]
+        centre = np.average(self.centroids[near], axis=0, weights=w)
+        values, vectors = np.linalg.eigh((n * w[:, None]).T @ n)
+        if values[1] >= 0.1 * values[2]:
+            return vectors[:, 0], centre
+        c = self.centroids[near] - centre
+        _, vectors = np.linalg.eigh((c * w[:, None]).T @ c)
+        return vectors[:, 2], centre
 
 
 def _trap_sites(run, geometry):
@@ -588,7 +711,7 @@ def _analysis_parameters(run, opt):
     return {
         "threshold_m": run.d_c, "contact_distance_m": run.contact, "cut_water_distance_m": run.cut_water_distance,
         "self_contact_distance_m": run.self_distance, "n_max_revolutions": run.n_max,
-        "wrap_fraction": run.wrap_fraction, "site_min_points": run.min_points, "phase_bins": int(opt["phase_bins"]),
+        "wrap_angle_deg": run.wrap_angle, "wrap_reach_m": run.wrap_reach, "site_min_points": run.min_points, "phase_bins": int(opt["phase_bins"]),
         "settle_revolutions": float(opt["settle_revolutions"] or 0.0),
     }
 
@@ -890,9 +1013,9 @@ def clean_from_precursor(run_dir, geometry, config, impeller_index):
 # Outputs
 
 DEFINITIONS = {
-    "outcome": "passed: every point in the discharge (below) at a frame with t * rate / 2 pi <= n_max_revolutions; "
-               "hung_up: not passed by then and the run (or the exit) reached n_max_revolutions; running: the run "
-               "ended before either. A point is in the discharge when its distance from the axis exceeds the "
+    "outcome": "passed: every point in the discharge (below) at a frame with t * rate / 2 pi <= n_max_revolutions "
+               "(the residence rule); passed_late: out later in the run; hung_up: still in the pump at the end of a "
+               "run that reached n_max_revolutions; running: the run ended before n_max_revolutions, the rag in. A point is in the discharge when its distance from the axis exceeds the "
                "volute's outer radius (the largest of volute_wall and cut_water vertices) and its nearest casing "
                "region is discharge_wall or outlet.",
     "exit_time_s": "time of the first frame with every point in the discharge (from the release at t = 0)",
@@ -906,8 +1029,11 @@ DEFINITIONS = {
     "residence_until": "exit, end_of_run (the run ended first: a lower bound), or empty (never entered)",
     "time_to_cut_water_s": "first frame with a point within cut_water_distance_m of cut_water",
     "time_to_cut_water_revolutions": "time_to_cut_water_s * rate / 2 pi",
-    "wrap_time_s": "duration, within the residence, of the frames with at least wrap_fraction of the points within "
-                   "contact_distance_m of blade_leading_edge (in the impeller's frame)",
+    "wrap_time_s": "duration, within the residence, of the wrap frames: a material line of the rag (a row or a "
+                   "column of its grid) bends round blade_leading_edge by at least wrap_angle_deg, its turning seen "
+                   "along the edge over its points within wrap_reach_m of the edge, one of them within "
+                   "contact_distance_m (in the impeller's frame)",
+    "max_wrap_angle_deg": "the largest angle by which a material line bent round the leading edge in any frame",
     "wrap_fraction_of_residence": "wrap_time_s / residence_time_s",
     "wrap_fraction_of_run": "wrap duration from t = 0 to the exit (or the end) over that time: the paper's measure",
     "longest_wrap_s": "longest run of consecutive wrap frames, e_{last+1} - e_first",
@@ -1013,7 +1139,7 @@ def picture(path, metrics, series, title=""):
     fig = plt.figure(figsize=(11.7, 8.3))
     grid = fig.add_gridspec(4, 3, height_ratios=[1.0, 1.25, 0.85, 0.85], hspace=0.75, wspace=0.45,
                             left=0.1, right=0.93, top=0.97, bottom=0.07)
-    colour = {"passed": "#1a7f37", "hung_up": "#c62828", "running": "#b26a00"}[m["outcome"]]
+    colour = {"passed": "#1a7f37", "passed_late": "#b26a00", "hung_up": "#c62828", "running": "#b26a00"}[m["outcome"]]
     _picture_headline(fig.add_subplot(grid[0, :]), m, series, colour, title)
     _picture_trap_sites(fig.add_subplot(grid[1, 0]), m)
     _picture_against_paper(fig, grid[1, 1:], m, colour)
@@ -1035,10 +1161,13 @@ def _picture_headline(text, m, series, colour, title):
     """The outcome in big letters and the numbers a pump designer asks for."""
     text.axis("off")
     head = {"passed": "PASSED at %s s (revolution %s)" % (_fmt(m["exit_time_s"], "%.3f"), _fmt(m["exit_revolution"], "%.1f")),
-            "hung_up": ("HUNG UP: still in the pump after %g revolutions" % series["parameters"]["n_max_revolutions"]
-                        if m["exit_time_s"] is None else "HUNG UP: still in after %g rev, out at %s s" % (
-                            series["parameters"]["n_max_revolutions"], _fmt(m["exit_time_s"], "%.3f"))),
-            "running": "RUNNING: the run ended at %.3f s (%.1f rev) before an exit" % (m["end_time_s"], m["revolutions_run"])}
+            "passed_late": "PASSED LATE at %s s (revolution %s; rule: out by %g)" % (
+                _fmt(m["exit_time_s"], "%.3f"), _fmt(m["exit_revolution"], "%.1f"),
+                series["parameters"]["n_max_revolutions"]),
+            "hung_up": "HUNG UP: still in the pump at the end, %.1f rev (rule: out by %g)" % (
+                m["revolutions_run"], series["parameters"]["n_max_revolutions"]),
+            "running": "RUNNING: the run ended at %.3f s (%.1f rev) before an exit (rule: out by %g)" % (
+                m["end_time_s"], m["revolutions_run"], series["parameters"]["n_max_revolutions"])}
     text.text(0.0, 1.0, head[m["outcome"]], fontsize=22, weight="bold", color=colour, va="top", transform=text.transAxes)
     left = [
         "residence in the pump: %s s = %s rev%s" % (
@@ -1121,14 +1250,15 @@ def _picture_strain_and_wrap(ax, series):
     ax.set_ylabel("max strain (%)", color="C2", fontsize=8)
     ax.tick_params(labelsize=7)
     ax2 = ax.twinx()
-    ax2.plot(rev, 100 * series["le_fraction"], color="C3", lw=0.8, alpha=0.8)
-    ax2.set_ylabel("on the leading\nedge (% points)", color="C3", fontsize=8)
-    ax2.set_ylim(0, 105)
+    ax2.plot(rev, series["wrap_angle_deg"], color="C3", lw=0.8, alpha=0.8)
+    ax2.axhline(series["parameters"]["wrap_angle_deg"], color="C3", ls="--", lw=0.6)
+    ax2.set_ylabel("bent round the\nleading edge (deg)", color="C3", fontsize=8)
+    ax2.set_ylim(0, max(200.0, 1.05 * float(np.max(series["wrap_angle_deg"]))))
     ax2.tick_params(labelsize=7)
     for key, style in (("entry_time_s", ":"), ("exit_time_s", "-")):
         if series[key] is not None:
             ax.axvline(series[key] / per, color="k", ls=style, lw=0.8)
-    ax.set_title("strain (green; dotted: clear of contact; dashed: the paper's 3 %), points on the leading edge (red; shaded: wrapped), "
+    ax.set_title("strain (green; dotted: clear of contact; dashed: the paper's 3 %), the rag's bend round the leading edge (red; shaded: wrapped, over the dashed angle), "
                  "chamber entry (dotted), exit (solid)", fontsize=8)
     return ax
 
@@ -1199,7 +1329,10 @@ def main(argv=None):
     p.add_argument("run_dir", help="the run's output folder (structure.h5, forces.csv, openfoam/)")
     p.add_argument("case_dir", help="the case folder (case.yaml, geometry/)")
     p.add_argument("--n-max-revolutions", type=float, help="hung up when still in after this many (default 10)")
-    p.add_argument("--wrap-fraction", type=float, help="fraction of the points on the leading edge for a wrap (0.1)")
+    p.add_argument("--wrap-angle-deg", type=float,
+                   help="a material line bent round the leading edge by this much is a wrap (default 90)")
+    p.add_argument("--wrap-reach-m", type=float,
+                   help="the points of a line within this distance of the leading edge count in its bend (default 0.02)")
     p.add_argument("--contact-distance-m", type=float, help="contact distance (default 1.5 d_c)")
     p.add_argument("--cut-water-distance-m", type=float, help="distance that reaches the cut-water (default 2 d_c)")
     p.add_argument("--clean-operating-point", help="operating_point.yaml of the clean pump at the same flow rate")
@@ -1211,7 +1344,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         metrics = write_metrics(a.run_dir, a.case_dir, n_max_revolutions=a.n_max_revolutions,
-                                wrap_fraction=a.wrap_fraction, contact_distance_m=a.contact_distance_m,
+                                wrap_angle_deg=a.wrap_angle_deg, wrap_reach_m=a.wrap_reach_m, contact_distance_m=a.contact_distance_m,
                                 cut_water_distance_m=a.cut_water_distance_m,
                                 clean_operating_point=a.clean_operating_point, structure=a.structure,
                                 settle_revolutions=a.settle_revolutions,

@@ -157,12 +157,38 @@ def folded_grid():
 IN_CHAMBER = np.array([0.07, 0.0, 0.025])
 
 
+def bent_line(centre, rho, theta_deg, spacing, n, grow=0.0):
+    """n points [n, 2], spacing apart along a path that comes in along -x at y = centre_y + rho,
+    bends theta_deg counterclockwise round centre (its radius growing from rho by grow over the
+    bend: a spiral, so that a 360 deg loop does not cross itself) and leaves straight along its
+    tangent; sampled by arc length, centred on the bend's middle. The path's tangent turns by
+    exactly theta_deg; so does the polyline when its first and last segments lie on the straight
+    arms."""
+    th = math.radians(theta_deg)
+    u = np.linspace(0.0, th, 2001)
+    rho_u = rho + grow * u / th if th > 0 else np.full_like(u, rho)
+    arc = np.stack([centre[0] + rho_u * np.cos(math.pi / 2 + u), centre[1] + rho_u * np.sin(math.pi / 2 + u)], axis=1)
+    arm = n * spacing
+    tangent_out = np.array([-math.sin(math.pi / 2 + th), math.cos(math.pi / 2 + th)])
+    arm_in = arc[0] + np.outer(np.linspace(arm, 0.0, 2001)[:-1], [1.0, 0.0])
+    arm_out = arc[-1] + np.outer(np.linspace(0.0, arm, 2001)[1:], tangent_out)
+    path = np.concatenate([arm_in, arc, arm_out])
+    length = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path, axis=0), axis=1))])
+    middle = length[len(arm_in) + len(arc) // 2]
+    s = middle + spacing * (np.arange(n) - (n - 1) / 2.0)
+    return np.stack([np.interp(s, length, path[:, 0]), np.interp(s, length, path[:, 1])], axis=1)
+
+
 def wrap_trajectory():
-    """Suction pipe until 0.05 s, then held on the leading edge (turning with the impeller,
-    3 mm from its face, s1 along the edge) for exactly 1.5 revolutions (0.05 <= t < 0.2 s),
-    then in the chamber until 0.3 s."""
+    """Suction pipe until 0.05 s, then held draped over the leading edge (turning with the
+    impeller) for exactly 1.5 revolutions (0.05 <= t < 0.2 s), then in the chamber until 0.3 s.
+    Draped: each row of the grid (s1, 5 points 4 mm apart) bends 180 deg round the edge's centre
+    line (x, y) = (0.021, 0) at 3 mm from it, opening towards +x (the blade); the columns (s2)
+    run along the edge at z = 0.032 .. 0.044 m."""
     local, shape = grid()
-    on_edge = np.stack([np.full(len(local), 0.017), local[:, 1], 0.038 + local[:, 0]], axis=1)  # z 0.030..0.046
+    row = bent_line((0.021, 0.0), 0.003, 180.0, 0.004, shape[0])
+    i1, i2 = np.arange(len(local)) // shape[1], np.arange(len(local)) % shape[1]
+    on_edge = np.stack([row[i1, 0], row[i1, 1], 0.032 + 0.004 * i2], axis=1)
     t = np.arange(0, 121) * DT
     x = []
     for tk in t:
@@ -273,13 +299,13 @@ class Distance(unittest.TestCase):
 
 
 class Wrap(unittest.TestCase):
-    """(1) A rag held on the leading edge, turning with the impeller, for exactly 1.5
+    """(1) A rag held draped over the leading edge, turning with the impeller, for exactly 1.5
     revolutions."""
 
     def test_longest_wrap_and_fraction(self):
         t, x, shape, on_edge = wrap_trajectory()
         g = geometry()
-        # the held rag is within 1.5 d_c of the edge (corners 5.8 mm away) by construction
+        # every point of the held rag is within 1.5 d_c of the edge (at most 3.1 mm) by construction
         self.assertLess(np.max(box_distance(on_edge, IMPELLER["blade_leading_edge"])), 1.5 * D_C)
         m = rag_metrics.compute_metrics(t, x, shape, g, D_C)
         self.assertEqual(m["outcome"], "running")
@@ -293,16 +319,23 @@ class Wrap(unittest.TestCase):
         # designed: 0.15 s of the 0.25 s residence = 0.6, within one frame (0.01)
         self.assertAlmostEqual(m["wrap_fraction_of_residence"], 0.6, delta=DT / 0.25)
         self.assertAlmostEqual(m["wrap_fraction_of_run"], 0.15 / 0.3, delta=DT / 0.3)
-        # the held rag spans z = 0.030..0.046 (mean 0.038) of the edge's 0.048 (hub) .. 0.002
+        # the held rag spans z = 0.032..0.044 (mean 0.038) of the edge's 0.048 (hub) .. 0.002
         self.assertAlmostEqual(m["wrap_span_fraction"], (0.038 - 0.048) / (0.002 - 0.048), delta=1e-9)
         self.assertAlmostEqual(m["trap_contact_time_s.leading_edge"], 0.15, delta=DT)
         self.assertEqual(m["trap_contact_time_s.cut_water"], 0.0)
+        # the drape's rows: the heading of their last segment less that of their first (their
+        # turning; every row alike), the bend of the 5 points 4 mm apart round a 180 deg arc of
+        # 9.4 mm, both end segments partly on the arc: 177.6 deg
+        row = on_edge[::shape[1], :2]
+        heading = [math.atan2(*(row[j + 1] - row[j])[::-1]) for j in (0, len(row) - 2)]
+        turning = math.degrees(heading[1] - heading[0]) % 360.0
+        self.assertAlmostEqual(m["max_wrap_angle_deg"], turning, delta=1e-6)
+        self.assertGreater(turning, 170.0)
 
     def test_rag_fixed_in_the_lab_frame_does_not_wrap(self):
-        # the same points held still in the lab frame: the edge sweeps past them once a
-        # revolution (within reach for about 80 deg of it: the rag sits 17-18 mm from the axis,
-        # the edge 20-22 mm), never for 1.5 revolutions; this fails if the module rotated the
-        # points the wrong way or not at all
+        # the same points held still in the lab frame: the edge sweeps through the drape once a
+        # revolution (inside it for a few degrees), never for 1.5 revolutions; this fails if the
+        # module rotated the points the wrong way or not at all
         t, x, shape, on_edge = wrap_trajectory()
         held = (t >= 0.05 - 1e-12) & (t < 0.2 - 1e-12)
         x[held] = to_lab(on_edge, 0.05)
@@ -315,18 +348,155 @@ class Wrap(unittest.TestCase):
             x[k] = to_lab(on_edge, -t[k])
         self.assertLess(rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)["longest_wrap_revolutions"], 0.3)
 
-    def test_wrap_fraction_threshold(self):
-        # only 2 of the 20 points on the edge (10 %): a wrap at 0.1, none at 0.2
+    def test_wrap_angle_threshold(self):
+        # the drape bends by max_wrap_angle_deg: a wrap at a threshold just under it, none just over
         t, x, shape, on_edge = wrap_trajectory()
-        held = (t >= 0.05 - 1e-12) & (t < 0.2 - 1e-12)
-        far = np.arange(len(on_edge)) >= 2
-        for k in np.nonzero(held)[0]:
-            x[k, far] = IN_CHAMBER + np.array([0, 0, 0.001]) * np.arange(far.sum())[:, None]
-        m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, wrap_fraction=0.1)
+        angle = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)["max_wrap_angle_deg"]
+        m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, wrap_angle_deg=angle - 1.0)
         self.assertAlmostEqual(m["longest_wrap_revolutions"], 1.5, delta=DT / PERIOD)
-        m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, wrap_fraction=0.2)
+        m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, wrap_angle_deg=angle + 1.0)
         self.assertEqual(m["longest_wrap_revolutions"], 0.0)
         self.assertIsNone(m["wrap_span_fraction"])  # empty: no wrap
+        with self.assertRaises(rag_metrics.MetricsError):
+            rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, wrap_angle_deg=0.0)
+
+    def test_a_rag_lying_flat_along_the_edge_does_not_wrap(self):
+        # the former criterion's case: the flat grid 3 mm beside the edge, every point touching it
+        t, x, shape, on_edge = wrap_trajectory()
+        local, _ = grid()
+        flat = np.stack([np.full(len(local), 0.017), local[:, 1], 0.038 + local[:, 0]], axis=1)
+        self.assertLess(np.max(box_distance(flat, IMPELLER["blade_leading_edge"])), 1.5 * D_C)
+        held = (t >= 0.05 - 1e-12) & (t < 0.2 - 1e-12)
+        for k in np.nonzero(held)[0]:
+            x[k] = to_lab(flat, t[k])
+        m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)
+        self.assertAlmostEqual(m["trap_contact_time_s.leading_edge"], 0.15, delta=DT)  # it touches
+        self.assertLess(m["max_wrap_angle_deg"], 1e-6)
+        self.assertEqual(m["wrap_episodes"], 0)
+
+
+def cylinder_triangles(start, axis, radius, length, n=24):
+    """A closed cylinder (n-gon prism with its two caps) from start along the unit axis."""
+    axis = np.asarray(axis, float)
+    e1 = np.cross(axis, [0.0, 0.0, 1.0] if abs(axis[2]) < 0.9 else [1.0, 0.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    a = 2 * math.pi * np.arange(n) / n
+    ring = np.asarray(start, float) + radius * (np.outer(np.cos(a), e1) + np.outer(np.sin(a), e2))
+    top, c0, c1 = ring + length * axis, np.asarray(start, float), np.asarray(start, float) + length * axis
+    tris = []
+    for i in range(n):
+        j = (i + 1) % n
+        tris += [[ring[i], ring[j], top[j]], [ring[i], top[j], top[i]], [c0, ring[j], ring[i]], [c1, top[i], top[j]]]
+    return np.array(tris)
+
+
+def write_stl_triangles(path, regions):
+    """regions: {name: triangles [n, 3, 3]} as an ASCII STL with named solids."""
+    with open(path, "w") as f:
+        for name, tris in regions.items():
+            f.write("solid %s\n" % name)
+            for tri in tris:
+                n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
+                f.write("facet normal %g %g %g\nouter loop\n" % tuple(n / np.linalg.norm(n)))
+                for q in tri:
+                    f.write("vertex %.9g %.9g %.9g\n" % tuple(q))
+                f.write("endloop\nendfacet\n")
+            f.write("endsolid %s\n" % name)
+
+
+# Round noses for the leading edge: (start, axis, radius, length). Axial as the thin blade's
+# (4 mm, along the axis at 24 mm from it), radial as the single channel's (8 mm, across the eye
+# below the channel).
+NOSES = {"axial": ((0.024, 0.0, 0.002), (0.0, 0.0, 1.0), 0.004, 0.046),
+         "radial": ((0.012, 0.0, -0.010), (1.0, 0.0, 0.0), 0.008, 0.040)}
+
+
+def nose_geometry(kind):
+    key = ("nose", kind)
+    if key not in _GEOMETRY:
+        start, axis, radius, length = NOSES[kind]
+        regions = {k: np.concatenate([box_triangles(*box) for box in boxes]) for k, boxes in IMPELLER.items()}
+        regions["blade_leading_edge"] = cylinder_triangles(start, axis, radius, length)
+        tmp = tempfile.mkdtemp(prefix="rag-metrics-nose-")
+        try:
+            write_stl_triangles(os.path.join(tmp, "impeller.stl"), regions)
+            write_stl(os.path.join(tmp, "casing.stl"), CASING)
+            _GEOMETRY[key] = rag_metrics.PumpGeometry(
+                rag_metrics.read_stl_regions(os.path.join(tmp, "impeller.stl")),
+                rag_metrics.read_stl_regions(os.path.join(tmp, "casing.stl")), [0, 0, 0], AXIS, RATE)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+    return _GEOMETRY[key]
+
+
+class WrapAngle(unittest.TestCase):
+    """A wrap is seen from the rag's shape round the edge, at the coarse rag's spacing (1 cm, the
+    15 x 5 cm rag's 16 x 6 points) and the medium one's (5 mm): each row of a rag bent theta
+    round a round nose at the collision distance d_t = 4 mm from its surface (rows along the
+    bend, columns along the edge), turning with the impeller. The rows' straight arms hold the
+    first and last segments, so each row turns by exactly theta. Two frames."""
+
+    def angle(self, kind, theta, spacing, grow=0.0, columns_bend=False, centre_offset=(0.0, 0.0), full=False,
+              **options):
+        start, axis, radius, length = NOSES[kind]
+        axis = np.asarray(axis, float)
+        e1 = np.cross(axis, [0.0, 0.0, 1.0] if abs(axis[2]) < 0.9 else [1.0, 0.0, 0.0])
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(axis, e1)
+        n_bend = int(math.ceil((2 * math.pi * (radius + D_C + grow) * theta / 360.0) / spacing)) + 5
+        row = bent_line(centre_offset, radius + D_C, theta, spacing, n_bend, grow=grow)
+        along = 0.5 * length + spacing * (np.arange(4) - 1.5)
+        pts = np.array([np.asarray(start) + u * e1 + v * e2 + w * axis for (u, v) in row for w in along])
+        shape = (len(row), len(along))
+        if columns_bend:   # the same rag with its grid's indices swapped: the columns bend
+            pts = pts.reshape(shape[0], shape[1], 3).transpose(1, 0, 2).reshape(-1, 3)
+            shape = shape[::-1]
+        t = np.array([0.0, DT])
+        x = np.array([to_lab(pts, tk) for tk in t])
+        m = rag_metrics.compute_metrics(t, x, shape, nose_geometry(kind), D_C, **options)
+        return (m, row) if full else (m["max_wrap_angle_deg"], m["wrap_episodes"])
+
+    def test_draped_and_looped_rags_are_seen_at_both_spacings(self):
+        for kind in NOSES:
+            for spacing in (0.01, 0.005):
+                with self.subTest(nose=kind, spacing=spacing):
+                    angle, episodes = self.angle(kind, 180.0, spacing)
+                    self.assertAlmostEqual(angle, 180.0, delta=1e-6)
+                    self.assertEqual(episodes, 1)
+                    # a full loop, its radius growing by 6 mm so that it passes outside its start
+                    angle, episodes = self.angle(kind, 360.0, spacing, grow=0.006)
+                    self.assertAlmostEqual(angle, 360.0, delta=1e-6)
+                    self.assertEqual(episodes, 1)
+
+    def test_a_partial_wrap_is_measured(self):
+        for spacing in (0.01, 0.005):
+            self.assertAlmostEqual(self.angle("axial", 90.0, spacing)[0], 90.0, delta=1e-6)
+            self.assertAlmostEqual(self.angle("radial", 45.0, spacing)[0], 45.0, delta=1e-6)
+            self.assertEqual(self.angle("axial", 45.0, spacing)[1], 0)   # under the 90 deg of a wrap
+
+    def test_the_columns_bending_count_as_well(self):
+        self.assertAlmostEqual(self.angle("axial", 180.0, 0.01, columns_bend=True)[0], 180.0, delta=1e-6)
+
+    def test_a_rag_touching_the_nose_straight_does_not_wrap(self):
+        # a straight rag tangent to the nose at d_t: touching, not bent
+        for kind in NOSES:
+            angle, episodes = self.angle(kind, 0.0, 0.01)
+            self.assertLess(angle, 1e-6)
+            self.assertEqual(episodes, 0)
+
+    def test_a_fold_beside_the_nose_is_not_a_wrap(self):
+        # a 180 deg fold of 6 mm radius whose bend is 16 mm beside the nose, not round it: its
+        # lower arm passes the nose at d_t (touching it), its upper arm 12 mm further out; the
+        # whole fold within the reach (5 cm). It turns 180 deg but winds round the nose by little.
+        _, _, radius, _ = NOSES["axial"]
+        m, row = self.angle("axial", 180.0, 0.005, centre_offset=(-0.016, radius + D_C + 0.006), full=True,
+                            wrap_reach_m=0.05)
+        self.assertGreater(m["trap_contact_time_s.leading_edge"], 0.0)
+        self.assertAlmostEqual(rag_metrics.turning_angle_deg(np.c_[row, np.zeros(len(row))], np.array([0, 0, 1.0])),
+                               180.0, delta=1e-6)
+        self.assertLess(m["max_wrap_angle_deg"], 60.0)
+        self.assertEqual(m["wrap_episodes"], 0)
 
 
 class Outcome(unittest.TestCase):
@@ -382,11 +552,12 @@ class Outcome(unittest.TestCase):
         self.assertAlmostEqual(m["residence_time_revolutions"], 3.0, delta=1e-9)
         m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, n_max_revolutions=5)
         self.assertEqual(m["outcome"], "running")
-        # a rag that leaves only after N_max revolutions was hung up (its exit is reported)
+        # a rag that leaves only after N_max revolutions passed late (its exit is reported)
         t, x, shape = discharge_trajectory()
         m = rag_metrics.compute_metrics(t, x, shape, geometry(), D_C, n_max_revolutions=2)
-        self.assertEqual(m["outcome"], "hung_up")
-        self.assertIsNotNone(m["exit_time_s"])
+        self.assertEqual(m["outcome"], "passed_late")
+        self.assertGreater(m["exit_revolution"], 2.0)
+        self.assertEqual(rag_metrics.compute_metrics(t, x, shape, geometry(), D_C)["outcome"], "passed")
 
 
 class CutWater(unittest.TestCase):
@@ -692,13 +863,15 @@ class Files(unittest.TestCase):
             np.testing.assert_allclose(np.array(points, float).reshape(-1, 3), x[frame], atol=1e-7)
 
     def test_cli(self):
-        code = rag_metrics.main([self.run_dir, self.case, "--n-max-revolutions", "2", "--wrap-fraction", "0.5",
+        code = rag_metrics.main([self.run_dir, self.case, "--n-max-revolutions", "2", "--wrap-angle-deg", "150",
+                                 "--wrap-reach-m", "0.03",
                                  "--contact-distance-m", "0.005", "--no-picture"])
         self.assertEqual(code, 0)
         with open(os.path.join(self.run_dir, "rag_metrics.yaml")) as f:
             doc = yaml.safe_load(f)
         self.assertEqual(doc["outcome"], "hung_up")  # 3 revolutions run, N_max = 2
-        self.assertEqual(doc["parameters"]["wrap_fraction"], 0.5)
+        self.assertEqual(doc["parameters"]["wrap_angle_deg"], 150.0)
+        self.assertEqual(doc["parameters"]["wrap_reach_m"], 0.03)
         self.assertEqual(doc["parameters"]["contact_distance_m"], 0.005)
         self.assertFalse(os.path.exists(os.path.join(self.run_dir, "rag_summary.png")))
 
