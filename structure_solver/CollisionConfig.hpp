@@ -1,6 +1,7 @@
 #pragma once
 // Configuration of the collision model (Eq. 11): the rigid surfaces (geometry/SurfaceConfig.hpp),
-// the threshold d_c and the target distance d_t, and self-collision.
+// the threshold d_c and the target distance d_t, the spreading of a correction over the grid, and
+// self-collision.
 
 #include "common/ConfigReader.hpp"
 #include "geometry/SurfaceConfig.hpp"
@@ -13,6 +14,7 @@ namespace fsi::structure {
 struct CollisionConfig {
   double threshold_m = 0.004;
   double target_distance_m = 0.004;
+  int spread_points = 0;
   bool self_collision = false;
   std::vector<geometry::SurfaceConfig> surfaces;
 
@@ -21,6 +23,11 @@ struct CollisionConfig {
              "d_c: points closer than this to a rigid surface are corrected (Eq. 11).");
     v.number("target_distance_m", target_distance_m, common::Range::positive("m"),
              "d_t: corrected points are moved to this distance along the surface normal.");
+    v.integer("spread_points", spread_points, common::Range::at_least(0, "points"),
+              "Spread each wall correction (Eq. 11) over the sheet's grid neighbours up to this many points "
+              "away, with weights 1 - d / (n + 1) at grid distance d, so that the step in displacement between "
+              "neighbours, and the strain it makes, is about 1 / (n + 1) of the correction's (d_t / spacing "
+              "without). 0: the paper's correction of each point alone.");
     v.flag("self_collision", self_collision, "Push apart points of the same structure closer than d_c.");
     v.list("surfaces", surfaces, "Rigid surfaces.");
     if constexpr (std::is_same_v<V, common::ConfigReader>)

@@ -60,6 +60,14 @@ void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per
     }
     spdlog::info("collisions: {}", collisions_->describe());
   }
+  spreads_.resize(structures_.size());
+  if (config.spread_points > 0 && collisions_)
+    for (std::size_t i = 0; i < structures_.size(); ++i) {
+      const auto [n1, n2] = structures_[i]->grid_shape();
+      spreads_[i] = std::make_unique<collision::CorrectionSpread>(n1, n2, config.spread_points);
+      spdlog::info("collisions: structure '{}': each wall correction spread over its grid neighbours up to {} "
+                   "points away", structures_[i]->name(), config.spread_points);
+    }
   self_collisions_.resize(structures_.size());
   if (config.self_collision)
     for (std::size_t i = 0; i < structures_.size(); ++i)
@@ -92,8 +100,17 @@ void Scene::correct_collisions(StructureModel &structure, std::size_t index) {
   structure.correct_positions([&](PointArray &x) {
     if (self)
       last_corrections_ += self_collisions_[index]->correct(x);
-    if (collisions_)
-      last_corrections_ += collisions_->correct(x, structure.time_s()).n_points_corrected;
+    if (!collisions_)
+      return;
+    const auto &spread = spreads_[index];
+    if (spread)
+      before_correction_ = x;
+    const std::size_t corrected = collisions_->correct(x, structure.time_s()).n_points_corrected;
+    last_corrections_ += corrected;
+    // The spread moves the neighbours along their corrected points' wall normals; a neighbour
+    // that it brings within d_c of another wall is corrected by Eq. 11 again.
+    if (spread && corrected > 0 && spread->apply(before_correction_, x) > 0)
+      collisions_->correct(x, structure.time_s());
   });
 }
 

@@ -6,6 +6,7 @@
 #include "StructureModel.hpp"
 #include "StructureSetup.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
+#include "structure_solver/collision/CorrectionSpread.hpp"
 #include "structure_solver/collision/SelfCollision.hpp"
 #include "motion/CoupledMotion.hpp"
 
@@ -42,6 +43,9 @@ private:
   std::vector<std::unique_ptr<StructureModel>> structures_;
   std::unique_ptr<collision::CollisionSet> collisions_;
   std::vector<std::unique_ptr<collision::SelfCollision>> self_collisions_;
+  /// Per structure, the spreading of the wall corrections over its grid (nullptr: none).
+  std::vector<std::unique_ptr<collision::CorrectionSpread>> spreads_;
+  PointArray before_correction_; ///< scratch of the spreading
   std::vector<PointArray> zero_loads_;
   std::vector<std::shared_ptr<motion::CoupledMotion>> coupled_motions_;
   std::size_t last_corrections_ = 0;

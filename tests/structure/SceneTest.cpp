@@ -1,5 +1,5 @@
 // Standalone scenes through the case parser: collisions keep a falling rag outside a pole and
-// inside channel walls (Eq. 11), a clamped edge follows its prescribed pendulum motion, and
+// inside channel walls (Eq. 11; also with the correction spread over the grid), a clamped edge follows its prescribed pendulum motion, and
 // several structures advance together.
 
 #include "CaseFixture.hpp"
@@ -62,6 +62,29 @@ TEST(Scene, CollisionsKeepAFallingRagOffThePoleAndAboveTheFloor) {
   }
   EXPECT_GT(corrections, 0u) << "the rag never touched anything: the test would prove nothing";
   // Every point is corrected to d_t = 4 mm; tolerance 1e-9 m for round-off.
+  EXPECT_GE(closest_pole, 0.004 - 1e-9);
+  EXPECT_GE(closest_floor, 0.004 - 1e-9);
+  EXPECT_TRUE(rag.positions_m().allFinite());
+}
+
+TEST(Scene, SpreadCorrectionsStillKeepEveryPointAtTheTargetDistance) {
+  // collisions.spread_points moves the corrected points' neighbours too; those it brings
+  // within d_c of a wall are corrected again, so the guarantee of Eq. 11 holds.
+  std::string yaml = rag_over_pole;
+  yaml.replace(yaml.find("  target_distance_m: 0.004\n"), 26, "  target_distance_m: 0.004\n  spread_points: 3\n");
+  Scene scene(testing::load_case(yaml));
+  const auto &rag = *scene.structures().front();
+  double closest_pole = 1.0, closest_floor = 1.0;
+  std::size_t corrections = 0;
+  for (int k = 0; k < 4000; ++k) {
+    scene.advance();
+    corrections += scene.last_corrections();
+    for (int p = 0; p < rag.n_points(); ++p) {
+      closest_pole = std::min(closest_pole, pole_distance(rag.positions_m().row(p)));
+      closest_floor = std::min(closest_floor, rag.positions_m()(p, 2) + 0.03);
+    }
+  }
+  EXPECT_GT(corrections, 0u);
   EXPECT_GE(closest_pole, 0.004 - 1e-9);
   EXPECT_GE(closest_floor, 0.004 - 1e-9);
   EXPECT_TRUE(rag.positions_m().allFinite());
