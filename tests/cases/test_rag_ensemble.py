@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """python/fsi/rag_ensemble.py without running a case: the Wilson interval against its closed
-form and known values, and the seeded draw of releases (every rag point inside the sump with
+form and known values, the summary's counts by outcome, and the seeded draw of releases (every rag point inside the sump with
 two collision distances to spare, upright, reproducible for a seed and different for another).
 
     /usr/bin/python3 tests/cases/test_rag_ensemble.py -v
@@ -41,6 +41,23 @@ class WilsonInterval(unittest.TestCase):
             self.assertAlmostEqual(0.5 * (hi - lo), half, places=12)
         lo, hi = rag_ensemble.wilson_interval(512, 1024)
         self.assertAlmostEqual(0.5 * (hi - lo), z * 0.5 / math.sqrt(1024), delta=0.002)  # the normal limit
+
+
+class Summary(unittest.TestCase):
+    def test_a_rag_out_after_the_rule_is_passed_late_and_decided_not_hung_up(self):
+        outcomes = ["passed", "passed", "passed_late", "hung_up", "running"]
+        members = []
+        for k, outcome in enumerate(outcomes + [None]):
+            m = rag_ensemble.Member(k, "/nonexistent", 0.021)
+            m.state = "failed" if outcome is None else "done"
+            m.metrics = None if outcome is None else {"outcome": outcome}
+            members.append(m)
+        s = rag_ensemble.summarise(members, 1.0)
+        self.assertEqual((s["runs"], s["runs_with_metrics"], s["failed"]), (6, 5, 1))
+        self.assertEqual((s["passed"], s["passed_late"], s["hung_up"], s["still_running_at_end"]), (2, 1, 1, 1))
+        self.assertEqual(s["runs_decided"], 4)
+        self.assertAlmostEqual(s["p_hang_up"], 0.25, delta=1e-15)
+        self.assertEqual(s["p_hang_up_95ci"], list(rag_ensemble.wilson_interval(1, 4)))
 
 
 class Releases(unittest.TestCase):
