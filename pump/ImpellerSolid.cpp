@@ -125,8 +125,14 @@ int ImpellerSolid::classify(const CadFace &face) const {
   if (face.lower_m[2] >= b2 - tol)
     return hub;
   if (face.upper_m[2] <= tol) {
-    if (face.max_radius_m <= 0.5 * impeller_.eye_diameter_m + tol)
+    if (face.max_radius_m <= 0.5 * impeller_.eye_diameter_m + tol) {
+      // Flat, across the axis, in the eye outside the boss: a blade's bottom edge (it reaches
+      // below the shroud plane), the edge the axial inflow and a rising rag meet crosswise: its
+      // leading edge as much as the nose.
+      if (face.upper_m[2] - face.lower_m[2] <= tol && face.min_radius_m > 0.5 * impeller_.hub_diameter_m + tol)
+        return leading_edge;
       return eye; // the shroud's inner rim, the boss's nose
+    }
     return impeller_.closed ? shroud : blade_tip;
   }
   if (face.max_radius_m <= 0.5 * impeller_.hub_diameter_m + tol)

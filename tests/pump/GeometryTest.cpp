@@ -220,11 +220,42 @@ void TheBladeIsBuiltWithItsDesignWrapAndAngles(const Built &b) {
   EXPECT_NEAR(b.geometry.blade.outlet_angle_deg, b.design.impeller.outlet_blade_angle_deg, 0.5);
 }
 
+/// Blades: the leading edge is the axial nose and the blades' flat bottom edge in the eye (they
+/// reach below the shroud plane), the edge a rising rag meets crosswise. Its area facing the
+/// inflow is at least the blade thickness times the eye's radius less the blade's inlet radius
+/// (the bottom runs along the camber, longer than that), all within the eye; what `eye` keeps
+/// facing the inflow is the boss's bottom, pi r_boss^2.
+void TheBladesBottomInTheEyeIsTheirLeadingEdge(const Built &b) {
+  if (b.design.impeller.single_channel || !b.design.impeller.closed)
+    return;
+  const RegionSurface &impeller = b.geometry.impeller.surface;
+  const int edge = impeller.region_index("blade_leading_edge"), eye = impeller.region_index("eye");
+  const double r_eye = 0.5 * b.design.impeller.eye_diameter_m, r_boss = 0.5 * b.design.impeller.hub_diameter_m;
+  const double r1 = 0.5 * b.design.impeller.blade_inlet_diameter_m;
+  double edge_facing = 0.0, eye_facing = 0.0;
+  for (std::size_t t = 0; t < impeller.triangles.size(); ++t) {
+    const auto &tri = impeller.triangles[t];
+    const Vec3 &a = impeller.vertices_m[tri[0]], &p1 = impeller.vertices_m[tri[1]], &p2 = impeller.vertices_m[tri[2]];
+    const Vec3 n = 0.5 * (p1 - a).cross(p2 - a);
+    if (!(-n[2] > 0.99 * n.norm()))
+      continue; // not facing the inflow (-z)
+    if (impeller.triangle_regions[t] == edge) {
+      edge_facing += n.norm();
+      for (const int v : tri)
+        EXPECT_LE(std::hypot(impeller.vertices_m[v][0], impeller.vertices_m[v][1]), r_eye + 1e-6);
+    } else if (impeller.triangle_regions[t] == eye) {
+      eye_facing += n.norm();
+    }
+  }
+  EXPECT_GT(edge_facing, b.design.impeller.n_blades * b.design.impeller.blade_thickness_m * (r_eye - r1));
+  EXPECT_NEAR(eye_facing, M_PI * r_boss * r_boss, 0.03 * M_PI * r_boss * r_boss);
+}
+
 /// A single channel's leading edge: its round nose runs across the eye from the boss to the
 /// shroud's rim in the shroud plane, every vertex within the nose's radius of its axis (most on
 /// it; the end cap at the rim, in the channel, inside), and it
 /// meets the axial inflow crosswise (its area facing the inflow about its length times its
-/// diameter). Blades: the edge is axial, the nose a cylinder about z.
+/// diameter).
 void TheLeadingEdgeCrossesTheInflow(const Built &b) {
   if (!b.design.impeller.single_channel)
     return;
@@ -295,6 +326,10 @@ TEST_P(GeneratedPump, IsClosedOutwardInsideTheCasingAndAsDesigned) {
   {
     SCOPED_TRACE("TheWaterAtThePipesMouthIsFluidForTheCollisions");
     TheWaterAtThePipesMouthIsFluidForTheCollisions(b);
+  }
+  {
+    SCOPED_TRACE("TheBladesBottomInTheEyeIsTheirLeadingEdge");
+    TheBladesBottomInTheEyeIsTheirLeadingEdge(b);
   }
   {
     SCOPED_TRACE("TheSuctionWallIsThePipeAndTheSump");
