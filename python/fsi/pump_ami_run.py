@@ -393,8 +393,8 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
     ranks; returns the operating point (pump_point.operating_point) and writes
     out_dir/{forces.csv, operating_point.yaml, cost.yaml}. initial_fields_from: an OpenFOAM case
     whose latest fields are the initial ones (a warm start; see map_initial_fields). The fields
-    are written every revolution (the last two kept): restart=True continues the run in out_dir
-    from its latest one (same ranks) to end_time, and the forces of both parts are joined."""
+    are written every quarter revolution (the last two kept): restart=True continues the run in
+    out_dir from its latest ones (same ranks) to end_time, and the forces of both parts are joined."""
     source = case_folder(os.path.abspath(case_dir), resolution)
     if not os.path.isfile(os.path.join(source, "constant", "dynamicMeshDict")):
         raise SystemExit("pump-ami: %s is not an AMI case folder (make_ami_case.py writes them)" % source)
@@ -430,8 +430,10 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
     omega = float(re.search(r"^omega\s+([^;]+);", text, re.M).group(1))
     axis = [float(v) for v in re.search(r"^axis\s+\(([^)]*)\)", text, re.M).group(1).split()]
     period = 2 * math.pi / omega
-    # The fields of every revolution (purgeWrite keeps the last two), to continue from.
-    set_foam_entry(control, "writeInterval", repr(min(period, float(end_time))))
+    # The fields of every quarter revolution (purgeWrite keeps the last two), to continue from: a
+    # run stopped (a session's end, a node lost) loses at most a quarter revolution, as the
+    # penalized run's checkpoints in ./fsi pump-compare.
+    set_foam_entry(control, "writeInterval", repr(min(period / 4.0, float(end_time))))
     if not restart:
         mesh(foam_case, logs)
         if initial_fields_from:
@@ -512,7 +514,7 @@ def main(argv):
                              "whose latest fields start this run")
     parser.add_argument("--ranks", type=int, default=1, help="MPI ranks of pimpleFoam (default 1: serial)")
     parser.add_argument("--restart", action="store_true",
-                        help="continue the run in OUTPUT from its latest fields (written every revolution) to "
+                        help="continue the run in OUTPUT from its latest fields (written every quarter revolution) to "
                              "--end-time, on the ranks it ran on")
     parser.add_argument("-o", "--output", required=True)
     parser.add_argument("case_dir")

@@ -21,7 +21,7 @@ torque within 10 %), comparison.md (the table) and comparison.png (the revolutio
 torque by part). The two runs go one after the other, each on --ranks MPI ranks: their wall
 seconds per revolution are the cost ratio at (nearly) equal cells. A run already made with the
 same inputs is reused; interrupted, or asked for more revolutions, the AMI run continues from its
-last revolution (pump_ami_run.py --restart) and the penalized one from its newest checkpoint
+last quarter revolution (pump_ami_run.py --restart) and the penalized one from its newest checkpoint
 (every quarter revolution; ./fsi run --restart).
 --set changes the penalized run only (a variant of the method against the same reference: give
 it its own -o and link DIR/ami to the first comparison's, which is then reused). A run is
@@ -166,7 +166,7 @@ def run_method(args, method, flow_rate, end_time, period):
         command = [sys.executable, AMI_RUN, "--resolution", args.resolution, "--flow-rate", repr(flow_rate),
                    "--end-time", repr(end_time), "--ranks", str(args.ranks), "-o", folder, args.case_dir]
         # An interrupted run (or a finished one asked for more revolutions) of the same inputs
-        # continues from its last revolution's fields.
+        # continues from its latest fields (every quarter revolution).
         latest = pump_ami_run.latest_time(os.path.join(folder, "openfoam"), args.ranks)
         if (same or started == inputs) and latest is not None and 0 < float(latest) < end_time:
             command.insert(2, "--restart")
