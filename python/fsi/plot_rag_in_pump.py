@@ -12,7 +12,8 @@ from a coupled run of cases/rag-in-pump (finished or interrupted):
                             whole (projected), its grid lines and its points coloured by their
                             distance to the nearest wall (casing or impeller at that pose); its
                             centroid's path so far is dotted.
-  RUN_DIR/rag_wrap.png      Fig. 14: the saved time when the most rag points are within
+  RUN_DIR/rag_wrap.png      Fig. 14: the saved time of the rag's largest bend round the leading edge
+                            (rag_metrics.yaml, when it wrapped), else when the most rag points are within
                             1.5 x collisions.threshold_m of the impeller (the first such time of
                             a tie; with no point that close, the time of the closest approach),
                             in 3D: the impeller's triangles at that pose (its blade leading edge
@@ -215,6 +216,24 @@ def wrap_frame(to_impeller, threshold_m):
     if counts.max() > 0:
         return int(np.argmax(counts))
     return int(np.argmin(to_impeller.min(axis=1)))
+
+
+def most_wrapped_frame(run_dir, times):
+    """(frame, words) of the rag's largest bend round the leading edge, from the metrics'
+    rag_metrics.yaml (max_wrap_angle_deg at max_wrap_angle_time_s) when it has one of at least
+    its wrap angle; else None."""
+    path = os.path.join(run_dir, "rag_metrics.yaml")
+    if not os.path.isfile(path):
+        return None
+    import yaml
+    with open(path) as f:
+        doc = yaml.safe_load(f) or {}
+    angle, time_s = doc.get("max_wrap_angle_deg"), doc.get("max_wrap_angle_time_s")
+    threshold = (doc.get("parameters") or {}).get("wrap_angle_deg")
+    if angle is None or time_s is None or threshold is None or angle < threshold:
+        return None
+    frame = int(np.argmin(np.abs(np.asarray(times, float) - time_s)))
+    return frame, "its largest bend round the leading edge, %.0f deg" % angle
 
 
 def sequence_frames(run, pump, count):
@@ -491,10 +510,13 @@ def write_pictures(run_dir, case_dir, frames=8, animation=True):
                   "the distance to the nearest wall; its centroid's path dotted"
                   % (title, len(picks), "" if len(picks) == 1 else "s"))
     written.append(path)
-    k = wrap_frame(to_impeller, pump.threshold_m)
+    k, what = wrap_frame(to_impeller, pump.threshold_m), "its largest contact with the impeller"
+    wrapped = most_wrapped_frame(run_dir, run.time_s)
+    if wrapped is not None:
+        k, what = wrapped
     path = os.path.join(run_dir, "rag_wrap.png")
     draw_wrap(run, pump, to_impeller, k, path,
-              "%s: the rag at its largest contact with the impeller (frame %d of %d)" % (title, k, len(run.time_s)))
+              "%s: the rag at %s (frame %d of %d)" % (title, what, k, len(run.time_s)))
     written.append(path)
     if animation:
         path = os.path.join(run_dir, "rag_passage.mp4")

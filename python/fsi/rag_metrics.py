@@ -504,6 +504,7 @@ def _wrap(run, geometry, stay, grid_shape):
         "longest_wrap_revolutions": run.rev(float(longest)) if run.rate else None,
         "wrap_episodes": len(episodes),
         "max_wrap_angle_deg": float(np.max(angle)),
+        "max_wrap_angle_time_s": float(run.t[int(np.argmax(angle))]) if np.max(angle) > 0 else None,
         "wrap_span_fraction": _opt(span),
     }
     return types.SimpleNamespace(metrics=metrics, flags=wrap, angle=angle)
@@ -1034,6 +1035,7 @@ DEFINITIONS = {
                    "along the edge over its points within wrap_reach_m of the edge, one of them within "
                    "contact_distance_m (in the impeller's frame)",
     "max_wrap_angle_deg": "the largest angle by which a material line bent round the leading edge in any frame",
+    "max_wrap_angle_time_s": "the first frame with that angle (empty when the rag never bent round the edge)",
     "wrap_fraction_of_residence": "wrap_time_s / residence_time_s",
     "wrap_fraction_of_run": "wrap duration from t = 0 to the exit (or the end) over that time: the paper's measure",
     "longest_wrap_s": "longest run of consecutive wrap frames, e_{last+1} - e_first",

@@ -180,6 +180,19 @@ class PlotRagInPump(unittest.TestCase):
         else:
             self.assertNotIn(video, written)
 
+    def test_the_rags_largest_bend_round_the_leading_edge_is_the_wrap_picture(self):
+        # rag_metrics.yaml says the rag bent 150 deg round the edge at t of frame 3: that frame is
+        # drawn, not the frame of most contact (2); under its wrap angle, the contact's frame
+        write_run(self.run_dir)
+        times = plot_rag_in_pump.Run(self.run_dir).time_s
+        for angle, frame in ((150.0, 3), (60.0, 2)):
+            with open(os.path.join(self.run_dir, "rag_metrics.yaml"), "w") as f:
+                yaml.safe_dump({"max_wrap_angle_deg": angle, "max_wrap_angle_time_s": float(times[3]),
+                                "parameters": {"wrap_angle_deg": 90.0}}, f)
+            written = plot_rag_in_pump.write_pictures(self.run_dir, self.case, animation=False)
+            description = Image.open(written[1]).text["Description"]
+            self.assertTrue(description.startswith("frame %d of 5," % frame), description)
+
     def test_one_frame(self):
         write_run(self.run_dir, frames=[3])
         written = plot_rag_in_pump.write_pictures(self.run_dir, self.case, animation=False)
