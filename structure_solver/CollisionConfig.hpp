@@ -30,9 +30,13 @@ struct CollisionConfig {
               "without). 0: the paper's correction of each point alone.");
     v.flag("self_collision", self_collision, "Push apart points of the same structure closer than d_c.");
     v.list("surfaces", surfaces, "Rigid surfaces.");
-    if constexpr (std::is_same_v<V, common::ConfigReader>)
+    if constexpr (std::is_same_v<V, common::ConfigReader>) {
       if (target_distance_m < threshold_m)
         v.fail_value("target_distance_m", "must be >= threshold_m (points would stay inside the threshold).");
+      if (spread_points > 0 && surfaces.empty())
+        v.fail_value("spread_points", "spreads the corrections against rigid surfaces: give collisions.surfaces, "
+                                      "or leave it 0.");
+    }
   }
 };
 

@@ -3,6 +3,7 @@
 // several structures advance together.
 
 #include "CaseFixture.hpp"
+#include "common/ConfigError.hpp"
 #include "motion/PendulumHistory.hpp"
 #include "structure_solver/ModelFactory.hpp"
 #include "structure_solver/ModelRegistry.hpp"
@@ -88,6 +89,23 @@ TEST(Scene, SpreadCorrectionsStillKeepEveryPointAtTheTargetDistance) {
   EXPECT_GE(closest_pole, 0.004 - 1e-9);
   EXPECT_GE(closest_floor, 0.004 - 1e-9);
   EXPECT_TRUE(rag.positions_m().allFinite());
+}
+
+TEST(Scene, ASpreadWithoutSurfacesIsRefusedNamingTheKey) {
+  const std::string yaml = R"(run: {end_time_s: 1, time_step_s: 5.0e-5, output_interval_s: 0.01}
+collisions: {spread_points: 2, self_collision: true}
+structures:
+  - name: rag
+    model: membrane
+    size_m: [0.1, 0.06]
+    n_points: [26, 16]
+)";
+  try {
+    testing::load_case(yaml);
+    ADD_FAILURE() << "a spread with nothing to spread was accepted";
+  } catch (const common::ConfigError &error) {
+    EXPECT_NE(std::string(error.what()).find("spread_points"), std::string::npos) << error.what();
+  }
 }
 
 TEST(Scene, ClampedEdgeFollowsThePendulumExactly) {
