@@ -330,8 +330,13 @@ def table(points, result):
         rows.append("| lost in the rotor's water: shaft power less that flux (W, fraction of the shaft power) | "
                     "%.0f (%.2f) | %.0f (%.2f) | %+.0f W |" % (a["loss_w"], a["loss_fraction"], b["loss_w"],
                                                               b["loss_fraction"], a["loss_w"] - b["loss_w"]))
+    steps = ibm.get("staircase_torque_by_part_n_m") or {}
     for part, v in result["torque_by_part_n_m"].items():
-        rows.append("| torque on %s (N m) | %.2f | %.2f | %+.2f N m |" % (part, v["ibm"], v["ami"], v["ibm"] - v["ami"]))
+        rows.append("| torque on %s (N m) | %.2f%s | %.2f | %+.2f N m |" % (
+            part, v["ibm"], " (steps %.2f)" % steps[part] if part in steps else "", v["ami"], v["ibm"] - v["ami"]))
+    if steps:
+        rows.append("| torque of the pressure on the penalized staircase's steps, off the surface (N m; "
+                    "parts_staircase.csv, a smooth surface takes none) | %.2f | | |" % sum(steps.values()))
     discs = result.get("ami_pressure_torque_on_surfaces_of_revolution_n_m")
     if discs:
         rows.append("| pressure torque on the AMI's surfaces of revolution (%s; none on a smooth one: the snapped "

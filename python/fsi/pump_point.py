@@ -13,6 +13,9 @@ and python/fsi/pump_curve.py. Inputs, all in the run's output folder:
                         runs integrate each patch: torque_by_part_n_m, the shaft's share of each
   parts_pressure.csv    (optional, the AMI runs) the same, the pressure's share alone:
                         pressure_torque_by_part_n_m
+  parts_staircase.csv   (optional, the penalized runs) the same, the share the pressure on the
+                        staircase's steps takes off the surface (the steps' form drag):
+                        staircase_torque_by_part_n_m
   penalization.csv      (penalized runs) the kinetic energy per second the moving impeller
                         destroys in the cells it newly covers (W): switching_power_w, its mean;
                         and the water its cells swallow through their faces with free cells
@@ -218,6 +221,7 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
 
     by_part = part_torques("parts.csv")
     pressure_by_part = part_torques("parts_pressure.csv")   # the body-fitted runs: the pressure's share
+    staircase_by_part = part_torques("parts_staircase.csv")   # the penalized runs: the steps' form drag
     power = torque_mean * omega
     u2 = omega * radius_m
     revolutions = revolution_means(tw, tq, hw, dp / (rho * G), t0, period, n_avg)
@@ -255,6 +259,8 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         point["torque_by_part_n_m"] = by_part
     if pressure_by_part is not None:
         point["pressure_torque_by_part_n_m"] = pressure_by_part
+    if staircase_by_part is not None:
+        point["staircase_torque_by_part_n_m"] = staircase_by_part
     return point
 
 

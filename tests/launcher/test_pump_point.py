@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Checks of python/fsi/pump_point.py's revolution statistics on a hand-written run folder (the
-documented layout: forces.csv and the total-pressure function objects' .dat files), and of the
+documented layout: forces.csv and the total-pressure function objects' .dat files), the torque
+by part with the staircase's share beside it in ./fsi pump-compare's table, and of the
 refusals of ./fsi pump-compare and pump_ami_run.py --restart before anything runs.
     /usr/bin/python3 tests/launcher/test_pump_point.py
 """
@@ -16,6 +17,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 PYTHON = os.path.join(HERE, "..", "..", "python")
 sys.path.insert(0, PYTHON)
+from fsi import pump_compare  # noqa: E402
 from fsi import pump_point  # noqa: E402
 
 OMEGA = 150.0   # rad/s
@@ -120,6 +122,36 @@ class RotorBudget(unittest.TestCase):
             self.assertAlmostEqual(p["rotor"]["energy_flux_out_w"], 1500.0, places=6)
             self.assertAlmostEqual(p["rotor"]["loss_w"], 300.0, places=6)
             self.assertAlmostEqual(p["rotor"]["loss_fraction"], 300.0 / 1800.0, places=9)
+
+
+class Staircase(unittest.TestCase):
+    def test_the_steps_share_of_each_part_is_read_and_shown_beside_it(self):
+        # parts.csv and parts_staircase.csv of a penalized run (torques on the fluid about +z: the
+        # shaft's share is minus them), none of the latter in the AMI run
+        def write_parts(folder, name, torques):
+            period = 2 * math.pi / OMEGA
+            t = np.arange(1, 801) * period / 200
+            with open(os.path.join(folder, name), "w") as f:
+                f.write("time_s," + ",".join("body0.%s.t%s_n_m" % (p, c) for p in torques for c in "xyz") + "\n")
+                for a in t:
+                    f.write("%.10g," % a + ",".join("0,0,%.10g" % -v for v in torques.values()) + "\n")
+        with tempfile.TemporaryDirectory() as ibm, tempfile.TemporaryDirectory() as ami:
+            for folder, torque in ((ibm, 15.0), (ami, 14.0)):
+                write_run(folder, lambda t, T=torque: T + 0 * t, lambda t: 5.0 + 0 * t, revolutions=4)
+                write_parts(folder, "parts.csv", {"blade_suction_side": torque - 3.0, "hub": 3.0})
+            write_parts(ibm, "parts_staircase.csv", {"blade_suction_side": 1.25, "hub": 0.5})
+            points = {m: pump_point.operating_point(f, OMEGA, [0, 0, 1], 0.1, 0.02, average_revolutions=3)
+                      for m, f in (("ibm", ibm), ("ami", ami))}
+            for m in points:
+                points[m]["front_side_space_leak_m3_per_s"], points[m]["front_side_space_leak_from"] = 0.0, "window"
+            self.assertEqual(points["ibm"]["staircase_torque_by_part_n_m"], {"blade_suction_side": 1.25, "hub": 0.5})
+            self.assertNotIn("staircase_torque_by_part_n_m", points["ami"])
+            costs = {"ranks": 1, "ibm": {"cells": 1, "wall_s_per_revolution": 1.0},
+                     "ami": {"cells": 1, "wall_s_per_revolution": 2.0}}
+            text = pump_compare.table(points, pump_compare.compare(None, points, 1.0, costs))
+            self.assertIn("| torque on blade_suction_side (N m) | 12.00 (steps 1.25) | 11.00 | +1.00 N m |", text)
+            self.assertIn("| torque on hub (N m) | 3.00 (steps 0.50) | 3.00 | +0.00 N m |", text)
+            self.assertRegex(text, r"staircase's steps.*\| 1\.75 \|")
 
 
 class RunFingerprint(unittest.TestCase):
