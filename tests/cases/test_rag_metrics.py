@@ -78,17 +78,25 @@ def box_triangles(lo, hi):
 
 
 def write_stl(path, regions):
+    """regions: {name: list of boxes (lo, hi)} as an ASCII STL with named solids."""
+    write_stl_triangles(path, {name: box_regions_triangles(boxes) for name, boxes in regions.items()})
+
+
+def box_regions_triangles(boxes):
+    return np.concatenate([box_triangles(lo, hi) for lo, hi in boxes])
+
+
+def write_stl_triangles(path, regions):
+    """regions: {name: triangles [n, 3, 3]} as an ASCII STL with named solids."""
     with open(path, "w") as f:
-        for name, boxes in regions.items():
+        for name, tris in regions.items():
             f.write("solid %s\n" % name)
-            for lo, hi in boxes:
-                for tri in box_triangles(lo, hi):
-                    n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
-                    n = n / np.linalg.norm(n)
-                    f.write("facet normal %g %g %g\nouter loop\n" % tuple(n))
-                    for p in tri:
-                        f.write("vertex %.9g %.9g %.9g\n" % tuple(p))
-                    f.write("endloop\nendfacet\n")
+            for tri in tris:
+                n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
+                f.write("facet normal %g %g %g\nouter loop\n" % tuple(n / np.linalg.norm(n)))
+                for q in tri:
+                    f.write("vertex %.9g %.9g %.9g\n" % tuple(q))
+                f.write("endloop\nendfacet\n")
             f.write("endsolid %s\n" % name)
 
 
@@ -125,12 +133,15 @@ def grid(n1=5, n2=4, spacing=0.004):
 _GEOMETRY = {}
 
 
-def geometry(**kwargs):
-    key = tuple(sorted(kwargs.items()))
+def geometry(impeller=None, key=(), **kwargs):
+    """The synthetic pump as a PumpGeometry (cached): IMPELLER's boxes, or the impeller's
+    triangles by region given as `impeller` (then `key` names it), and CASING."""
+    key = (key, tuple(sorted(kwargs.items())))
     if key not in _GEOMETRY:
         tmp = tempfile.mkdtemp(prefix="rag-metrics-geometry-")
         try:
-            write_stl(os.path.join(tmp, "impeller.stl"), IMPELLER)
+            write_stl_triangles(os.path.join(tmp, "impeller.stl"), impeller or {
+                name: box_regions_triangles(boxes) for name, boxes in IMPELLER.items()})
             write_stl(os.path.join(tmp, "casing.stl"), CASING)
             _GEOMETRY[key] = rag_metrics.PumpGeometry(
                 rag_metrics.read_stl_regions(os.path.join(tmp, "impeller.stl")),
@@ -391,20 +402,6 @@ def cylinder_triangles(start, axis, radius, length, n=24):
     return np.array(tris)
 
 
-def write_stl_triangles(path, regions):
-    """regions: {name: triangles [n, 3, 3]} as an ASCII STL with named solids."""
-    with open(path, "w") as f:
-        for name, tris in regions.items():
-            f.write("solid %s\n" % name)
-            for tri in tris:
-                n = np.cross(tri[1] - tri[0], tri[2] - tri[0])
-                f.write("facet normal %g %g %g\nouter loop\n" % tuple(n / np.linalg.norm(n)))
-                for q in tri:
-                    f.write("vertex %.9g %.9g %.9g\n" % tuple(q))
-                f.write("endloop\nendfacet\n")
-            f.write("endsolid %s\n" % name)
-
-
 # Round noses for the leading edge: (start, axis, radius, length). Axial as the thin blade's
 # (4 mm, along the axis at 24 mm from it), radial as the single channel's (8 mm, across the eye
 # below the channel).
@@ -413,21 +410,10 @@ NOSES = {"axial": ((0.024, 0.0, 0.002), (0.0, 0.0, 1.0), 0.004, 0.046),
 
 
 def nose_geometry(kind):
-    key = ("nose", kind)
-    if key not in _GEOMETRY:
-        start, axis, radius, length = NOSES[kind]
-        regions = {k: np.concatenate([box_triangles(*box) for box in boxes]) for k, boxes in IMPELLER.items()}
-        regions["blade_leading_edge"] = cylinder_triangles(start, axis, radius, length)
-        tmp = tempfile.mkdtemp(prefix="rag-metrics-nose-")
-        try:
-            write_stl_triangles(os.path.join(tmp, "impeller.stl"), regions)
-            write_stl(os.path.join(tmp, "casing.stl"), CASING)
-            _GEOMETRY[key] = rag_metrics.PumpGeometry(
-                rag_metrics.read_stl_regions(os.path.join(tmp, "impeller.stl")),
-                rag_metrics.read_stl_regions(os.path.join(tmp, "casing.stl")), [0, 0, 0], AXIS, RATE)
-        finally:
-            shutil.rmtree(tmp, ignore_errors=True)
-    return _GEOMETRY[key]
+    start, axis, radius, length = NOSES[kind]
+    regions = {name: box_regions_triangles(boxes) for name, boxes in IMPELLER.items()}
+    regions["blade_leading_edge"] = cylinder_triangles(start, axis, radius, length)
+    return geometry(impeller=regions, key=("nose", kind))
 
 
 class WrapAngle(unittest.TestCase):
