@@ -1,7 +1,7 @@
 #pragma once
 // Configuration of the collision model (Eq. 11): the rigid surfaces (geometry/SurfaceConfig.hpp),
 // the threshold d_c and the target distance d_t, the spreading of a correction over the grid, and
-// self-collision.
+// self-collision, and contact between structures.
 
 #include "common/ConfigReader.hpp"
 #include "geometry/SurfaceConfig.hpp"
@@ -16,6 +16,7 @@ struct CollisionConfig {
   double target_distance_m = 0.004;
   int spread_points = 0;
   bool self_collision = false;
+  bool structure_contact = false;
   std::vector<geometry::SurfaceConfig> surfaces;
 
   template <class V> void visit(V &v) {
@@ -29,6 +30,10 @@ struct CollisionConfig {
               "neighbours, and the strain it makes, is about 1 / (n + 1) of the correction's (d_t / spacing "
               "without). 0: the paper's correction of each point alone.");
     v.flag("self_collision", self_collision, "Push apart points of the same structure closer than d_c.");
+    v.flag("structure_contact", structure_contact,
+           "Contact between different structures (rags of a feed piling up): a point closer than d_c to "
+           "another sheet's surface is moved with it apart to d_t, on the side it came from, each in "
+           "inverse proportion to its mass.");
     v.list("surfaces", surfaces, "Rigid surfaces.");
     if constexpr (std::is_same_v<V, common::ConfigReader>) {
       if (target_distance_m < threshold_m)

@@ -73,6 +73,21 @@ void Scene::build_collisions(const CollisionConfig &config, double gravity_m_per
     for (std::size_t i = 0; i < structures_.size(); ++i)
       self_collisions_[i] = std::make_unique<collision::SelfCollision>(
           structures_[i]->positions_m(), config.threshold_m, config.target_distance_m);
+  if (config.structure_contact && structures_.size() < 2)
+    spdlog::warn("collisions.structure_contact: the case has one structure, nothing to touch");
+  if (config.structure_contact && structures_.size() >= 2) {
+    std::vector<collision::ContactBody> bodies;
+    for (const auto &s : structures_) {
+      const auto [n1, n2] = s->grid_shape();
+      bodies.push_back({n1, n2, s->point_measures() * s->mass_per_measure()});
+    }
+    contact_ = std::make_unique<collision::StructureContact>(std::move(bodies), config.threshold_m,
+                                                             config.target_distance_m);
+    contact_start_.resize(structures_.size());
+    contact_now_.resize(structures_.size());
+    spdlog::info("collisions: contact between the {} structures (points against the other sheets' triangles)",
+                 structures_.size());
+  }
 }
 
 motion::CoupledMotion *Scene::coupled_motion(const std::string &name) const {
@@ -87,10 +102,27 @@ void Scene::advance() { advance(zero_loads_); } // gravity only, no fluid
 void Scene::advance(const std::vector<PointArray> &load_densities) {
   last_corrections_ = 0;
   last_iterations_ = 0;
-  for (std::size_t i = 0; i < structures_.size(); ++i) {
+  if (contact_)
+    for (std::size_t i = 0; i < structures_.size(); ++i)
+      contact_start_[i] = structures_[i]->positions_m();
+  for (std::size_t i = 0; i < structures_.size(); ++i)
     last_iterations_ += structures_[i]->advance(load_densities[i]); // Eq. (4)
-    correct_collisions(*structures_[i], i);                         // Eq. (11)
-  }
+  if (contact_)
+    correct_contacts();
+  // The walls last, so that no point ends a step inside a rigid body.
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    correct_collisions(*structures_[i], i); // Eq. (11)
+}
+
+void Scene::correct_contacts() {
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    contact_now_[i] = structures_[i]->positions_m();
+  const auto stats = contact_->correct(contact_now_, contact_start_);
+  if (stats.n_contacts == 0)
+    return;
+  last_corrections_ += stats.n_contacts;
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    structures_[i]->correct_positions([&](PointArray &x) { x = contact_now_[i]; });
 }
 
 void Scene::correct_collisions(StructureModel &structure, std::size_t index) {

@@ -1,13 +1,15 @@
 #pragma once
 // A structure-only scene: the flexible structures of a case, the rigid surfaces they collide
 // with, and one time step of the algorithm of section 2.3 without fluid:
-// solve Eq. (4) for every structure, then correct positions for collisions (Eq. 11).
+// solve Eq. (4) for every structure, then correct positions for contact between structures
+// and for collisions (Eq. 11).
 
 #include "StructureModel.hpp"
 #include "StructureSetup.hpp"
 #include "structure_solver/collision/CollisionSet.hpp"
 #include "structure_solver/collision/CorrectionSpread.hpp"
 #include "structure_solver/collision/SelfCollision.hpp"
+#include "structure_solver/collision/StructureContact.hpp"
 #include "motion/CoupledMotion.hpp"
 
 #include <memory>
@@ -39,10 +41,13 @@ public:
 private:
   void build_collisions(const CollisionConfig &config, double gravity_m_per_s2, bool motions_from_coupler);
   void correct_collisions(StructureModel &structure, std::size_t index);
+  void correct_contacts();
 
   std::vector<std::unique_ptr<StructureModel>> structures_;
   std::unique_ptr<collision::CollisionSet> collisions_;
   std::vector<std::unique_ptr<collision::SelfCollision>> self_collisions_;
+  std::unique_ptr<collision::StructureContact> contact_; ///< nullptr: structures pass through each other
+  std::vector<PointArray> contact_start_, contact_now_;  ///< X^n and X^{n+1} of every structure
   /// Per structure, the spreading of the wall corrections over its grid (nullptr: none).
   std::vector<std::unique_ptr<collision::CorrectionSpread>> spreads_;
   PointArray before_correction_; ///< scratch of the spreading

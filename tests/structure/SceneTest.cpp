@@ -1,5 +1,6 @@
 // Standalone scenes through the case parser: collisions keep a falling rag outside a pole and
-// inside channel walls (Eq. 11; also with the correction spread over the grid), a clamped edge follows its prescribed pendulum motion, and
+// inside channel walls (Eq. 11; also with the correction spread over the grid), two rags in
+// contact rest on each other, a clamped edge follows its prescribed pendulum motion, and
 // several structures advance together.
 
 #include "CaseFixture.hpp"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace fsi::structure {
 namespace {
@@ -106,6 +108,65 @@ structures:
   } catch (const common::ConfigError &error) {
     EXPECT_NE(std::string(error.what()).find("spread_points"), std::string::npos) << error.what();
   }
+}
+
+// A small rag dropped onto a larger one lying on a floor, its points over the gaps between the
+// lower one's (offset 3 and 7 mm on a 1 cm grid; d_c = 4 mm): the smallest height of an upper
+// point over the lower rag's points within 1.1 cm of it, over the last 0.1 s (resting).
+double rest_gap_of_two_rags(bool contact) {
+  std::string yaml = R"(run: {end_time_s: 1, time_step_s: 5.0e-5, output_interval_s: 0.01}
+gravity_m_per_s2: [0, 0, -9.81]
+collisions:
+  threshold_m: 0.004
+  target_distance_m: 0.004
+  structure_contact: CONTACT
+  surfaces:
+    - box: {min_m: [-0.2, -0.2, 0.0], max_m: [0.3, 0.3, 0.1]}
+structures:
+  - name: under
+    model: membrane
+    size_m: [0.1, 0.1]
+    n_points: [11, 11]
+    origin_m: [0.0, 0.0, 0.005]
+    material:
+      mass_per_area_kg_per_m2: 0.03
+      coefficients: {tension_coefficient_n_per_m: 10, bending_rigidity_n_m: 1.0e-6}
+  - name: over
+    model: membrane
+    size_m: [0.06, 0.06]
+    n_points: [7, 7]
+    origin_m: [0.023, 0.027, 0.02]
+    material:
+      mass_per_area_kg_per_m2: 0.03
+      coefficients: {tension_coefficient_n_per_m: 10, bending_rigidity_n_m: 1.0e-6}
+)";
+  yaml.replace(yaml.find("CONTACT"), 7, contact ? "true" : "false");
+  Scene scene(testing::load_case(yaml));
+  const auto &under = scene.structures()[0]->positions_m();
+  const auto &over = scene.structures()[1]->positions_m();
+  double gap = 1.0;
+  for (int k = 0; k < 4000; ++k) { // 0.2 s: the upper rag lands at about 0.055 s
+    scene.advance();
+    if (k < 2000)
+      continue;
+    for (Eigen::Index i = 0; i < over.rows(); ++i)
+      for (Eigen::Index j = 0; j < under.rows(); ++j)
+        if ((over.row(i).head<2>() - under.row(j).head<2>()).norm() < 0.011)
+          gap = std::min(gap, over(i, 2) - under(j, 2));
+  }
+  EXPECT_TRUE(over.allFinite() && under.allFinite());
+  return gap;
+}
+
+TEST(Scene, RagsInContactRestOnEachOtherInsteadOfPassingThrough) {
+  // Without contact the upper rag falls through the lower one to the floor's d_t: both rest at
+  // z = 4 mm. With it, it rests on the lower rag, d_t = 4 mm over it (less the round-off of a
+  // wall pass after the contact pass: 1 % of d_c allowed).
+  const double without = rest_gap_of_two_rags(false), with = rest_gap_of_two_rags(true);
+  std::printf("the upper rag over the lower, at rest: %.3f mm without contact, %.3f mm with\n", 1e3 * without,
+              1e3 * with);
+  EXPECT_LT(without, 0.0005);
+  EXPECT_GT(with, 0.004 * 0.99);
 }
 
 TEST(Scene, ClampedEdgeFollowsThePendulumExactly) {
