@@ -61,9 +61,24 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   }
   setRefCell(*p_, pimple_->dict(), pRefCell_, pRefValue_);
   mesh.setFluxRequired(p_->name());
+  // Fields a run of this solver wrote (a checkpoint, a precursor's last fields; they hold
+  // fsiAcceleration, which a case's own initial fields do not): their nut is the state the run
+  // stopped in. The model's validate() evaluates nut again from the other fields, and a wall
+  // function that iterates (Spalding's, to 1 %) then lands elsewhere than it had, starting from
+  // the value it converged to: the resumed run would differ from the uninterrupted one in the
+  // last digits. Read aside and put back after validate().
+  std::unique_ptr<volScalarField> nutWritten;
+  if (IOobject("fsiAcceleration", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false)
+          .typeHeaderOk<volVectorField>(true)) {
+    IOobject io("nut", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false);
+    if (io.typeHeaderOk<volScalarField>(true))
+      nutWritten = std::make_unique<volScalarField>(io, mesh);
+  }
   laminarTransport_ = std::make_unique<singlePhaseTransportModel>(*U_, *phi_);
   turbulence_ = incompressible::turbulenceModel::New(*U_, *phi_, *laminarTransport_);
   turbulence_->validate();
+  if (nutWritten && mesh.thisDb().foundObject<volScalarField>("nut"))
+    mesh.thisDb().lookupObjectRef<volScalarField>("nut") == *nutWritten;
   record_cells_and_limits(settings);
   // The case's own function objects (controlDict `functions`: surfaceFieldValue, probes, ...)
   // run as in OpenFOAM's solvers; the time loop here is ++runTime, which does not call them.
