@@ -66,7 +66,8 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   // stopped in. The model's validate() evaluates nut again from the other fields, and a wall
   // function that iterates (Spalding's, to 1 %) then lands elsewhere than it had, starting from
   // the value it converged to: the resumed run would differ from the uninterrupted one in the
-  // last digits. Read aside and put back after validate().
+  // last digits. Read aside, and put back after validate() when validate() gave the same cell
+  // values (the same state continued; not fields mapped from another mesh).
   std::unique_ptr<volScalarField> nutWritten;
   if (IOobject("fsiAcceleration", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false)
           .typeHeaderOk<volVectorField>(true)) {
@@ -77,8 +78,13 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
   laminarTransport_ = std::make_unique<singlePhaseTransportModel>(*U_, *phi_);
   turbulence_ = incompressible::turbulenceModel::New(*U_, *phi_, *laminarTransport_);
   turbulence_->validate();
-  if (nutWritten && mesh.thisDb().foundObject<volScalarField>("nut"))
-    mesh.thisDb().lookupObjectRef<volScalarField>("nut") == *nutWritten;
+  if (nutWritten && mesh.thisDb().foundObject<volScalarField>("nut")) {
+    auto &nut = mesh.thisDb().lookupObjectRef<volScalarField>("nut");
+    bool same = nut.primitiveField().size() == nutWritten->primitiveField().size();
+    forAll(nut.primitiveField(), c) same = same && nut.primitiveField()[c] == nutWritten->primitiveField()[c];
+    if (returnReduce(same, andOp<bool>()))
+      nut == *nutWritten;
+  }
   record_cells_and_limits(settings);
   // The case's own function objects (controlDict `functions`: surfaceFieldValue, probes, ...)
   // run as in OpenFOAM's solvers; the time loop here is ++runTime, which does not call them.
