@@ -45,6 +45,13 @@ std::size_t CorrectionSpread::apply(const PointArray &before, PointArray &after)
         const double w = 1.0 - std::hypot(j1 - i1, j2 - i2) / reach;
         if (w <= 0.0)
           continue;
+        // Only to a neighbour in front of the wall the point was moved off (behind the plane
+        // through the moved point across the move by less than twice the move: a sheet lying
+        // on the wall is behind it by the move): a rag folded round a nose has grid neighbours
+        // on the nose's other face, which this move would push into it.
+        const double move_m = moves.row(i).norm();
+        if ((before.row(j) - after.row(i)).dot(moves.row(i)) < -2.0 * move_m * move_m)
+          continue;
         sum.row(j) += w * moves.row(i);
         weight[j] += w;
       }

@@ -18,7 +18,9 @@ public:
 
   /// before: the positions before the correction, after: after it (the corrected points moved,
   /// the others not). Each point the correction did not move gets the weighted mean of the
-  /// moves of the corrected points within radius_points of it on the grid, weight
+  /// moves of the corrected points within radius_points of it on the grid that it lies in
+  /// front of (not behind the plane through the moved point across its move by more than twice
+  /// the move's length: not on the other face of a nose the rag is folded round), weight
   /// w = 1 - d / (n + 1) at grid distance d = sqrt(di^2 + dj^2) (the sum of the weights at
   /// least 1: a point between two corrected ones takes their mean, not their sum). Returns the
   /// number of points moved by the spread. Throws std::invalid_argument when the point counts

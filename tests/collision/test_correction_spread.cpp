@@ -37,21 +37,40 @@ double max_edge_strain(const PointArray &x) {
 }
 
 TEST(CorrectionSpread, AnInPlaneCorrectionStrainsItsNeighboursByOneOverNPlusOneOfIt) {
-  const double move = 0.004; // d_t: a point pushed out of a wall along the sheet
+  const double move = 0.004; // d_t: the edge point of a sheet pushed out of a wall along it
   for (int n : {1, 2, 3, 5}) {
     const PointArray before = flat_grid();
     PointArray after = before;
-    after(7 * kN2 + 3, 0) += move;
+    after(0 * kN2 + 3, 0) += move;
     EXPECT_NEAR(max_edge_strain(after), move / kSpacing, 1e-12); // Eq. 11 alone: 40 %
     const CorrectionSpread spread(kN1, kN2, n);
     spread.apply(before, after);
     // Along s1 the moves fall linearly, move (1 - k / (n + 1)) at k points away: each edge on
-    // that line shortens or lengthens by move / (n + 1); the edges off it by less.
+    // that line shortens by move / (n + 1); the edges off it by less.
     EXPECT_NEAR(max_edge_strain(after), move / ((n + 1) * kSpacing), 1e-12) << "n = " << n;
-    EXPECT_NEAR(after(7 * kN2 + 3, 0) - before(7 * kN2 + 3, 0), move, 1e-15); // the corrected point stays
-    EXPECT_NEAR(after((7 + n) * kN2 + 3, 0) - before((7 + n) * kN2 + 3, 0), move / (n + 1), 1e-15);
-    EXPECT_EQ(after((7 + n + 1) * kN2 + 3, 0), before((7 + n + 1) * kN2 + 3, 0)); // out of reach
+    EXPECT_NEAR(after(0 * kN2 + 3, 0) - before(0 * kN2 + 3, 0), move, 1e-15); // the corrected point stays
+    EXPECT_NEAR(after(n * kN2 + 3, 0) - before(n * kN2 + 3, 0), move / (n + 1), 1e-15);
+    EXPECT_EQ(after((n + 1) * kN2 + 3, 0), before((n + 1) * kN2 + 3, 0)); // out of reach
   }
+}
+
+TEST(CorrectionSpread, NeighboursOnTheOtherFaceOfANoseTheRagIsFoldedRoundStay) {
+  // Rows 0-7 lie 6 mm over a plate, rows 8-14 folded back 6 mm under it (a rag wrapped round the
+  // plate's edge at x = 0.07 m). Point (6, 3) is pushed 4 mm up off the top face: its neighbours
+  // on the top face follow, those under the plate (16 mm behind the top face's plane) do not:
+  // moved up they would be pushed into the plate.
+  PointArray before = flat_grid();
+  for (int i = 0; i < kN1; ++i)
+    for (int j = 0; j < kN2; ++j)
+      before.row(i * kN2 + j) << (i <= 7 ? i : 15 - i) * kSpacing, j * kSpacing, i <= 7 ? 0.006 : -0.006;
+  PointArray after = before;
+  after(6 * kN2 + 3, 2) += 0.004;
+  CorrectionSpread(kN1, kN2, 3).apply(before, after);
+  EXPECT_NEAR(after(7 * kN2 + 3, 2) - before(7 * kN2 + 3, 2), 0.003, 1e-15); // w = 3/4
+  EXPECT_NEAR(after(4 * kN2 + 3, 2) - before(4 * kN2 + 3, 2), 0.002, 1e-15); // w = 1/2
+  for (int i : {8, 9})
+    for (int j = 0; j < kN2; ++j)
+      EXPECT_EQ(after(i * kN2 + j, 2), before(i * kN2 + j, 2)) << i << ", " << j;
 }
 
 TEST(CorrectionSpread, APointBetweenTwoCorrectedOnesTakesTheirMeanNotTheirSum) {
