@@ -25,6 +25,8 @@ from typing import List, Optional, Sequence
 
 import numpy as np
 
+from fsi.pump_point import revolution_series
+
 KEYS = {
     "head_drop_fraction": "clogged when the revolution mean head is this fraction under the clean pump's (0 < f < 1)",
     "power_rise_fraction": "clogged when the revolution mean shaft power is this fraction over the clean pump's (f > 0)",
@@ -119,14 +121,10 @@ def revolution_means(t_s, values, period_s):
     start within one sample spacing of its start and reach its end): (end times, means)."""
     t_s, values = np.asarray(t_s, float), np.asarray(values, float)
     spacing = float(np.median(np.diff(t_s))) if len(t_s) > 1 else period_s
-    tol = 1e-9 * period_s
-    ends, means = [], []
-    for k in range(int(np.floor((t_s[-1] + tol) / period_s))):
-        inside = (t_s > k * period_s + tol) & (t_s <= (k + 1) * period_s + tol)
-        if inside.any() and t_s[0] <= k * period_s + spacing + tol:
-            ends.append((k + 1) * period_s)
-            means.append(values[inside].mean())
-    return np.array(ends), np.array(means)
+    first = max(0, int(np.ceil((t_s[0] - spacing - 1e-9) / period_s)))
+    n = max(0, int(np.floor((t_s[-1] + 1e-9) / period_s)) - first)
+    return (np.arange(first + 1, first + n + 1) * period_s,
+            np.array(revolution_series(t_s, values, first * period_s, period_s, n)))
 
 
 def retained_at(rags: Sequence[Rag], time_s, residence_s):

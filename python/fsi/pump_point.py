@@ -136,16 +136,18 @@ def rotor_budget(folder, window, shaft_power_w):
             "loss_fraction": loss / shaft_power_w if shaft_power_w else float("nan")}
 
 
+def revolution_series(t, y, t0, period, n):
+    """The mean of y (sampled at times t) over each of the n revolutions (t0 + k P, t0 + (k + 1) P]."""
+    return [float(np.mean(y[(t > t0 + k * period + 1e-9) & (t <= t0 + (k + 1) * period + 1e-9)])) for k in range(n)]
+
+
 def revolution_means(t_torque, torque, t_head, head, t0, period, n):
     """The mean of torque and head over each of the n revolutions from t0, the standard error of
     the window's mean that their scatter gives (std / sqrt(n), revolutions taken as independent;
     None for one revolution) and the drift of the last three (max - min of their means over the
     window's mean, the issue's "under 2 %" rule; None for fewer than three)."""
-    result = {"revolution_torque_n_m": [], "revolution_head_m": []}
-    for k in range(n):
-        a, b = t0 + k * period + 1e-9, t0 + (k + 1) * period + 1e-9
-        result["revolution_torque_n_m"].append(float(np.mean(torque[(t_torque > a) & (t_torque <= b)])))
-        result["revolution_head_m"].append(float(np.mean(head[(t_head > a) & (t_head <= b)])))
+    result = {"revolution_torque_n_m": revolution_series(t_torque, torque, t0, period, n),
+              "revolution_head_m": revolution_series(t_head, head, t0, period, n)}
     for key, name in (("revolution_torque_n_m", "torque"), ("revolution_head_m", "head")):
         values = np.asarray(result[key])
         unit = "n_m" if name == "torque" else "m"
