@@ -49,18 +49,32 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
     Uf_.reset(new surfaceVectorField(
         IOobject("Uf", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::AUTO_WRITE),
         fvc::interpolate(*U_)));
-  {
-    // A restart's set has the penalization of its last step (OpenFoamFluidModel: which cells the
-    // bodies covered then). Read aside: set_penalization registers the field of the run.
-    IOobject io("penalizationRate", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false);
-    if (io.typeHeaderOk<volScalarField>(true)) {
-      const volScalarField rate(io, mesh);
-      startRate_.resize(rate.primitiveField().size());
-      forAll(rate.primitiveField(), c) startRate_[c] = rate.primitiveField()[c];
-    }
-  }
+  read_start_penalization();
   setRefCell(*p_, pimple_->dict(), pRefCell_, pRefValue_);
   mesh.setFluxRequired(p_->name());
+  create_turbulence();
+  record_cells_and_limits(settings);
+  // The case's own function objects (controlDict `functions`: surfaceFieldValue, probes, ...)
+  // run as in OpenFOAM's solvers; the time loop here is ++runTime, which does not call them.
+  runTime_->functionObjects().start();
+}
+
+void OpenFoamFlow::read_start_penalization() {
+  using namespace Foam;
+  const fvMesh &mesh = *mesh_;
+  // A restart's set has the penalization of its last step (OpenFoamFluidModel: which cells the
+  // bodies covered then). Read aside: set_penalization registers the field of the run.
+  IOobject io("penalizationRate", runTime_->timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::NO_WRITE, false);
+  if (io.typeHeaderOk<volScalarField>(true)) {
+    const volScalarField rate(io, mesh);
+    startRate_.resize(rate.primitiveField().size());
+    forAll(rate.primitiveField(), c) startRate_[c] = rate.primitiveField()[c];
+  }
+}
+
+void OpenFoamFlow::create_turbulence() {
+  using namespace Foam;
+  fvMesh &mesh = *mesh_;
   // Fields a run of this solver wrote (a checkpoint, a precursor's last fields; they hold
   // fsiAcceleration, which a case's own initial fields do not): their nut is the state the run
   // stopped in. The model's validate() evaluates nut again from the other fields, and a wall
@@ -85,10 +99,6 @@ OpenFoamFlow::OpenFoamFlow(const FoamFlowSettings &settings) {
     if (returnReduce(same, andOp<bool>()))
       nut == *nutWritten;
   }
-  record_cells_and_limits(settings);
-  // The case's own function objects (controlDict `functions`: surfaceFieldValue, probes, ...)
-  // run as in OpenFOAM's solvers; the time loop here is ++runTime, which does not call them.
-  runTime_->functionObjects().start();
 }
 
 void OpenFoamFlow::record_cells() {
