@@ -4,6 +4,7 @@
 #include "common/DidYouMean.hpp"
 #include "common/Fnv1a.hpp"
 
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
@@ -20,7 +21,9 @@ void CaseConfig::validate(common::ConfigReader &v) const {
   std::set<std::string> names;
   for (const auto &s : structures)
     if (!names.insert(s.name).second)
-      v.fail_value("structures", "has two structures named '" + s.name + "'; names must be unique.");
+      v.fail_value("structures", "has two structures named '" + s.name + "'; names must be unique" +
+                                     (n_fed > 0 ? " (the feed names its rags after their kind: rag01, rag02, ...)."
+                                                : "."));
   if (run.output_interval_s < run.time_step_s)
     v.fail_value("run", "output_interval_s must be at least time_step_s.");
   if (fluid && !coupling && !structures.empty())
@@ -31,6 +34,47 @@ void CaseConfig::validate(common::ConfigReader &v) const {
   if (run.end_time_s < run.time_step_s)
     v.fail_value("run", "end_time_s must be at least one time step.");
   validate_probes(v);
+}
+
+void CaseConfig::expand_feed(common::ConfigReader &v) {
+  std::vector<structure::feed::Release> releases;
+  try {
+    releases = structure::feed::draw_releases(feed->plan());
+  } catch (const std::invalid_argument &e) {
+    v.fail_value("feed", std::string("cannot be drawn: ") + e.what() + ".");
+  }
+  YAML::Node root = v.node();
+  if (!root["structures"])
+    root["structures"] = YAML::Node(YAML::NodeType::Sequence);
+  YAML::Node list = root["structures"];
+  const YAML::Node kinds = root["feed"]["kinds"];
+  const auto vec = [](const Vec3 &x) {
+    YAML::Node n(YAML::NodeType::Sequence);
+    for (int k = 0; k < 3; ++k)
+      n.push_back(x[k]);
+    n.SetStyle(YAML::EmitterStyle::Flow);
+    return n;
+  };
+  for (const auto &r : releases) {
+    YAML::Node rag = YAML::Clone(kinds[static_cast<std::size_t>(r.kind)]);
+    const std::string base = rag["name"] ? rag["name"].as<std::string>() : "rag";
+    rag["name"] = fmt::format("{}{:02d}", base, r.index + 1);
+    rag["release_time_s"] = r.time_s;
+    const Eigen::AngleAxisd turn(r.turn);
+    YAML::Node placement;
+    placement["centre_m"] = vec(r.centre_m);
+    placement["turn_axis"] = vec(turn.axis());
+    placement["turn_angle_deg"] = turn.angle() * 180.0 / M_PI;
+    rag["placement"] = placement;
+    if (!rag["remove_when_past"] && feed->remove_when_past) {
+      YAML::Node plane;
+      plane["point_m"] = vec(feed->remove_when_past->point_m);
+      plane["normal"] = vec(feed->remove_when_past->normal);
+      rag["remove_when_past"] = plane;
+    }
+    list.push_back(rag);
+  }
+  n_fed = releases.size();
 }
 
 void CaseConfig::validate_probes(const common::ConfigReader &v) const {

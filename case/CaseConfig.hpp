@@ -12,6 +12,7 @@
 #include "structure_solver/CollisionConfig.hpp"
 #include "structure_solver/ProbeConfig.hpp"
 #include "structure_solver/StructureConfig.hpp"
+#include "structure_solver/feed/FeedConfig.hpp"
 
 #include <filesystem>
 
@@ -21,7 +22,10 @@ struct CaseConfig {
   common::RunConfig run;
   Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
   std::optional<structure::CollisionConfig> collisions;
+  std::optional<structure::feed::FeedConfig> feed;
+  /// The declared structures, then the feed's rags (the last n_fed, expanded at load).
   std::vector<structure::StructureConfig> structures;
+  std::size_t n_fed = 0;
   std::vector<structure::ProbeConfig> probes;
   std::optional<FluidConfig> fluid;
   std::optional<coupler::CouplingConfig> coupling;
@@ -30,9 +34,25 @@ struct CaseConfig {
     v.section("run", run, "Time stepping and output.");
     v.vec3("gravity_m_per_s2", gravity_m_per_s2, "m/s^2", "Gravitational acceleration g.");
     v.optional_section("collisions", collisions, "Rigid surfaces and the collision model of Eq. (11).");
+    v.optional_section("feed", feed,
+                       "Rags released into the running scene in sequence (as pump test rigs feed them): their kinds "
+                       "and schedule. They become structures of their own, named after their kind (rag01, rag02, "
+                       "...). Optional.");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      if (feed)
+        expand_feed(v);
+    // The emitted configuration declares the feed, not its rags: read again, it expands again.
+    std::vector<structure::StructureConfig> fed;
+    if constexpr (std::is_same_v<V, common::ConfigEmitter>)
+      for (std::size_t i = structures.size() - n_fed; i < structures.size(); ++i)
+        fed.push_back(std::move(structures[i]));
+    if constexpr (std::is_same_v<V, common::ConfigEmitter>)
+      structures.resize(structures.size() - n_fed);
     v.list("structures", structures,
-           "Flexible structures of the scene (at least one; none with fluid.openfoam: the flow alone with its "
-           "rigid bodies, e.g. a pump's performance).");
+           "Flexible structures of the scene (at least one, or a feed; none with fluid.openfoam: the flow alone "
+           "with its rigid bodies, e.g. a pump's performance).");
+    for (auto &s : fed)
+      structures.push_back(std::move(s));
     v.list("probes", probes,
            "Places on the structures (centroid, edge centre, grid point) whose position and velocity are saved "
            "at every saved step: structure.h5 /probes/<name> and probes.csv. Optional.");
@@ -74,6 +94,10 @@ struct CaseConfig {
 
 private:
   void validate(common::ConfigReader &v) const;
+  /// Appends the feed's rags to the `structures` list of the YAML being read (before it is read):
+  /// one entry per release of the feed's schedule, its kind's keys with a name, release time,
+  /// placement and removal plane.
+  void expand_feed(common::ConfigReader &v);
   void validate_probes(const common::ConfigReader &v) const;
 };
 

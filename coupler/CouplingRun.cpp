@@ -199,6 +199,14 @@ void CouplingRun::admit() {
                               &checkpoints_->restart()});
   exchange_ = std::make_unique<StepExchange>(*participants_, roster_, *law_, moving_bodies(), dt_,
                                              config_.coupling.step_timeout_s);
+  // A law with a state per point (the feedback integral, the IB points) would carry on integrating
+  // at a structure that waits or is gone, and hit it with that at its release.
+  if (law_->name() != "penalty")
+    for (std::size_t i = 0; i < roster_.topology.size(); ++i)
+      if (exchange_->life().release_time_s(i) > 0.0 || roster_.topology[i].remove_when_past_size() > 0)
+        throw HandshakeRefused("structure '" + roster_.topology[i].name() + "' enters or leaves the scene during "
+                               "the run (release_time_s, remove_when_past, a feed): that works with coupling.law: "
+                               "penalty only, not " + law_->name());
 }
 
 void CouplingRun::receive_initial_state() {
@@ -235,6 +243,7 @@ void CouplingRun::resume_state(const proto::Message &message) {
   state.x_prev_m = own.points("x_previous_m", n);
   law_->start(state.x_now_m);
   law_->load_state(own, n);   // the IB points, the feedback integral
+  exchange_->life().load(own, exchange_->structure_names(), static_cast<double>(checkpoints_->first_step()) * dt_);
   scheme_->load_state(own, n); // implicit: the next step's F_0, IQN-ILS's columns
   const PointArray theirs = message.points(message.envelope().advance_reply().position_m(), n, "AdvanceReply.position_m");
   const long first = checkpoints_->first_step();
@@ -251,7 +260,9 @@ void CouplingRun::advance_one_step(long n) {
   participants_->take_wait_s();
   auto &timings = exchange_->timings();
   timings = StepTimings{};
+  exchange_->begin_step(n);        // the structures released at t^n enter the scene
   scheme_->advance(n, *exchange_); // Eq. (5), then Eq. (8) + PIMPLE || Eq. (4) + Eq. (11)
+  exchange_->end_step(n);          // those past their removal plane at X^{n+1} leave it
   record_rigid_body_loads();
   timings.waiting_s = participants_->take_wait_s();
   timings.step_wall_s = seconds_since(step_start);
@@ -295,6 +306,7 @@ void CouplingRun::checkpoint(long n) {
   own.put_points("x_previous_m", exchange_->state().x_prev_m);
   law_->save_state(own);
   scheme_->save_state(own);
+  exchange_->life().save(own, exchange_->structure_names());
   checkpoints_->write(n, static_cast<double>(n) * dt_, *participants_, roster_, own, *results_);
 }
 

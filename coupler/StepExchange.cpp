@@ -5,6 +5,8 @@
 #include "proto/BodyPose.hpp"
 #include "proto/TransportError.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <chrono>
 
 namespace fsi::coupler {
@@ -39,10 +41,64 @@ std::string rejected(const proto::MalformedMessageError &e) {
 }
 } // namespace
 
+namespace {
+std::vector<participant::LifeSpec> life_specs(const Roster &roster) {
+  std::vector<participant::LifeSpec> specs;
+  for (const auto &t : roster.topology) {
+    try {
+      specs.push_back(participant::life_spec_of(t));
+    } catch (const proto::MalformedMessageError &e) {
+      throw ParticipantFailed(roster.structure_id, "participant " + roster.structure_id +
+                                                       " declared a structure the coupler cannot take: " + e.what());
+    }
+  }
+  return specs;
+}
+} // namespace
+
 StepExchange::StepExchange(ParticipantTable &participants, const Roster &roster, CouplingLaw &law,
                            MovingBodies moving_bodies, double time_step_s, double step_timeout_s)
     : participants_(participants), roster_(roster), law_(law), moving_bodies_(std::move(moving_bodies)),
-      dt_(time_step_s), step_timeout_s_(step_timeout_s) {}
+      dt_(time_step_s), step_timeout_s_(step_timeout_s), life_(life_specs(roster), time_step_s) {
+  first_point_.push_back(0);
+  for (const auto &t : roster_.topology)
+    first_point_.push_back(first_point_.back() + static_cast<Eigen::Index>(t.n1()) * t.n2());
+  idle_ = life_.idle();
+}
+
+std::vector<std::string> StepExchange::structure_names() const {
+  std::vector<std::string> names;
+  for (const auto &t : roster_.topology)
+    names.push_back(t.name());
+  return names;
+}
+
+void StepExchange::begin_step(long n) {
+  const double t = static_cast<double>(n) * dt_;
+  for (const std::size_t i : life_.release(t))
+    spdlog::info("structure '{}' released at t = {:g} s ({} in the scene)", roster_.topology[i].name(), t,
+                 life_.n_in_scene());
+  idle_ = life_.idle();
+}
+
+void StepExchange::end_step(long n) {
+  std::vector<PointArray> x(roster_.topology.size());
+  std::vector<const PointArray *> pointers;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    x[i] = state_.x_now_m.middleRows(first_point_[i], first_point_[i + 1] - first_point_[i]);
+    pointers.push_back(&x[i]);
+  }
+  const double t = static_cast<double>(n + 1) * dt_;
+  for (const std::size_t i : life_.remove_past_planes(pointers, t))
+    spdlog::info("structure '{}' removed at t = {:g} s: past its remove_when_past plane ({} left in the scene)",
+                 roster_.topology[i].name(), t, life_.n_in_scene());
+  idle_ = life_.idle();
+}
+
+void StepExchange::zero_idle(PointArray &force_density) const {
+  for (const std::uint32_t i : idle_)
+    force_density.middleRows(first_point_[i], first_point_[i + 1] - first_point_[i]).setZero();
+}
 
 void StepExchange::interpolate_fluid_velocity(long n, double t, const PointArray &points) {
   // Section 2.3, first bullet: rigid surfaces move before the fluid forces are computed.
@@ -55,6 +111,7 @@ void StepExchange::interpolate_fluid_velocity(long n, double t, const PointArray
   // and feedback laws (see PenaltyCouplingLaw.hpp for what that makes of Eq. 5), the law's own
   // advected points for two_point_sets.
   request_.add_points(*request->mutable_position_m(), points);
+  request->mutable_idle_structures()->Assign(idle_.begin(), idle_.end());
   participants_.send(roster_.fluid_id, request_, static_cast<std::uint64_t>(n));
   const proto::Message &message = await(roster_.fluid_id, Envelope::kInterpolateReply, n, "InterpolateReply");
   const auto &reply = message.envelope().interpolate_reply();
@@ -71,6 +128,7 @@ void StepExchange::interpolate_fluid_velocity(long n, double t, const PointArray
 void StepExchange::apply_coupling_law(CouplingOutputs &out) {
   const auto start = Clock::now();
   law_.compute({&state_.x_now_m, &state_.x_prev_m, &state_.u_ib_m_per_s, dt_}, out);
+  zero_idle(out.force_density_n_per_measure); // nothing acts on a structure out of the scene
   if (!out.force_density_n_per_measure.allFinite()) {
     Eigen::Index worst = 0;
     (out.force_density_n_per_measure.rowwise().squaredNorm().array().isFinite() == false).maxCoeff(&worst);
@@ -118,8 +176,10 @@ void StepExchange::send_advances(long n, bool repeat) {
   auto *fluid = fluid_message.envelope().mutable_fluid_advance();
   fluid->set_time_s(t);
   fluid->set_dt_s(dt_);
+  zero_idle(coupled_.force_density_n_per_measure); // an implicit step's guess or accelerated force too
   const PointArray &force = coupled_.force_density_n_per_measure;
   fluid_message.add_points(*fluid->mutable_force_density_n_per_measure(), force);
+  fluid->mutable_idle_structures()->Assign(idle_.begin(), idle_.end());
   if (spread_elsewhere)
     fluid_message.add_points(*fluid->mutable_spread_position_m(), state_.x_now_m);
   fluid->set_repeat(repeat);
@@ -127,6 +187,7 @@ void StepExchange::send_advances(long n, bool repeat) {
   structure->set_repeat(repeat);
   structure->set_time_s(t);
   structure->set_dt_s(dt_);
+  structure->mutable_idle_structures()->Assign(idle_.begin(), idle_.end());
   // Signs: Eq. (1) adds +f_fsi, spread from F_fsi (Eq. 8), to the fluid; Eq. (3) subtracts
   // F_fsi from the structure. The fluid gets F_fsi, the structure the load -F_fsi.
   structure_advance_.add_points(*structure->mutable_load_density_n_per_measure(), force.rows()) = -force;

@@ -10,6 +10,7 @@
 #include "Roster.hpp"
 #include "StepTimings.hpp"
 #include "motion/RigidMotion.hpp"
+#include "participant/LifeCycle.hpp"
 #include "proto/Message.hpp"
 
 #include <memory>
@@ -31,6 +32,10 @@ public:
   StepExchange(ParticipantTable &participants, const Roster &roster, CouplingLaw &law, MovingBodies moving_bodies,
                double time_step_s, double step_timeout_s);
 
+  /// The structures released at the start of step n enter the scene (participant::LifeCycle).
+  void begin_step(long n);
+  /// After step n is accepted: the structures past their removal plane at X^{n+1} are gone.
+  void end_step(long n);
   /// U_ib at `points` at time t (the rigid bodies posed at t first), into state().u_ib_m_per_s.
   void interpolate_fluid_velocity(long n, double t, const PointArray &points);
   /// The law with X^n, X^{n-1}, U_ib of state() into `out`; refuses a force that is not finite.
@@ -49,10 +54,16 @@ public:
   CouplingOutputs &coupled() { return coupled_; }
   CouplingLaw &law() { return law_; }
   StepTimings &timings() { return timings_; }
+  participant::LifeCycle &life() { return life_; }
+  const participant::LifeCycle &life() const { return life_; }
+  /// The structures' names, in the order of the arrays.
+  std::vector<std::string> structure_names() const;
   double time_step_s() const { return dt_; }
 
 private:
   void send_advances(long n, bool repeat);
+  /// Zero force on the points of the structures not in the scene.
+  void zero_idle(PointArray &force_density) const;
   /// The structure's reply: X^{n+1}, checked, becomes X^n.
   void take_structure_reply(const proto::Incoming &incoming, long n);
 
@@ -65,6 +76,9 @@ private:
   LagrangianState state_;
   PointArray x_next_; ///< a structure reply, checked before it becomes X^{n+1}
   CouplingOutputs coupled_;
+  participant::LifeCycle life_;
+  std::vector<Eigen::Index> first_point_; ///< per structure, its first row in the arrays (and the total last)
+  std::vector<std::uint32_t> idle_;       ///< life_.idle() of the step
   StepTimings timings_;
   google::protobuf::RepeatedPtrField<proto::v2::RigidBodyLoad> fluid_loads_; ///< of the step's last advance
   proto::Message request_, fluid_advance_, fluid_advance_spread_, structure_advance_; // headers reused step to step

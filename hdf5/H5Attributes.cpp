@@ -88,7 +88,10 @@ void write_int64_array_attribute(hid_t object_id, const std::string &name,
   check_hdf5(H5Awrite(attribute.get(), H5T_NATIVE_INT64, values.data()), what);
 }
 
-void write_int64_attribute(hid_t object_id, const std::string &name, std::int64_t value) {
+namespace {
+/// A scalar attribute of `file_type`, created or overwritten, from one value of `memory_type`.
+void write_scalar_attribute(hid_t object_id, const std::string &name, hid_t file_type, hid_t memory_type,
+                            const void *value) {
   const std::string what = "cannot write " + describe(object_id, name);
   const htri_t exists = H5Aexists(object_id, name.c_str());
   check_hdf5(static_cast<herr_t>(exists < 0 ? -1 : 0), what);
@@ -98,9 +101,18 @@ void write_int64_attribute(hid_t object_id, const std::string &name, std::int64_
   } else {
     H5Handle space = H5Handle::dataspace(H5Screate(H5S_SCALAR), what);
     attribute = H5Handle::attribute(
-        H5Acreate2(object_id, name.c_str(), H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), what);
+        H5Acreate2(object_id, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), what);
   }
-  check_hdf5(H5Awrite(attribute.get(), H5T_NATIVE_INT64, &value), what);
+  check_hdf5(H5Awrite(attribute.get(), memory_type, value), what);
+}
+} // namespace
+
+void write_int64_attribute(hid_t object_id, const std::string &name, std::int64_t value) {
+  write_scalar_attribute(object_id, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+}
+
+void write_double_attribute(hid_t object_id, const std::string &name, double value) {
+  write_scalar_attribute(object_id, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
 }
 
 std::int64_t read_int64_attribute(hid_t object_id, const std::string &name, std::int64_t fallback) {

@@ -25,6 +25,10 @@ void write_int64_array_attribute(hid_t object_id, const std::string &name,
 /// `complete_steps`, rewritten after every flush).
 void write_int64_attribute(hid_t object_id, const std::string &name, std::int64_t value);
 
+/// Creates a scalar float64 attribute, or overwrites it when it exists (a time set when an
+/// event happens, such as a structure's exit).
+void write_double_attribute(hid_t object_id, const std::string &name, double value);
+
 /// Reads a scalar integer attribute; `fallback` when there is none.
 std::int64_t read_int64_attribute(hid_t object_id, const std::string &name, std::int64_t fallback);
 

@@ -20,6 +20,7 @@ std::vector<proto::v2::StructureTopology> to_messages(const std::vector<Structur
     t.set_n2(static_cast<std::uint32_t>(s.n2));
     t.mutable_point_measure()->Assign(s.point_measure.data(), s.point_measure.data() + s.point_measure.size());
     t.set_mass_per_measure(s.mass_per_measure);
+    write_life_spec(s.life, t);
     out.push_back(std::move(t));
   }
   return out;
@@ -35,6 +36,7 @@ RunPlan plan_of(const proto::v2::Welcome &welcome) {
     StructureTopology s{t.name(), t.model(),           static_cast<int>(t.n1()), static_cast<int>(t.n2()),
                         {},       t.mass_per_measure()};
     s.point_measure = Eigen::Map<const Eigen::VectorXd>(t.point_measure().data(), t.point_measure_size());
+    s.life = life_spec_of(t);
     plan.structures.push_back(std::move(s));
   }
   return plan;

@@ -4,6 +4,7 @@
 // SI units.
 
 #include "common/Types.hpp"
+#include "participant/LifeCycle.hpp"
 
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@ struct StructureTopology {
   int n1 = 0, n2 = 1;
   Eigen::VectorXd point_measure; ///< each point's share of the measure: m^2 (sheet) or m (filament)
   double mass_per_measure = 0.0; ///< rho_1: kg/m^2 (sheet) or kg/m (filament)
+  LifeSpec life;                 ///< when it enters the scene and where it leaves it
   Eigen::Index n_points() const { return static_cast<Eigen::Index>(n1) * n2; }
 };
 

@@ -8,6 +8,7 @@
 #include "proto/BodyPose.hpp"
 #include "proto/PackedPoints.hpp"
 
+#include <cstdint>
 #include <vector>
 
 namespace fsi::participant {
@@ -23,6 +24,8 @@ struct StructureStep {
   /// false under implicit coupling: the step may be repeated, so its output waits for
   /// Model::accept_step.
   bool record = true;
+  /// The structures the coupler holds idle this step (waiting or gone, ascending indices).
+  std::vector<std::uint32_t> idle_structures;
 };
 
 class StructureModel : public Model {

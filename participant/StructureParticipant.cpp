@@ -36,7 +36,8 @@ void StructureParticipant::advance(const proto::Message &request) {
   const proto::PointsView loads = request.points(body.load_density_n_per_measure(), plan().n_points(),
                                                  "StructureAdvance.load_density_n_per_measure");
   const StructureStep structure_step{static_cast<long>(step), body.time_s(), body.dt_s(),
-                                     read_poses(body.rigid_bodies()), !plan().implicit};
+                                     read_poses(body.rigid_bodies()), !plan().implicit,
+                                     {body.idle_structures().begin(), body.idle_structures().end()}};
   begin_advance(step, body.repeat(), "StructureAdvance");
   const auto start = common::Clock::now();
   model_.advance(structure_step, loads);

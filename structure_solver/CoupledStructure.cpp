@@ -19,10 +19,12 @@ std::string CoupledStructure::describe() const {
 
 std::vector<participant::StructureTopology> CoupledStructure::topology() const {
   std::vector<participant::StructureTopology> out;
-  for (const auto &s : run_.scene().structures()) {
+  const auto specs = life_specs(run_.config().structures);
+  for (std::size_t i = 0; i < run_.scene().structures().size(); ++i) {
+    const auto &s = run_.scene().structures()[i];
     const auto [n1, n2] = s->grid_shape();
     out.push_back({s->name(), s->model(), static_cast<int>(n1), static_cast<int>(n2), s->point_measures(),
-                   s->mass_per_measure()});
+                   s->mass_per_measure(), specs[i]});
   }
   return out;
 }
@@ -76,11 +78,29 @@ void CoupledStructure::advance(const participant::StructureStep &step, proto::Po
     at += l.rows();
   }
   take_rigid_poses(step);
+  check_idle(step);
   const StepOutcome outcome = run_.advance_step(step.step, &loads_, step.record);
   if (outcome.kind == StepOutcome::Kind::diverged)
     throw participant::Diverged(outcome.message);
   // A coupled run leaves a stop signal to the coupler (StructureRun::start(Resume::when_told)):
   // advance_step never stops on one here.
+}
+
+void CoupledStructure::check_idle(const participant::StructureStep &step) const {
+  // The coupler keeps the same life cycle on the same accepted positions: its idle list for the
+  // step is this scene's after the releases due at the step's start.
+  const auto own = run_.scene().life().idle_after_release(run_.scene().time_s());
+  if (step.idle_structures == own)
+    return;
+  const auto list = [](const std::vector<std::uint32_t> &v) {
+    std::string s;
+    for (const auto i : v)
+      s += (s.empty() ? "" : ", ") + std::to_string(i);
+    return "[" + s + "]";
+  };
+  throw std::runtime_error("step " + std::to_string(step.step) + ": the coupler holds structures " +
+                           list(step.idle_structures) + " idle, this solver " + list(own) +
+                           ": the two life cycles disagree (a coupler of another build?)");
 }
 
 void CoupledStructure::take_rigid_poses(const participant::StructureStep &step) {

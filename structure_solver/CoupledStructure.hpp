@@ -35,6 +35,8 @@ private:
   /// out: every structure's field(structure), in the order of topology().
   template <class Field> void concatenate(proto::MutablePointsView out, Field field) const;
   /// The moving rigid surfaces at the end of the step, from the coupler (section 2.3).
+  /// Refuses a step whose idle structures are not the ones this scene's life cycle holds idle.
+  void check_idle(const participant::StructureStep &step) const;
   void take_rigid_poses(const participant::StructureStep &step);
 
   StructureRun &run_;

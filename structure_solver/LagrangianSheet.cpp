@@ -3,6 +3,7 @@
 #include "StepSystemFactory.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 
 namespace fsi::structure {
@@ -20,6 +21,7 @@ LagrangianSheet::LagrangianSheet(SheetSetup setup)
                           setup_.linear_solver,
                           setup_.time_scheme};
   system_ = StepSystemFactory::builtin().make(setup_.tension_scheme, step);
+  explicit_stretching_ = system_->explicit_stretching();
   x_ = prescribed_positions(0.0);
   const double dt = setup_.time_step_s;
   x_prev_ = x_ - dt * Eigen::VectorXd::Ones(x_.rows()) * setup_.initial_velocity_m_per_s.transpose();
@@ -62,6 +64,8 @@ Eigen::Matrix3d LagrangianSheet::clamp_rotation(double time_s) const {
 }
 
 int LagrangianSheet::advance(const PointArray &load_density) {
+  if (!system_)
+    throw std::logic_error("structure '" + setup_.name + "' was removed from the scene (retired) and cannot advance");
   const double dt = setup_.time_step_s;
   // Nodal loads: (rho_1 g + load density) integrated over each point's measure.
   const Eigen::RowVector3d weight_density = setup_.mass_per_measure * setup_.gravity_m_per_s2.transpose();

@@ -56,9 +56,11 @@ public:
   double tension_wave_speed_m_per_s() const override {
     return std::sqrt(2.0 * setup_.tension_coefficient / setup_.mass_per_measure);
   }
-  bool explicit_stretching() const override { return system_->explicit_stretching(); }
+  bool explicit_stretching() const override { return explicit_stretching_; }
 
   int advance(const PointArray &load_density) override;
+  void retire() override { system_.reset(); }
+  bool retired() const override { return !system_; }
   void correct_positions(const std::function<void(PointArray &)> &correction) override;
 
   void restore_state(const PointArray &x_m, const PointArray &v_m_per_s, double time_s) override;
@@ -87,7 +89,8 @@ private:
   std::vector<bool> prescribed_;
   bool has_prescribed_;
   std::unique_ptr<ElasticTerms> terms_;
-  std::unique_ptr<StepSystem> system_;
+  std::unique_ptr<StepSystem> system_; ///< nullptr once retired
+  bool explicit_stretching_ = true;
   PointArray x_, x_prev_, v_, load_;
   double time_s_ = 0.0;
 };

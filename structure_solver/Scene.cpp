@@ -29,14 +29,27 @@ std::unique_ptr<geometry::RigidSurface> make_surface(const geometry::SurfaceConf
 
 } // namespace
 
-Scene::Scene(const StructureSetup &config) {
+std::vector<participant::LifeSpec> life_specs(const std::vector<StructureConfig> &structures) {
+  std::vector<participant::LifeSpec> specs;
+  for (const auto &s : structures)
+    specs.push_back({s.release_time_s, s.remove_when_past});
+  return specs;
+}
+
+Scene::Scene(const StructureSetup &config)
+    : life_(life_specs(config.structures), config.run.time_step_s), time_step_s_(config.run.time_step_s) {
   for (const auto &entry : config.structures) {
     const BuildContext context{entry.name, config.gravity_m_per_s2, config.run.time_step_s};
     structures_.push_back(ModelFactory::builtin().build(entry.model, *entry.parameters, context));
-    spdlog::info("structure '{}': model {}, {} x {} points, spacing {:.4g} m", entry.name, entry.model,
-                 structures_.back()->grid_shape().first, structures_.back()->grid_shape().second,
-                 structures_.back()->lagrangian_spacing_m());
-    zero_loads_.push_back(PointArray::Zero(structures_.back()->n_points(), 3));
+    StructureModel &s = *structures_.back();
+    if (entry.placement) { // the initial shape moved as a rigid body, its velocity turned with it
+      const PointArray v = s.velocities_m_per_s() * entry.placement->rotation().transpose();
+      s.restore_state(entry.placement->apply(s.positions_m(), s.point_measures()), v, 0.0);
+    }
+    spdlog::info("structure '{}': model {}, {} x {} points, spacing {:.4g} m{}", entry.name, entry.model,
+                 s.grid_shape().first, s.grid_shape().second, s.lagrangian_spacing_m(),
+                 entry.release_time_s > 0.0 ? fmt::format(", released at t = {:g} s", entry.release_time_s) : "");
+    zero_loads_.push_back(PointArray::Zero(s.n_points(), 3));
   }
   if (config.collisions)
     build_collisions(*config.collisions, config.gravity_m_per_s2.norm(), config.rigid_motions_from_coupler);
@@ -102,27 +115,80 @@ void Scene::advance() { advance(zero_loads_); } // gravity only, no fluid
 void Scene::advance(const std::vector<PointArray> &load_densities) {
   last_corrections_ = 0;
   last_iterations_ = 0;
+  for (const std::size_t i : life_.release(time_s_)) { // from where it waited, on the scene's clock
+    StructureModel &s = *structures_[i];
+    s.restore_state(s.positions_m(), s.velocities_m_per_s(), time_s_);
+    spdlog::info("structure '{}' released at t = {:g} s ({} in the scene)", s.name(), time_s_, life_.n_in_scene());
+  }
   if (contact_)
     for (std::size_t i = 0; i < structures_.size(); ++i)
       contact_start_[i] = structures_[i]->positions_m();
   for (std::size_t i = 0; i < structures_.size(); ++i)
-    last_iterations_ += structures_[i]->advance(load_densities[i]); // Eq. (4)
+    if (life_.in_scene(i))
+      last_iterations_ += structures_[i]->advance(load_densities[i]); // Eq. (4)
   if (contact_)
     correct_contacts();
   // The walls last, so that no point ends a step inside a rigid body.
   for (std::size_t i = 0; i < structures_.size(); ++i)
-    correct_collisions(*structures_[i], i); // Eq. (11)
+    if (life_.in_scene(i))
+      correct_collisions(*structures_[i], i); // Eq. (11)
+  time_s_ += time_step_s_;
+}
+
+std::vector<std::size_t> Scene::remove_past_planes() {
+  std::vector<const PointArray *> positions;
+  for (const auto &s : structures_)
+    positions.push_back(&s->positions_m());
+  const auto removed = life_.remove_past_planes(positions, time_s_);
+  for (const std::size_t i : removed) {
+    structures_[i]->retire();
+    spdlog::info("structure '{}' removed at t = {:g} s: all its points are past its remove_when_past plane ({} "
+                 "left in the scene)", structures_[i]->name(), time_s_, life_.n_in_scene());
+  }
+  return removed;
+}
+
+std::vector<std::string> Scene::names() const {
+  std::vector<std::string> out;
+  for (const auto &s : structures_)
+    out.push_back(s->name());
+  return out;
+}
+
+void Scene::save_state(checkpoint::StateArchive &archive) const {
+  archive.put_double("time_s", time_s_);
+  for (const auto &s : structures_)
+    s->save_state(archive, "structures/" + s->name() + "/");
+  life_.save(archive, names());
+}
+
+void Scene::load_state(const checkpoint::StateArchive &archive) {
+  time_s_ = archive.number("time_s");
+  for (const auto &s : structures_)
+    s->load_state(archive, "structures/" + s->name() + "/");
+  life_.load(archive, names(), time_s_);
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    if (life_.life(i) == Life::gone)
+      structures_[i]->retire();
+}
+
+void Scene::restore_states(const std::vector<PointArray> &x_m, const std::vector<PointArray> &v_m_per_s,
+                           double time_s) {
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    structures_[i]->restore_state(x_m[i], v_m_per_s[i], time_s);
+  time_s_ = time_s;
 }
 
 void Scene::correct_contacts() {
   for (std::size_t i = 0; i < structures_.size(); ++i)
     contact_now_[i] = structures_[i]->positions_m();
-  const auto stats = contact_->correct(contact_now_, contact_start_);
+  const auto stats = contact_->correct(contact_now_, contact_start_, life_.in_scene_flags());
   if (stats.n_contacts == 0)
     return;
   last_corrections_ += stats.n_contacts;
   for (std::size_t i = 0; i < structures_.size(); ++i)
-    structures_[i]->correct_positions([&](PointArray &x) { x = contact_now_[i]; });
+    if (life_.in_scene(i))
+      structures_[i]->correct_positions([&](PointArray &x) { x = contact_now_[i]; });
 }
 
 void Scene::correct_collisions(StructureModel &structure, std::size_t index) {

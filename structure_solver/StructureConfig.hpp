@@ -1,9 +1,14 @@
 #pragma once
 // One entry of the case's `structures` list: a name, a model from the registry and that
-// model's own keys at the same level.
+// model's own keys at the same level, and the structure's life in the scene: when it is
+// released, where it starts when placed, and the plane past which it is removed.
 
 #include "ModelRegistry.hpp"
+#include "Placement.hpp"
 #include "common/DidYouMean.hpp"
+#include "common/RunConfig.hpp"
+
+#include <optional>
 
 namespace fsi::structure {
 
@@ -11,10 +16,23 @@ struct StructureConfig {
   std::string name = "sheet";
   std::string model = "membrane";
   std::unique_ptr<ModelConfig> parameters;
+  double release_time_s = 0.0;
+  std::optional<Placement> placement;
+  std::optional<common::StopPlane> remove_when_past;
 
   template <class V> void visit(V &v) {
     v.text("name", name, "Unique name; the HDF5 group /structures/<name>.");
     v.text("model", model, "Structure model: " + common::join(ModelRegistry::builtin().names()) + ".");
+    v.number("release_time_s", release_time_s, common::Range::non_negative("s"),
+             "When the structure enters the scene (0: from the start). Before it, it is neither advanced nor "
+             "coupled: it waits where it starts.");
+    v.optional_section("placement", placement,
+                       "Moves the initial shape as a rigid body: its centroid to centre_m, turned about it. Absent: "
+                       "where the model's keys put it.");
+    v.optional_section("remove_when_past", remove_when_past,
+                       "Removes the structure from the scene at the first step where all its points are past this "
+                       "plane (a rag leaving through a pump's discharge): from then on it is neither advanced nor "
+                       "coupled, its solver's memory is freed, and structure.h5 keeps its history and exit time.");
     if constexpr (std::is_same_v<V, common::ConfigDocWriter>)
       return; // each model's keys are documented in their own table
     else {

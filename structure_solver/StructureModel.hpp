@@ -52,6 +52,12 @@ public:
   /// Applies a position correction (collisions, Eq. 11) to X^{n+1}; prescribed points stay.
   virtual void correct_positions(const std::function<void(PointArray &)> &correction) = 0;
 
+  /// Frees what only advancing needs (the step's matrices and factorisation): a structure gone
+  /// from the scene keeps its state, energy and stretch for the output, and is never advanced
+  /// again (advance() then throws std::logic_error).
+  virtual void retire() = 0;
+  virtual bool retired() const = 0;
+
   /// Puts the model back to a saved state (positions and velocities at the current time);
   /// used to write the last good state after a divergence.
   virtual void restore_state(const PointArray &x_m, const PointArray &v_m_per_s, double time_s) = 0;

@@ -72,8 +72,13 @@ void StructureRun::open_results() {
   std::ofstream(output_dir_ / "config.effective.yaml") << config_yaml_ << "\n";
   results_ = std::make_unique<output::ResultsWriter>(output_dir_ / "structure.h5", output_dir_ / "structure.xdmf",
                                                      output::RunMetadata{config_yaml_, common::code_version()});
-  for (const auto &s : scene_->structures())
-    results_->add_structure({s->name(), s->model(), s->grid_shape().first, s->grid_shape().second});
+  for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
+    const auto &s = scene_->structures()[i];
+    results_->add_structure({s->name(), s->model(), s->grid_shape().first, s->grid_shape().second,
+                             scene_->life().release_time_s(i)});
+    if (scene_->life().life(i) == Life::gone) // a restart: removed before its checkpoint
+      results_->set_exit_time(i, scene_->life().exit_time_s(i));
+  }
   open_probes();
 }
 
@@ -120,9 +125,7 @@ checkpoint::CheckpointPart StructureRun::write_checkpoint_part(const std::filesy
                                                                long n_completed) const {
   checkpoint::StateArchive archive;
   archive.put_integer("step", n_completed);
-  archive.put_double("time_s", scene_->time_s());
-  for (const auto &s : scene_->structures())
-    s->save_state(archive, "structures/" + s->name() + "/");
+  scene_->save_state(archive);
   return {checkpoint_part, checkpoint::write_archive(folder / checkpoint_part, archive)};
 }
 
@@ -137,8 +140,7 @@ void StructureRun::read_checkpoint_part(const std::filesystem::path &folder, lon
     throw checkpoint::CheckpointError((folder / checkpoint_part).string() + ": holds step " +
                                       std::to_string(archive.integer("step")) + ", the set is of step " +
                                       std::to_string(n_completed));
-  for (const auto &s : scene_->structures())
-    s->load_state(archive, "structures/" + s->name() + "/");
+  scene_->load_state(archive);
 }
 
 /// A run of its own checkpoints itself: its part, then the set is complete.
@@ -215,8 +217,7 @@ void StructureRun::report_progress(long step, long n_steps, bool force) {
 
 void StructureRun::stop_with(const std::string &status, long last_good_step) {
   const double last_good_time = static_cast<double>(last_good_step) * config_.run.time_step_s;
-  for (std::size_t i = 0; i < scene_->structures().size(); ++i)
-    scene_->structures()[i]->restore_state(last_good_x_[i], last_good_v_[i], last_good_time);
+  scene_->restore_states(last_good_x_, last_good_v_, last_good_time);
   if (last_written_step_ != last_good_step)
     write_state(last_good_step);
   results_->set_status(status);
@@ -283,14 +284,10 @@ void StructureRun::resume_from(long step, const std::string &checksum) {
 
 void StructureRun::save_step_start() {
   step_start_ = checkpoint::StateArchive();
-  for (const auto &s : scene_->structures())
-    s->save_state(step_start_, "structures/" + s->name() + "/");
+  scene_->save_state(step_start_);
 }
 
-void StructureRun::restore_step_start() {
-  for (const auto &s : scene_->structures())
-    s->load_state(step_start_, "structures/" + s->name() + "/");
-}
+void StructureRun::restore_step_start() { scene_->load_state(step_start_); }
 
 StepOutcome StructureRun::advance_step(long n, const std::vector<PointArray> *load_densities, bool record) {
   const long step = n + 1; // the state X^{n+1} this step reaches (saved states are numbered from X^0)
@@ -334,6 +331,8 @@ StepOutcome StructureRun::accept_step(long n) {
 
 void StructureRun::record_step(long n) {
   const long step = n + 1, n_total = n_steps();
+  for (const std::size_t i : scene_->remove_past_planes())
+    results_->set_exit_time(i, scene_->life().exit_time_s(i));
   if (step % output_every() == 0 || step == n_total)
     write_state(step);
   report_progress(step, n_total, step == n_total);

@@ -64,11 +64,13 @@ StructureContact::StructureContact(std::vector<ContactBody> bodies, double thres
   }
 }
 
-ContactStats StructureContact::correct(std::vector<PointArray> &positions_m,
-                                       const std::vector<PointArray> &start_m) const {
-  if (positions_m.size() != bodies_.size() || start_m.size() != bodies_.size())
+ContactStats StructureContact::correct(std::vector<PointArray> &positions_m, const std::vector<PointArray> &start_m,
+                                       const std::vector<bool> &in_scene) const {
+  if (positions_m.size() != bodies_.size() || start_m.size() != bodies_.size() ||
+      !(in_scene.empty() || in_scene.size() == bodies_.size()))
     throw std::invalid_argument("StructureContact::correct: " + std::to_string(positions_m.size()) + " and " +
-                                std::to_string(start_m.size()) + " structures given, contact has " +
+                                std::to_string(start_m.size()) + " structures given (" +
+                                std::to_string(in_scene.size()) + " flags), contact has " +
                                 std::to_string(bodies_.size()) + ".");
   for (std::size_t k = 0; k < bodies_.size(); ++k)
     if (positions_m[k].rows() != bodies_[k].point_mass_kg.size() || start_m[k].rows() != positions_m[k].rows())
@@ -78,7 +80,7 @@ ContactStats StructureContact::correct(std::vector<PointArray> &positions_m,
   ContactStats stats;
   for (std::size_t a = 0; a < bodies_.size(); ++a)
     for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (a != b && !triangles_[b].empty())
+      if (a != b && !triangles_[b].empty() && (in_scene.empty() || (in_scene[a] && in_scene[b])))
         correct_pair(a, b, positions_m, start_m, stats);
   return stats;
 }

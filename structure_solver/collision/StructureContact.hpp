@@ -43,9 +43,11 @@ public:
 
   /// Moves the points of every pair of different structures apart (Gauss-Seidel, pair after
   /// pair, in the order of the bodies). positions_m: X^{n+1} of each body, corrected in place;
-  /// start_m: X^n, which gives the side each point was on. Throws std::invalid_argument when the
-  /// counts differ from the bodies'.
-  ContactStats correct(std::vector<PointArray> &positions_m, const std::vector<PointArray> &start_m) const;
+  /// start_m: X^n, which gives the side each point was on; in_scene: per body, whether it takes
+  /// part (empty: all; a feed's rag before its release or after its removal does not). Throws
+  /// std::invalid_argument when the counts differ from the bodies'.
+  ContactStats correct(std::vector<PointArray> &positions_m, const std::vector<PointArray> &start_m,
+                       const std::vector<bool> &in_scene = {}) const;
 
   std::size_t n_bodies() const { return bodies_.size(); }
 

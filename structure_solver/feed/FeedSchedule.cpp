@@ -1,5 +1,6 @@
 #include "structure_solver/feed/FeedSchedule.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -29,6 +30,8 @@ std::vector<Release> draw_releases(const FeedPlan &plan) {
   if (!(plan.interval_s > 0.0) || !std::isfinite(plan.interval_s))
     throw std::invalid_argument("feed: the interval between releases (" + std::to_string(plan.interval_s) +
                                 " s) must be positive");
+  if (plan.kinds < 1)
+    throw std::invalid_argument("feed.kinds: at least one kind of rag");
   if (!(plan.first_release_s >= 0.0))
     throw std::invalid_argument("feed.first_release_s = " + std::to_string(plan.first_release_s) +
                                 ": must be 0 or later");
@@ -50,6 +53,8 @@ std::vector<Release> draw_releases(const FeedPlan &plan) {
       r.centre_m[k] = plan.region_min_m[k] + unit(generator) * (plan.region_max_m[k] - plan.region_min_m[k]);
     if (plan.random_turn)
       r.turn = random_turn(generator);
+    r.kind = plan.random_kind ? std::min(plan.kinds - 1, static_cast<int>(unit(generator) * plan.kinds))
+                              : i % plan.kinds;
     releases.push_back(r);
   }
   return releases;

@@ -29,6 +29,8 @@ struct FeedPlan {
   Vec3 region_min_m = Vec3::Zero(); ///< the box the centres are drawn in (min <= max)
   Vec3 region_max_m = Vec3::Zero();
   bool random_turn = true;          ///< false: every rag as its kind is declared
+  int kinds = 1;                    ///< kinds of rag to choose from (>= 1)
+  bool random_kind = false;         ///< false: the kinds in turn; true: drawn with equal chances
 };
 
 struct Release {
@@ -36,6 +38,7 @@ struct Release {
   double time_s = 0.0;
   Vec3 centre_m = Vec3::Zero();
   Eigen::Quaterniond turn = Eigen::Quaterniond::Identity(); ///< applied about the rag's centre
+  int kind = 0;               ///< which of the plan's kinds
 };
 
 /// The releases of `plan`, in time order. Throws std::invalid_argument naming the field for a

@@ -22,6 +22,7 @@ struct StructureLayout {
   std::string model; ///< "membrane" or "filament"
   int n1 = 0;        ///< points along s1 (>= 2)
   int n2 = 1;        ///< points along s2; a filament has n2 == 1
+  double release_time_s = 0.0; ///< when it entered the scene (structures[].release_time_s)
 
   int n_points() const { return n1 * n2; }
 };

@@ -113,6 +113,16 @@ void ResultsWriter::write_step(const StepRecord &record) {
   }
 }
 
+void ResultsWriter::set_exit_time(std::size_t index, double time_s) {
+  throw_if_failed();
+  try {
+    structures_.at(index).set_exit_time(time_s);
+    flush();
+  } catch (const std::runtime_error &error) {
+    fail(error);
+  }
+}
+
 void ResultsWriter::set_status(const std::string &status) {
   try {
     hdf5::write_string_attribute(file_.get(), "status", status);

@@ -6,7 +6,8 @@
 //   /                      attrs units="SI", config_yaml, code_version, status, created_utc
 //   /time_s                [n_saved]            float64
 //   /step                  [n_saved]            int64
-//   /structures/<name>/    attrs model, grid_shape={n1,n2}, point_order
+//   /structures/<name>/    attrs model, grid_shape={n1,n2}, point_order, release_time_s,
+//                          exit_time_s (NaN while the structure is in the scene or waiting)
 //       connectivity       [n_cells, 4] quads (membrane) or [n1-1, 2] segments (filament)
 //       position_m, velocity_m_per_s            [n_saved, n_points, 3] float64
 //       max_stretch_ratio, kinetic_energy_j, elastic_energy_j, potential_energy_j  [n_saved]
@@ -52,6 +53,9 @@ public:
   /// does not match the structures; std::runtime_error naming file and dataset when HDF5
   /// fails, after which the writer refuses further steps.
   void write_step(const StepRecord &record);
+
+  /// Records that structure `index` (add_structure() order) left the scene at time_s, and flushes.
+  void set_exit_time(std::size_t index, double time_s);
 
   /// Sets the root `status` attribute ("running", "completed", "diverged: <why>",
   /// "interrupted") and flushes.

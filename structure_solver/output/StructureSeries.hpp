@@ -1,6 +1,7 @@
 #pragma once
 // The group `/structures/<name>` of the results file: layout attributes, the connectivity,
-// and the per-step datasets (positions, velocities, stretch, energies) of one structure.
+// and the per-step datasets (positions, velocities, stretch, energies) of one structure. Its
+// life in the scene is in two attributes: release_time_s, and exit_time_s (NaN while it stays).
 
 #include "hdf5/ExtendableDataset.hpp"
 #include "hdf5/H5Handle.hpp"
@@ -21,6 +22,9 @@ public:
 
   /// Appends one row to every per-step dataset; call check() first.
   void append(const StructureState &state);
+
+  /// Sets the group's `exit_time_s` attribute (NaN until the structure is removed).
+  void set_exit_time(double time_s);
 
   const StructureLayout &layout() const { return layout_; }
 

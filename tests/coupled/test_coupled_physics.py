@@ -256,6 +256,69 @@ class CleanShutdown(TempDirTest):
                          "the final Shutdown (launcher code, coupling status, structure status)" % len(bad))
 
 
+class EnteringAndLeaving(TempDirTest):
+    """Structures that enter and leave a coupled run (issue 33's feed): in the uniform flow of
+    cases/sheet-in-uniform-flow, the sheet is removed once all its points are past x = 0.02 m,
+    and a second sheet, released at 0.05 s, waits untouched until then and relaxes to the flow
+    from its release exactly as the first did from the start: V^k = U (1 - (1 - a)^k), k the
+    steps since its release. Nothing acts on a structure out of the scene, in either process."""
+
+    def test_a_late_sheet_relaxes_from_its_release_and_a_passed_one_is_removed(self):
+        import copy
+        import h5py
+        c = load_case(case_dir("sheet-in-uniform-flow"))
+        c["run"]["end_time_s"] = 0.2
+        c["run"]["output_interval_s"] = 0.0025
+        del c["probes"]
+        first = c["structures"][0]
+        first["remove_when_past"] = {"point_m": [0.02, 0, 0], "normal": [1, 0, 0]}
+        late = copy.deepcopy(first)
+        del late["remove_when_past"]
+        late.update({"name": "late", "origin_m": [0, 0.1, 0], "release_time_s": 0.05})
+        c["structures"].append(late)
+        case = write_case(os.path.join(self.tmp, "case"), c)
+        out = os.path.join(self.tmp, "out")
+        code, stderr = self.launch(case, out)
+        self.assert_run_completed(out, code, stderr)
+        K, dt = float(c["coupling"]["stiffness_n_per_m_per_measure"]), float(c["run"]["time_step_s"])
+        a = K * dt * dt / 0.08
+        U = np.array(c["fluid"]["prescribed"]["uniform"]["velocity_m_per_s"], dtype=float)
+        r = StructureResults(out)
+        t, n = r.time_s, np.rint(r.time_s / dt)
+        x, v = r.structures["late"]["position_m"], r.structures["late"]["velocity_m_per_s"]
+        tol = roundoff_velocity_tolerance(n[-1], np.abs(x).max(), dt)
+        before = t < 0.05 - dt / 2
+        self.assertTrue(np.all(x[before] == x[0]), "the late sheet moved before its release")
+        self.assertTrue(np.all(v[before] == 0.0))
+        k = np.maximum(n - 1000, 0)  # released at the start of step 1000 (t = 0.05 s)
+        expected = np.outer(1.0 - (1.0 - a) ** k, U)
+        error = np.abs(v - expected[:, None, :]).max()
+        self.assertLess(error, tol, "late sheet: max |V - U (1 - (1 - a)^k)| = %.3g m/s" % error)
+        # The first sheet: removed at the first step with every point past x = 0.02 m (0.146 s,
+        # StopWhenPast below), then still.
+        xs = r.structures["sheet"]["position_m"]
+        with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
+            exit_s = float(f["structures/sheet"].attrs["exit_time_s"])
+            self.assertEqual(float(f["structures/late"].attrs["release_time_s"]), 0.05)
+            self.assertTrue(np.isnan(f["structures/late"].attrs["exit_time_s"]))
+        self.assertAlmostEqual(exit_s, 0.146, delta=0.005)
+        after = t > exit_s + dt / 2
+        self.assertTrue(np.all(xs[after] == xs[after][0]), "the removed sheet moved after its exit")
+        self.assertTrue(np.all(xs[after][0][:, 0] > 0.02))
+        # The coupler's force on the fluid: the first sheet's until its exit, the late one's from
+        # its release; -K dt A (1 - a)^k U each.
+        with h5py.File(os.path.join(out, "coupling.h5"), "r") as f:
+            force, t_force = f["total_force_on_fluid_n"][:], f["time_s"][:]
+        step = np.rint(t_force / dt) - 1
+        area = 0.05 * 0.05
+        on = lambda k, live: np.where(live, (1.0 - a) ** np.maximum(k, 0), 0.0)
+        magnitude = on(step, step * dt < exit_s - dt / 2) + on(step - 1000, step >= 1000)
+        expected_force = -K * dt * area * np.outer(magnitude, U)
+        self.assertLess(np.abs(force - expected_force).max(), K * dt * area * tol)
+        with open(os.path.join(out, "coupler.log")) as f:
+            self.assertIn("structure 'late' released at t = 0.05 s", f.read())
+
+
 class StopWhenPast(TempDirTest):
     """run.stop_when_past: the sheet carried by a uniform flow crosses a plane; the coupled run
     ends, completed, at the first step where every point is past it, and so does the same

@@ -1,0 +1,212 @@
+// Rags that enter and leave a running scene (issue 33): release times, removal past a plane, the
+// feed section expanded into structures, and the state a restart needs. Through the real parser
+// (CaseFixture) and the real Scene.
+
+#include "CaseFixture.hpp"
+
+#include "common/ConfigError.hpp"
+#include "structure_solver/feed/FeedSchedule.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fsi::structure {
+namespace {
+
+/// Two 4 cm rags falling freely (no fluid), dt = 1 ms; the second released at 10 ms, the first
+/// removed once all its points are 5 cm below where it started.
+const char *two_rags = R"(run: {end_time_s: 1, time_step_s: 1.0e-3, output_interval_s: 0.01}
+gravity_m_per_s2: [0, 0, -9.81]
+structures:
+  - name: first
+    model: membrane
+    size_m: [0.04, 0.04]
+    n_points: [5, 5]
+    origin_m: [0, 0, 0]
+    s1_direction: [1, 0, 0]
+    s2_direction: [0, 1, 0]
+    remove_when_past: {point_m: [0, 0, -0.05], normal: [0, 0, -1]}
+  - name: second
+    model: membrane
+    size_m: [0.04, 0.04]
+    n_points: [5, 5]
+    origin_m: [0.1, 0, 0]
+    s1_direction: [1, 0, 0]
+    s2_direction: [0, 1, 0]
+    release_time_s: 0.01
+)";
+
+TEST(Feed, ARagWaitsUntilItsReleaseAndThenFallsAsOneReleasedAtTheStart) {
+  Scene scene(testing::load_case(two_rags));
+  const auto &first = *scene.structures()[0], &second = *scene.structures()[1];
+  const PointArray first_start = first.positions_m(), second_start = second.positions_m();
+  EXPECT_FALSE(scene.life().in_scene(1));
+  for (int k = 0; k < 10; ++k)
+    scene.advance();
+  EXPECT_EQ(second.positions_m(), second_start); // waited, bit for bit
+  EXPECT_FALSE(scene.life().in_scene(1));
+  const PointArray first_at_10 = first.positions_m() - first_start;
+  for (int k = 0; k < 10; ++k)
+    scene.advance();
+  EXPECT_TRUE(scene.life().in_scene(1));
+  // 10 steps after its release it has fallen as far as the first had 10 steps after the start:
+  // Eq. (4)'s free fall, g dt^2 n (n + 1) / 2 = 0.540 mm at n = 10, to round-off.
+  EXPECT_NEAR(second.time_s(), scene.time_s(), 1e-15);
+  EXPECT_LT(((second.positions_m() - second_start) - first_at_10).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_NEAR(first_at_10(0, 2), -9.81 * 1e-6 * 10 * 11 / 2, 1e-15);
+}
+
+TEST(Feed, ARagPastItsPlaneIsRemovedKeepsItsLastStateAndFreesItsSolver) {
+  Scene scene(testing::load_case(two_rags));
+  const auto &first = *scene.structures()[0], &second = *scene.structures()[1];
+  // z = -0.05 m in free fall: t = sqrt(2 * 0.05 / 9.81) = 0.101 s, the end of step 102 or so.
+  int removed_at = -1;
+  for (int k = 1; k <= 200 && removed_at < 0; ++k) {
+    scene.advance();
+    if (!scene.remove_past_planes().empty())
+      removed_at = k;
+    else
+      EXPECT_GT(first.positions_m().col(2).maxCoeff(), -0.05) << "step " << k;
+  }
+  ASSERT_GT(removed_at, 0);
+  EXPECT_LT(first.positions_m().col(2).maxCoeff(), -0.05);
+  EXPECT_NEAR(scene.life().exit_time_s(0), removed_at * 1e-3, 1e-12);
+  EXPECT_NEAR(scene.life().exit_time_s(0), std::sqrt(2 * 0.05 / 9.81), 2e-3);
+  EXPECT_TRUE(std::isnan(scene.life().exit_time_s(1)));
+  EXPECT_TRUE(first.retired());
+  EXPECT_THROW(scene.structures()[0]->advance(PointArray::Zero(25, 3)), std::logic_error);
+  const PointArray left = first.positions_m(), second_then = second.positions_m();
+  for (int k = 0; k < 5; ++k)
+    scene.advance();
+  EXPECT_EQ(first.positions_m(), left); // gone: stays where it left, never advanced
+  EXPECT_LT(second.positions_m().col(2).maxCoeff(), second_then.col(2).minCoeff()); // the other goes on
+  EXPECT_EQ(scene.life().n_in_scene(), 1u);
+}
+
+TEST(Feed, TheSceneStateSavedAndLoadedResumesReleasesAndRemovalsBitForBit) {
+  Scene full(testing::load_case(two_rags)), resumed(testing::load_case(two_rags));
+  checkpoint::StateArchive archive;
+  double saved_at = 0.0;
+  for (int k = 0; k < 105; ++k) { // past the first's removal, the second released
+    full.advance();
+    full.remove_past_planes();
+    if (k == 4) { // before the release
+      full.save_state(archive);
+      saved_at = full.time_s();
+    }
+  }
+  resumed.load_state(archive);
+  EXPECT_EQ(resumed.time_s(), saved_at);
+  for (int k = 5; k < 105; ++k) {
+    resumed.advance();
+    resumed.remove_past_planes();
+  }
+  EXPECT_EQ(resumed.time_s(), full.time_s());
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(resumed.structures()[i]->positions_m(), full.structures()[i]->positions_m()) << i;
+    EXPECT_EQ(resumed.life().life(i), full.life().life(i)) << i;
+  }
+  EXPECT_EQ(resumed.life().exit_time_s(0), full.life().exit_time_s(0));
+  // A checkpoint of a gone rag: loading it retires the rag again.
+  checkpoint::StateArchive after;
+  full.save_state(after);
+  Scene again(testing::load_case(two_rags));
+  again.load_state(after);
+  EXPECT_TRUE(again.structures()[0]->retired());
+  EXPECT_EQ(again.life().life(0), Life::gone);
+}
+
+TEST(Feed, APlacedRagHasItsCentroidAtTheCentreAndItsShapeTurned) {
+  std::string yaml = two_rags;
+  yaml += R"(    placement: {centre_m: [0.3, 0.2, 0.1], turn_axis: [0, 0, 2], turn_angle_deg: 90}
+)";
+  Scene scene(testing::load_case(yaml));
+  const auto &s = *scene.structures()[1];
+  const Vec3 centroid = s.positions_m().colwise().mean().transpose();
+  EXPECT_LT((centroid - Vec3(0.3, 0.2, 0.1)).norm(), 1e-15);
+  // s1 was +x; turned 90 deg about +z it is +y: points (0, 0) and (4, 0) differ by 4 cm along y.
+  const Eigen::RowVector3d edge = s.positions_m().row(4 * 5) - s.positions_m().row(0);
+  EXPECT_LT((edge - Eigen::RowVector3d(0, 0.04, 0)).norm(), 1e-15);
+}
+
+const char *feed_case = R"(run: {end_time_s: 0.1, time_step_s: 1.0e-3, output_interval_s: 0.01}
+feed:
+  rags: 5
+  seed: 7
+  spacing: poisson
+  interval_s: 0.02
+  first_release_s: 0.005
+  region: {min_m: [-0.1, -0.1, 0.2], max_m: [0.1, 0.1, 0.3]}
+  kinds:
+    - name: wipe
+      model: membrane
+      size_m: [0.04, 0.02]
+      n_points: [5, 3]
+    - model: membrane
+      size_m: [0.03, 0.03]
+      n_points: [4, 4]
+  remove_when_past: {point_m: [0, 0, -1], normal: [0, 0, -1]}
+)";
+
+TEST(Feed, TheFeedSectionBecomesOneStructurePerReleaseOfItsSchedule) {
+  const auto dir = testing::make_case_dir(feed_case);
+  const auto config = case_config::CaseConfig::load(dir);
+  ASSERT_EQ(config.structures.size(), 5u);
+  EXPECT_EQ(config.n_fed, 5u);
+  const auto releases = feed::draw_releases(config.feed->plan());
+  const char *names[] = {"wipe01", "rag02", "wipe03", "rag04", "wipe05"};
+  for (std::size_t i = 0; i < 5; ++i) {
+    const auto &s = config.structures[i];
+    EXPECT_EQ(s.name, names[i]);
+    EXPECT_EQ(s.release_time_s, releases[i].time_s) << i; // through YAML, bit for bit
+    ASSERT_TRUE(s.placement && s.remove_when_past);
+    EXPECT_EQ(s.placement->centre_m, releases[i].centre_m) << i;
+    const Eigen::Matrix3d turn = releases[i].turn.toRotationMatrix();
+    EXPECT_LT((s.placement->rotation() - turn).cwiseAbs().maxCoeff(), 1e-14) << i;
+    EXPECT_EQ(s.remove_when_past->normal, Vec3(0, 0, -1));
+  }
+  EXPECT_GT(config.structures[1].release_time_s, 0.005);
+  // The emitted configuration declares the feed, not its rags: read again, it is the same case.
+  const auto again_dir = testing::make_case_dir(common::to_yaml(const_cast<case_config::CaseConfig &>(config)));
+  const auto again = case_config::CaseConfig::load(again_dir);
+  EXPECT_EQ(again.structures.size(), 5u);
+  EXPECT_EQ(again.fingerprint(), config.fingerprint());
+  // In the scene: each rag's centroid where the schedule put it, all waiting at the start.
+  Scene scene(case_config::structure_setup(case_config::CaseConfig::load(dir)));
+  for (std::size_t i = 0; i < 5; ++i) {
+    const auto &s = *scene.structures()[i];
+    const Vec3 centroid = (s.positions_m().transpose() * s.point_measures()) / s.point_measures().sum();
+    EXPECT_LT((centroid - releases[i].centre_m).norm(), 1e-14) << i;
+    EXPECT_FALSE(scene.life().in_scene(i));
+  }
+}
+
+TEST(Feed, AKindThatSetsWhatTheFeedSetsIsRefusedByName) {
+  std::string yaml = feed_case;
+  yaml.replace(yaml.find("      n_points: [5, 3]"), 22, "      n_points: [5, 3]\n      release_time_s: 0.2");
+  try {
+    case_config::CaseConfig::load(testing::make_case_dir(yaml));
+    FAIL() << "accepted";
+  } catch (const common::ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find("feed.kinds[0]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("release_time_s and placement are the feed's"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Feed, ADeclaredStructureNamedAsAFedRagIsRefused) {
+  std::string yaml = feed_case;
+  yaml += R"(structures:
+  - {name: wipe03, model: membrane, size_m: [0.04, 0.02], n_points: [5, 3]}
+)";
+  try {
+    case_config::CaseConfig::load(testing::make_case_dir(yaml));
+    FAIL() << "accepted";
+  } catch (const common::ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find("two structures named 'wipe03'"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
+} // namespace fsi::structure
