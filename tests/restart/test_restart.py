@@ -495,6 +495,87 @@ def drop_old_time_fields(set_folder):
     return len(kept)
 
 
+FEED_CASE = """# Five 3 cm rags fed into a uniform flow every 25 ms, removed past x = 0.04 m.
+run: {end_time_s: 0.2, time_step_s: 5.0e-5, output_interval_s: 0.005, checkpoint_interval_s: 0.05}
+gravity_m_per_s2: [0, 0, 0]
+collisions: {structure_contact: true}
+feed:
+  rags: 5
+  seed: 3
+  interval_s: 0.025
+  first_release_s: 0.005
+  region: {min_m: [0.03, -0.15, -0.15], max_m: [0.04, 0.15, 0.15]}
+  kinds:
+    - model: membrane
+      size_m: [0.03, 0.03]
+      n_points: [7, 7]
+      material:
+        mass_per_area_kg_per_m2: 0.08
+        coefficients: {tension_coefficient_n_per_m: 10, bending_rigidity_n_m: 1.0e-6}
+  remove_when_past: {point_m: [0.04, 0, 0], normal: [1, 0, 0]}
+fluid:
+  prescribed:
+    uniform: {velocity_m_per_s: [1.0, 0.0, 0.2]}
+coupling: {law: penalty, stiffness_n_per_m_per_measure: 3.2e4}
+"""
+
+
+class FeedRestart(unittest.TestCase):
+    """A feed resumed: rags released before the checkpoint and after it, one removed before it
+    and others after, in a coupled run (coupler, structure, prescribed flow) and in a structure
+    run of its own (the same rags falling along x). The resumed run equals the uninterrupted
+    one bit for bit, exit times included."""
+
+    @classmethod
+    def setUpClass(cls):
+        if not (os.access(STRUCTURE, os.X_OK) and os.access(COUPLER, os.X_OK)):
+            raise unittest.SkipTest("executables not built in %s" % BIN_DIR)
+        cls.tmp = tempfile.mkdtemp(prefix="fsi_restart_feed_")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def write_case(self, name, text):
+        case = os.path.join(self.tmp, name)
+        os.makedirs(case)
+        with open(os.path.join(case, "case.yaml"), "w") as f:
+            f.write(text)
+        return case
+
+    def life(self, out):
+        with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
+            return {name: (float(g.attrs["release_time_s"]), float(g.attrs["exit_time_s"]))
+                    for name, g in f["structures"].items()}
+
+    def check_resumed(self, case, files):
+        full, stopped = case + "_full", case + "_stopped"
+        made = launch(case, full)
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        life = self.life(full)
+        exits = sorted(e for _, e in life.values() if e == e)
+        self.assertEqual(sorted(life), ["rag01", "rag02", "rag03", "rag04", "rag05"])
+        # The story the test needs: a rag gone before the checkpoint of 0.1 s, one after it, and
+        # one released after it.
+        self.assertLess(exits[0], 0.1, life)
+        self.assertGreater(exits[-1], 0.1, life)
+        self.assertGreater(max(r for r, _ in life.values()), 0.1, life)
+        self.assertEqual(launch(case, stopped, "--end-time", "0.1").returncode, 0)
+        self.assertNotEqual(differences(full, stopped, files), [])
+        made = launch(case, stopped, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("resumed from the checkpoint of step 2000", made.stdout)
+        self.assertEqual(differences(full, stopped, files), [])
+        self.assertEqual(self.life(stopped), life)
+
+    def test_a_coupled_feed_resumes_bit_for_bit(self):
+        self.check_resumed(self.write_case("coupled", FEED_CASE), COUPLED_FILES)
+
+    def test_a_structure_feed_resumes_bit_for_bit(self):
+        text = FEED_CASE.split("fluid:")[0].replace("gravity_m_per_s2: [0, 0, 0]", "gravity_m_per_s2: [200, 0, 0]")
+        self.check_resumed(self.write_case("alone", text), ("structure.h5", "structure.xdmf"))
+
+
 class CouplingLawState(unittest.TestCase):
     """The laws with a state of their own: the paper's IB points X_ib (two_point_sets) and the
     feedback integral go into the coupler's part; a restart without them could not be exact."""
