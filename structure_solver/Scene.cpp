@@ -8,7 +8,12 @@
 #include "geometry/TriangleMeshSurface.hpp"
 #include "motion/MotionFactory.hpp"
 
+#include "checkpoint/CheckpointError.hpp"
+
 #include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <sstream>
 
 namespace fsi::structure {
 
@@ -51,9 +56,12 @@ Scene::Scene(const StructureSetup &config)
                  entry.release_time_s > 0.0 ? fmt::format(", released at t = {:g} s", entry.release_time_s) : "");
     zero_loads_.push_back(PointArray::Zero(s.n_points(), 3));
   }
-  if (config.collisions)
+  if (config.collisions) {
     build_collisions(*config.collisions, config.gravity_m_per_s2.norm(), config.rigid_motions_from_coupler);
-  else
+    for (std::size_t i = 0; i < structures_.size(); ++i) // declared on top of each other
+      if (life_.in_scene(i))
+        note_overlaps(i);
+  } else
     spdlog::info("collisions: none (no rigid surfaces, no collision search)");
 }
 
@@ -119,6 +127,7 @@ void Scene::advance(const std::vector<PointArray> &load_densities) {
     StructureModel &s = *structures_[i];
     s.restore_state(s.positions_m(), s.velocities_m_per_s(), time_s_);
     spdlog::info("structure '{}' released at t = {:g} s ({} in the scene)", s.name(), time_s_, life_.n_in_scene());
+    note_overlaps(i);
   }
   if (contact_)
     for (std::size_t i = 0; i < structures_.size(); ++i)
@@ -126,8 +135,10 @@ void Scene::advance(const std::vector<PointArray> &load_densities) {
   for (std::size_t i = 0; i < structures_.size(); ++i)
     if (life_.in_scene(i))
       last_iterations_ += structures_[i]->advance(load_densities[i]); // Eq. (4)
-  if (contact_)
+  if (contact_) {
     correct_contacts();
+    forget_parted_overlaps();
+  }
   // The walls last, so that no point ends a step inside a rigid body.
   for (std::size_t i = 0; i < structures_.size(); ++i)
     if (life_.in_scene(i))
@@ -160,6 +171,10 @@ void Scene::save_state(checkpoint::StateArchive &archive) const {
   for (const auto &s : structures_)
     s->save_state(archive, "structures/" + s->name() + "/");
   life_.save(archive, names());
+  std::string pairs;
+  for (const auto &[a, b] : overlapping_)
+    pairs += (pairs.empty() ? "" : " ") + std::to_string(a) + "-" + std::to_string(b);
+  archive.put_text("contact/overlapping", pairs);
 }
 
 void Scene::load_state(const checkpoint::StateArchive &archive) {
@@ -167,6 +182,18 @@ void Scene::load_state(const checkpoint::StateArchive &archive) {
   for (const auto &s : structures_)
     s->load_state(archive, "structures/" + s->name() + "/");
   life_.load(archive, names(), time_s_);
+  overlapping_.clear();
+  if (archive.has("contact/overlapping")) {
+    std::istringstream pairs(archive.text("contact/overlapping"));
+    std::size_t a = 0, b = 0;
+    char dash = 0;
+    while (pairs >> a >> dash >> b)
+      if (dash == '-' && a < b && b < structures_.size())
+        overlapping_.insert({a, b});
+      else
+        throw checkpoint::CheckpointError("contact/overlapping = '" + archive.text("contact/overlapping") +
+                                          "': not pairs i-j of structures, i < j");
+  }
   for (std::size_t i = 0; i < structures_.size(); ++i)
     if (life_.life(i) == Life::gone)
       structures_[i]->retire();
@@ -179,10 +206,31 @@ void Scene::restore_states(const std::vector<PointArray> &x_m, const std::vector
   time_s_ = time_s;
 }
 
+void Scene::note_overlaps(std::size_t released) {
+  if (!contact_)
+    return;
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    contact_now_[i] = structures_[i]->positions_m();
+  for (std::size_t j = 0; j < structures_.size(); ++j)
+    if (j != released && life_.in_scene(j) && contact_->touching(released, j, contact_now_) &&
+        overlapping_.insert({std::min(released, j), std::max(released, j)}).second)
+      spdlog::info("structure '{}' enters the scene within d_c of '{}': the two pass through each other until "
+                   "they part", structures_[released]->name(), structures_[j]->name());
+}
+
+void Scene::forget_parted_overlaps() {
+  for (auto pair = overlapping_.begin(); pair != overlapping_.end();) {
+    const auto [a, b] = *pair;
+    const bool parted =
+        !life_.in_scene(a) || !life_.in_scene(b) || !contact_->touching(a, b, contact_now_);
+    pair = parted ? overlapping_.erase(pair) : std::next(pair);
+  }
+}
+
 void Scene::correct_contacts() {
   for (std::size_t i = 0; i < structures_.size(); ++i)
     contact_now_[i] = structures_[i]->positions_m();
-  const auto stats = contact_->correct(contact_now_, contact_start_, life_.in_scene_flags());
+  const auto stats = contact_->correct(contact_now_, contact_start_, life_.in_scene_flags(), overlapping_);
   if (stats.n_contacts == 0)
     return;
   last_corrections_ += stats.n_contacts;

@@ -15,6 +15,8 @@
 #include "participant/LifeCycle.hpp"
 
 #include <memory>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace fsi::structure {
@@ -41,6 +43,8 @@ public:
 
   double time_s() const { return time_s_; }
   const LifeCycle &life() const { return life_; }
+  /// The pairs released onto each other that have not parted yet (the smaller index first).
+  const std::set<std::pair<std::size_t, std::size_t>> &overlapping() const { return overlapping_; }
   /// The scene's whole state (time, every structure's state, the life cycle), bit for bit: a
   /// checkpoint, or the start of a step an implicit coupling repeats.
   void save_state(checkpoint::StateArchive &archive) const;
@@ -64,6 +68,10 @@ private:
   void build_collisions(const CollisionConfig &config, double gravity_m_per_s2, bool motions_from_coupler);
   void correct_collisions(StructureModel &structure, std::size_t index);
   void correct_contacts();
+  /// A structure released onto one in the scene (within d_c of it) passes through it until they
+  /// part: contact would otherwise push them d_t apart in one step, a jump no sheet survives.
+  void note_overlaps(std::size_t released);
+  void forget_parted_overlaps();
   std::vector<std::string> names() const;
 
   std::vector<std::unique_ptr<StructureModel>> structures_;
@@ -74,6 +82,7 @@ private:
   std::vector<std::unique_ptr<collision::SelfCollision>> self_collisions_;
   std::unique_ptr<collision::StructureContact> contact_; ///< nullptr: structures pass through each other
   std::vector<PointArray> contact_start_, contact_now_;  ///< X^n and X^{n+1} of every structure
+  std::set<std::pair<std::size_t, std::size_t>> overlapping_; ///< released onto each other, not yet parted
   /// Per structure, the spreading of the wall corrections over its grid (nullptr: none).
   std::vector<std::unique_ptr<collision::CorrectionSpread>> spreads_;
   PointArray before_correction_; ///< scratch of the spreading

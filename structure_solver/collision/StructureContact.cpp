@@ -3,6 +3,7 @@
 #include "geometry/TriangleBvh.hpp"
 #include "geometry/TrianglePoint.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -65,7 +66,8 @@ StructureContact::StructureContact(std::vector<ContactBody> bodies, double thres
 }
 
 ContactStats StructureContact::correct(std::vector<PointArray> &positions_m, const std::vector<PointArray> &start_m,
-                                       const std::vector<bool> &in_scene) const {
+                                       const std::vector<bool> &in_scene,
+                                       const std::set<std::pair<std::size_t, std::size_t>> &apart) const {
   if (positions_m.size() != bodies_.size() || start_m.size() != bodies_.size() ||
       !(in_scene.empty() || in_scene.size() == bodies_.size()))
     throw std::invalid_argument("StructureContact::correct: " + std::to_string(positions_m.size()) + " and " +
@@ -80,9 +82,30 @@ ContactStats StructureContact::correct(std::vector<PointArray> &positions_m, con
   ContactStats stats;
   for (std::size_t a = 0; a < bodies_.size(); ++a)
     for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (a != b && !triangles_[b].empty() && (in_scene.empty() || (in_scene[a] && in_scene[b])))
+      if (a != b && !triangles_[b].empty() && (in_scene.empty() || (in_scene[a] && in_scene[b])) &&
+          apart.count({std::min(a, b), std::max(a, b)}) == 0)
         correct_pair(a, b, positions_m, start_m, stats);
   return stats;
+}
+
+geometry::TriangleBvh StructureContact::tree_of(std::size_t b, const PointArray &xb) const {
+  std::vector<Triangle> triangles;
+  triangles.reserve(triangles_[b].size());
+  for (const auto &f : triangles_[b])
+    triangles.push_back({row(xb, f[0]), row(xb, f[1]), row(xb, f[2])});
+  return geometry::TriangleBvh(triangles);
+}
+
+bool StructureContact::touching(std::size_t a, std::size_t b, const std::vector<PointArray> &positions_m) const {
+  for (const auto &[p, t] : {std::pair{a, b}, std::pair{b, a}}) {
+    if (triangles_[t].empty())
+      continue;
+    const geometry::TriangleBvh tree = tree_of(t, positions_m[t]);
+    for (Eigen::Index i = 0; i < positions_m[p].rows(); ++i)
+      if (tree.nearest_within(row(positions_m[p], i), threshold_m_).face >= 0)
+        return true;
+  }
+  return false;
 }
 
 void StructureContact::correct_pair(std::size_t a, std::size_t b, std::vector<PointArray> &positions_m,
@@ -90,13 +113,9 @@ void StructureContact::correct_pair(std::size_t a, std::size_t b, std::vector<Po
   PointArray &xa = positions_m[a];
   PointArray &xb = positions_m[b];
   const auto &faces = triangles_[b];
-  std::vector<Triangle> triangles;
-  triangles.reserve(faces.size());
-  for (const auto &f : faces)
-    triangles.push_back({row(xb, f[0]), row(xb, f[1]), row(xb, f[2])});
   // The tree is built once per pair; the moves of b's points it makes are small against d_c, and
   // each candidate's distance is measured again on b's current positions.
-  const geometry::TriangleBvh tree(triangles);
+  const geometry::TriangleBvh tree = tree_of(b, xb);
   const auto &mass_a = bodies_[a].point_mass_kg;
   const auto &mass_b = bodies_[b].point_mass_kg;
   for (Eigen::Index i = 0; i < xa.rows(); ++i) {

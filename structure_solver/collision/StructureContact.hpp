@@ -15,9 +15,12 @@
 // to another, a few mm per step, they meet face to point first).
 
 #include "common/Types.hpp"
+#include "geometry/TriangleBvh.hpp"
 
 #include <array>
 #include <cstddef>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace fsi::structure::collision {
@@ -46,8 +49,13 @@ public:
   /// start_m: X^n, which gives the side each point was on; in_scene: per body, whether it takes
   /// part (empty: all; a feed's rag before its release or after its removal does not). Throws
   /// std::invalid_argument when the counts differ from the bodies'.
+  /// Pairs in `apart` (index pairs, the smaller first) are skipped: structures released onto each
+  /// other pass through each other until they part (Scene).
   ContactStats correct(std::vector<PointArray> &positions_m, const std::vector<PointArray> &start_m,
-                       const std::vector<bool> &in_scene = {}) const;
+                       const std::vector<bool> &in_scene = {},
+                       const std::set<std::pair<std::size_t, std::size_t>> &apart = {}) const;
+  /// True when a point of body a is within d_c of a triangle of body b, or one of b of a's.
+  bool touching(std::size_t a, std::size_t b, const std::vector<PointArray> &positions_m) const;
 
   std::size_t n_bodies() const { return bodies_.size(); }
 
@@ -55,6 +63,9 @@ private:
   /// Points of body a against the triangles of body b.
   void correct_pair(std::size_t a, std::size_t b, std::vector<PointArray> &positions_m,
                     const std::vector<PointArray> &start_m, ContactStats &stats) const;
+
+  /// b's triangles at positions_m[b] in a tree, for the nearest-triangle queries.
+  geometry::TriangleBvh tree_of(std::size_t b, const PointArray &xb) const;
 
   std::vector<ContactBody> bodies_;
   /// Per body, its triangles as point-index triples (two per grid quad; none for a filament).
