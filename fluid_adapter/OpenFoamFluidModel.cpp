@@ -164,6 +164,12 @@ void OpenFoamFluidModel::spread_at(participant::PointsView x_m) {
   build_stencil();
 }
 
+void OpenFoamFluidModel::set_idle_points(const std::vector<bool> &idle) {
+  message_.assign(idle.begin(), idle.end());
+  broadcast(Command::set_idle, message_);
+  idle_points_ = idle;
+}
+
 void OpenFoamFluidModel::save_step_start() {
   message_.clear();
   broadcast(Command::save_step, message_);
@@ -283,6 +289,11 @@ void OpenFoamFluidModel::follow() {
       positions_ = Eigen::Map<const PointArray>(payload, static_cast<Eigen::Index>(n / 3), 3);
       build_stencil();
       break;
+    case Command::set_idle:
+      idle_points_.assign(n, false);
+      for (std::size_t k = 0; k < n; ++k)
+        idle_points_[k] = payload[k] != 0.0;
+      break;
     case Command::advance: {
       const double *forces = unpack_rigid_poses(payload[0] + payload[1], payload + 2, payload + n);
       force_density_ = Eigen::Map<const PointArray>(forces, static_cast<Eigen::Index>((payload + n - forces) / 3), 3);
@@ -362,6 +373,11 @@ void OpenFoamFluidModel::kernel_widths(Eigen::VectorXd &widths_m) {
   Eigen::VectorXd distance(n), local_width(n);
   std::size_t skipped = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
+    if (!idle_points_.empty() && idle_points_[static_cast<std::size_t>(k)]) { // no query, no pairs
+      distance[k] = 0.0;
+      local_width[k] = 0.0;
+      continue;
+    }
     const auto nearest = index().nearest_within(positions_.row(k).transpose(), skip_beyond_m_);
     distance[k] = nearest.distance_m;
     local_width[k] = nearest.cell >= 0 ? cells_.size_m(nearest.cell) : local_max_width_m_;
@@ -399,10 +415,9 @@ void OpenFoamFluidModel::do_interpolate(PointArray &u_m_per_s) {
 void OpenFoamFluidModel::build_stencil() {
   Eigen::VectorXd widths;
   kernel_widths(widths);
-  if (stencil_)
-    stencil_->rebuild(index(), positions_, widths); // reuses last step's arrays
-  else
-    stencil_ = std::make_unique<ibm::KernelStencil>(index(), positions_, widths);
+  if (!stencil_)
+    stencil_ = std::make_unique<ibm::KernelStencil>(index(), PointArray(0, 3), Eigen::VectorXd(0));
+  stencil_->rebuild(index(), positions_, widths, idle_points_); // reuses last step's arrays
   if (config_.normalise_kernel) {
     Eigen::VectorXd sums = stencil_->weight_sums();
     collective([&] { flow_.sum_over_ranks(sums.data(), static_cast<std::size_t>(sums.size())); });

@@ -74,6 +74,9 @@ public:
   /// The next advance spreads at these points (the coupling law two_point_sets): a second
   /// kernel stencil, built on every rank.
   void spread_at(participant::PointsView x_m) override;
+  /// Idle points (structures out of the scene) get no kernel pairs on any rank: no nearest-cell
+  /// query, no interpolation (U_ib = 0), nothing spread.
+  void set_idle_points(const std::vector<bool> &idle) override;
   /// Implicit coupling: every rank keeps its fields before a step, and puts them back.
   void save_step_start() override;
   void restore_step_start() override;
@@ -130,7 +133,8 @@ private:
     write_now = 5,
     spread_at = 6,
     save_step = 7,
-    restore_step = 8
+    restore_step = 8,
+    set_idle = 9
   };
   void broadcast(Command command, std::vector<double> &payload);
   /// The moving bodies' poses of a step (at t + dt), appended for the other ranks: their
@@ -185,6 +189,7 @@ private:
   PointArray positions_, cell_velocity_, force_density_, acceleration_;
   std::unique_ptr<ibm::NearestCells> nearest_;
   std::unique_ptr<ibm::KernelStencil> stencil_;
+  std::vector<bool> idle_points_; ///< empty: none idle
   std::vector<std::unique_ptr<rigid::RigidBody>> bodies_;
   rigid::RunawayLoadCheck runaway_loads_;
   double checked_dt_s_ = -1.0;

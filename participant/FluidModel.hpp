@@ -38,6 +38,11 @@ public:
   /// U_ib: the fluid velocity at the points x_m at time time_s (m/s), into u_m_per_s (same size).
   virtual void interpolate(double time_s, PointsView x_m, MutablePointsView u_m_per_s) = 0;
 
+  /// The points of structures out of the scene (a feed's rags waiting or gone; true: idle), for
+  /// the next interpolate() and advance(): their force is zero, so a fluid may skip them (their
+  /// U_ib is then zero). Called when the set changes; none are idle before the first call.
+  virtual void set_idle_points(const std::vector<bool> & /*idle*/) {}
+
   /// The next advance() spreads at these points (X^n), not at those of the last interpolate()
   /// (the coupling law two_point_sets samples U_ib at its own points).
   virtual void spread_at(PointsView x_m) = 0;

@@ -4,6 +4,9 @@
 
 #include "common/Durations.hpp"
 #include "proto/PackedPoints.hpp"
+#include "proto/TransportError.hpp"
+
+#include <algorithm>
 
 namespace fsi::participant {
 
@@ -30,6 +33,7 @@ FluidParticipant::FluidParticipant(FluidModel &model, SessionSettings settings)
 void FluidParticipant::interpolate(const proto::Message &request) {
   const auto start = common::Clock::now();
   const auto &body = request.envelope().interpolate_request();
+  take_idle(body.idle_structures());
   const proto::PointsView x = request.points(body.position_m(), plan().n_points(), "InterpolateRequest.position_m");
   auto *reply = interpolate_reply_.envelope().mutable_interpolate_reply();
   model_.interpolate(body.time_s(), x, interpolate_reply_.add_points(*reply->mutable_velocity_m_per_s(), x.rows()));
@@ -38,9 +42,31 @@ void FluidParticipant::interpolate(const proto::Message &request) {
   session().send(interpolate_reply_);
 }
 
+void FluidParticipant::take_idle(const google::protobuf::RepeatedField<std::uint32_t> &idle_structures) {
+  std::vector<std::uint32_t> idle(idle_structures.begin(), idle_structures.end());
+  if (idle == idle_structures_)
+    return;
+  std::vector<bool> points(static_cast<std::size_t>(plan().n_points()), false);
+  std::size_t first = 0, s = 0;
+  for (const auto &structure : plan().structures) {
+    const auto n = static_cast<std::size_t>(structure.n_points());
+    if (std::find(idle.begin(), idle.end(), s) != idle.end())
+      std::fill(points.begin() + static_cast<long>(first), points.begin() + static_cast<long>(first + n), true);
+    first += n;
+    ++s;
+  }
+  for (const auto i : idle)
+    if (i >= plan().structures.size())
+      throw proto::MalformedMessageError("idle_structures names structure " + std::to_string(i) + "; the run has " +
+                                         std::to_string(plan().structures.size()));
+  model_.set_idle_points(points);
+  idle_structures_ = std::move(idle);
+}
+
 void FluidParticipant::advance(const proto::Message &request) {
   const auto start = common::Clock::now();
   const auto &body = request.envelope().fluid_advance();
+  take_idle(body.idle_structures());
   const auto step = request.envelope().step();
   const proto::PointsView force =
       request.points(body.force_density_n_per_measure(), plan().n_points(), "FluidAdvance.force_density_n_per_measure");

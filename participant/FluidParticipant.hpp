@@ -8,6 +8,8 @@
 #include "Participant.hpp"
 
 #include <atomic>
+#include <cstdint>
+#include <vector>
 
 namespace fsi::participant {
 
@@ -22,8 +24,11 @@ public:
 private:
   void interpolate(const proto::Message &request);
   void advance(const proto::Message &request);
+  /// Tells the model which points are idle when the coupler's list of idle structures changes.
+  void take_idle(const google::protobuf::RepeatedField<std::uint32_t> &idle_structures);
 
   FluidModel &model_;
+  std::vector<std::uint32_t> idle_structures_; ///< the last list the model was told
   proto::Message interpolate_reply_, advance_reply_; // reused: no per-step allocation of the headers
   std::vector<BodyLoad> loads_;
 };

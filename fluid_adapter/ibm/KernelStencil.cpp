@@ -9,15 +9,18 @@
 namespace fsi::fluid::ibm {
 namespace {
 
-void check_inputs(const PointArray &points_m, const Eigen::VectorXd &kernel_width_m) {
-  if (points_m.rows() != kernel_width_m.size())
+void check_inputs(const PointArray &points_m, const Eigen::VectorXd &kernel_width_m, const std::vector<bool> &skip) {
+  if (points_m.rows() != kernel_width_m.size() || !(skip.empty() || skip.size() == kernel_width_m.size()))
     throw std::invalid_argument("KernelStencil: " + std::to_string(points_m.rows()) + " points but " +
-                                std::to_string(kernel_width_m.size()) + " kernel widths");
+                                std::to_string(kernel_width_m.size()) + " kernel widths (and " +
+                                std::to_string(skip.size()) + " skip flags)");
   if (!points_m.allFinite())
     throw std::invalid_argument("KernelStencil: a Lagrangian point is not finite");
-  if (kernel_width_m.size() > 0 && (!kernel_width_m.allFinite() || kernel_width_m.minCoeff() <= 0.0))
-    throw std::invalid_argument("KernelStencil: a kernel width is not positive and finite; "
-                                "take the widths from NearestCells merged over all ranks");
+  for (Eigen::Index k = 0; k < kernel_width_m.size(); ++k)
+    if ((skip.empty() || !skip[static_cast<std::size_t>(k)]) &&
+        !(std::isfinite(kernel_width_m[k]) && kernel_width_m[k] > 0.0))
+      throw std::invalid_argument("KernelStencil: a kernel width is not positive and finite; "
+                                  "take the widths from NearestCells merged over all ranks");
 }
 
 void check_rows(const char *what, Eigen::Index rows, Eigen::Index expected) {
@@ -34,10 +37,11 @@ KernelStencil::KernelStencil(const CellIndex &index, const PointArray &points_m,
   rebuild(index, points_m, kernel_width_m);
 }
 
-void KernelStencil::rebuild(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m) {
+void KernelStencil::rebuild(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m,
+                            const std::vector<bool> &skip) {
   if (&index.cells() != &mesh_)
     throw std::invalid_argument("KernelStencil::rebuild: another mesh than the stencil's");
-  check_inputs(points_m, kernel_width_m);
+  check_inputs(points_m, kernel_width_m, skip);
   // clear() keeps the capacity: a stencil rebuilt every step reuses its arrays (tens of MB for
   // 10^4-10^5 points) instead of growing and page-faulting new ones.
   offsets_.clear();
@@ -46,7 +50,8 @@ void KernelStencil::rebuild(const CellIndex &index, const PointArray &points_m, 
   offsets_.reserve(static_cast<std::size_t>(points_m.rows()) + 1);
   offsets_.push_back(0);
   for (Eigen::Index k = 0; k < points_m.rows(); ++k) {
-    add_point(index, points_m.row(k).transpose(), kernel_width_m[k], found_);
+    if (skip.empty() || !skip[static_cast<std::size_t>(k)])
+      add_point(index, points_m.row(k).transpose(), kernel_width_m[k], found_);
     offsets_.push_back(cells_of_pairs_.size());
   }
 }

@@ -34,7 +34,10 @@ public:
   KernelStencil(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m);
   /// The stencil of new points and widths on the same mesh (the next time step), reusing the
   /// arrays' memory. Same checks as the constructor; std::invalid_argument for another index's mesh.
-  void rebuild(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m);
+  /// Points marked in `skip` (empty: none; else one flag per point) get no pairs, whatever their
+  /// width: a structure out of the scene costs nothing, interpolates zero and spreads nothing.
+  void rebuild(const CellIndex &index, const PointArray &points_m, const Eigen::VectorXd &kernel_width_m,
+               const std::vector<bool> &skip = {});
 
   Eigen::Index n_points() const { return static_cast<Eigen::Index>(offsets_.size()) - 1; }
   std::size_t n_pairs() const { return cells_of_pairs_.size(); }

@@ -180,6 +180,39 @@ class ChannelSheet(TempDirTest):
         self.assertLess(flux_error, 1e-7 * np.linalg.norm(U))
 
 
+class LateSheet(TempDirTest):
+    """The channel sheet released halfway through the run, the fluid on two MPI ranks (the idle
+    points go to every rank): until its release nothing acts on the water (the force on the fluid
+    is zero, bit for bit) and the sheet stays where it waits; from its release it is carried as
+    the first half of ChannelSheet's run carries it from the start, its velocity within 1 % of the
+    undisturbed-stream solution counted from the release."""
+
+    def test_a_sheet_released_halfway_waits_untouched_and_is_then_carried(self):
+        case = copy_case(SHEET_CASE, os.path.join(self.tmp, "case"))
+        c = load_case(case)
+        end = float(c["run"]["end_time_s"])
+        c["structures"][0]["release_time_s"] = end / 2
+        c["fluid"]["openfoam"]["mpi_ranks"] = 2
+        write_case(case, c)
+        U = inflow_velocity(case)
+        out = os.path.join(self.tmp, "out")
+        code, stderr = self.launch(case, out, timeout=120)
+        self.assert_run_completed(out, code, stderr)
+        run = SheetRun(c, out)
+        release_step = int(round(end / 2 / run.dt))
+        before = run.n <= release_step
+        self.assertTrue(np.all(run.position[before] == run.position[0]), "the sheet moved before its release")
+        t_force, forces = coupling_forces(out)
+        step = np.rint(t_force / run.dt).astype(int) - 1
+        self.assertEqual(np.abs(forces[step < release_step]).max(), 0.0)
+        self.assertGreater(np.abs(forces[step >= release_step]).max(), 0.0)
+        k = np.maximum(run.n - release_step, 0)
+        expected = prescribed_velocity(run.a, k, U)
+        after = run.n > release_step
+        error = np.linalg.norm(run.mean_velocity[after] - expected[after], axis=1) / np.linalg.norm(expected[after], axis=1)
+        self.assertLess(error.max(), 0.01, "the sheet after its release: %s" % error)
+
+
 class OneWayVsTwoWay(TempDirTest):
     """The same sheet in the prescribed uniform stream (fsi-prescribed-flow) and in OpenFOAM: the
     trajectories differ by the lag of ChannelSheet alone, point by point."""

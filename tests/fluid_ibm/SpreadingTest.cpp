@@ -82,6 +82,44 @@ TEST(KernelStencilWeights, ARebuiltStencilEqualsANewOne) {
   EXPECT_THROW(stencil.rebuild(other_index, first, Eigen::VectorXd::Constant(300, 0.1)), std::invalid_argument);
 }
 
+TEST(KernelStencilWeights, SkippedPointsHaveNoPairsAndTheOthersTheirOwn) {
+  // A feed's rags out of the scene are skipped: no pairs (so U_ib = 0 and nothing is spread,
+  // at no cost), whatever their width (zero here), and every other point keeps exactly the
+  // pairs it has without them.
+  const EulerianCells mesh = testing::uniform_grid(16, 1.0);
+  const CellIndex index(mesh);
+  const PointArray points = testing::random_points(200, 0.1, 0.9, 5);
+  Eigen::VectorXd widths = NearestCells(index, points).kernel_width_m();
+  std::vector<bool> skip(200, false);
+  for (int k = 50; k < 120; ++k) {
+    skip[static_cast<std::size_t>(k)] = true;
+    widths[k] = 0.0;
+  }
+  KernelStencil stencil(index, PointArray(0, 3), Eigen::VectorXd(0));
+  stencil.rebuild(index, points, widths, skip);
+  const KernelStencil all(index, points, NearestCells(index, points).kernel_width_m());
+  ASSERT_EQ(stencil.n_points(), 200);
+  std::size_t pairs_kept = 0;
+  for (std::size_t k = 0; k < 200; ++k) {
+    const auto n = stencil.offsets()[k + 1] - stencil.offsets()[k];
+    if (skip[k]) {
+      EXPECT_EQ(n, 0u) << k;
+      continue;
+    }
+    ASSERT_EQ(n, all.offsets()[k + 1] - all.offsets()[k]) << k;
+    for (std::size_t j = 0; j < n; ++j) {
+      EXPECT_EQ(stencil.cells()[stencil.offsets()[k] + j], all.cells()[all.offsets()[k] + j]);
+      EXPECT_EQ(stencil.weights()[stencil.offsets()[k] + j], all.weights()[all.offsets()[k] + j]);
+    }
+    pairs_kept += n;
+  }
+  EXPECT_EQ(stencil.n_pairs(), pairs_kept);
+  const PointArray u = stencil.interpolate(PointArray::Ones(mesh.n_cells(), 3));
+  EXPECT_EQ(u.middleRows(50, 70).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_NEAR(u.row(10).norm(), std::sqrt(3.0), 1e-12); // a kept point far from walls: sum w = 1
+  EXPECT_THROW(stencil.rebuild(index, points, widths, std::vector<bool>(3, true)), std::invalid_argument);
+}
+
 TEST(Spreading, ConservesForceAndTorqueOnAUniformMesh) {
   // A sheet-like load: densities in N/m^2 times point areas in m^2.
   const Coupling s(testing::uniform_grid(20, 1.0), testing::random_points(150, 0.25, 0.75, 11));
