@@ -9,7 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <malloc.h>
+
 #include <cmath>
+#include <fstream>
 
 namespace fsi::structure {
 namespace {
@@ -208,11 +211,6 @@ TEST(Feed, ADeclaredStructureNamedAsAFedRagIsRefused) {
   }
 }
 
-} // namespace
-} // namespace fsi::structure
-
-namespace fsi::structure {
-namespace {
 
 TEST(Feed, ARagReleasedOntoAnotherPassesThroughItInsteadOfBeingFlungApart) {
   // Two 4 cm rags in zero gravity, the second released at 10 ms 1 mm over the first (inside
@@ -246,15 +244,6 @@ structures:
   EXPECT_TRUE(scene.overlapping().empty()); // parted: in contact again
 }
 
-} // namespace
-} // namespace fsi::structure
-
-#include <malloc.h>
-
-#include <fstream>
-
-namespace fsi::structure {
-namespace {
 
 /// Resident memory of this process (bytes), after giving freed heap back to the system.
 double resident_bytes() {
