@@ -44,7 +44,7 @@ struct FeedConfig {
   std::optional<common::StopPlane> remove_when_past;
 
   template <class V> void visit(V &v) {
-    v.integer("rags", rags, common::Range::at_least(1, "1"), "How many rags the feed releases.");
+    v.integer("rags", rags, common::Range::between(1, 10000, "1"), "How many rags the feed releases.");
     v.integer("seed", seed, common::Range::non_negative("1"),
               "Seed of every draw (times of a Poisson stream, centres, turns, kinds): a seed gives the same feed on "
               "every machine.");
