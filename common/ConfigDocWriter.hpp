@@ -29,6 +29,14 @@ public:
   void integer(const std::string &key, const int &value, const Range &range, const std::string &doc) {
     row(key, "integer", std::to_string(value), range.describe(), doc);
   }
+  void optional_number(const std::string &key, const std::optional<double> &, const Range &range,
+                       const std::string &doc) {
+    row(key, "number", "absent", range.describe() + " " + range.unit, doc);
+  }
+  void optional_integer(const std::string &key, const std::optional<int> &, const Range &range,
+                        const std::string &doc) {
+    row(key, "integer", "absent", range.describe(), doc);
+  }
   void flag(const std::string &key, const bool &value, const std::string &doc) {
     row(key, "boolean", value ? "true" : "false", "true, false", doc);
   }

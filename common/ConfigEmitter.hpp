@@ -25,6 +25,16 @@ public:
   void integer(const std::string &key, const int &value, const Range &, const std::string &) {
     out_ << YAML::Key << key << YAML::Value << value;
   }
+  void optional_number(const std::string &key, const std::optional<double> &value, const Range &range,
+                       const std::string &doc) {
+    if (value)
+      number(key, *value, range, doc);
+  }
+  void optional_integer(const std::string &key, const std::optional<int> &value, const Range &range,
+                        const std::string &doc) {
+    if (value)
+      integer(key, *value, range, doc);
+  }
   void flag(const std::string &key, const bool &value, const std::string &) {
     out_ << YAML::Key << key << YAML::Value << value;
   }

@@ -170,6 +170,26 @@ void ConfigReader::integer(const std::string &key, int &value, const Range &rang
     fail_value(key, "= " + node_[key].Scalar() + " is out of range: allowed " + range.describe() + ".");
 }
 
+void ConfigReader::optional_number(const std::string &key, std::optional<double> &value, const Range &range,
+                                   const std::string &doc) {
+  mark_known(key);
+  if (!node_[key] || node_[key].IsNull())
+    return;
+  double read = 0.0;
+  number(key, read, range, doc);
+  value = read;
+}
+
+void ConfigReader::optional_integer(const std::string &key, std::optional<int> &value, const Range &range,
+                                    const std::string &doc) {
+  mark_known(key);
+  if (!node_[key] || node_[key].IsNull())
+    return;
+  int read = 0;
+  integer(key, read, range, doc);
+  value = read;
+}
+
 void ConfigReader::flag(const std::string &key, bool &value, const std::string &) {
   read_scalar(key, value);
 }

@@ -37,6 +37,12 @@ public:
 
   void number(const std::string &key, double &value, const Range &range, const std::string &doc);
   void integer(const std::string &key, int &value, const Range &range, const std::string &doc);
+  /// A number that may be absent (or null): empty then, else read and checked as `number`.
+  void optional_number(const std::string &key, std::optional<double> &value, const Range &range,
+                       const std::string &doc);
+  /// An integer that may be absent (or null): empty then, else read and checked as `integer`.
+  void optional_integer(const std::string &key, std::optional<int> &value, const Range &range,
+                        const std::string &doc);
   void flag(const std::string &key, bool &value, const std::string &doc);
   void text(const std::string &key, std::string &value, const std::string &doc);
   void vec3(const std::string &key, Vec3 &value, const std::string &unit, const std::string &doc);

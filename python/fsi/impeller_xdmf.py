@@ -19,8 +19,11 @@ from fsi import rag_metrics
 
 def rotating_surface(run_dir, case_dir):
     """(PumpGeometry, times [F]) of a run: the geometry from its configuration, the times from
-    structure.h5."""
-    times, _, _, _, _, _, h5_config = rag_metrics.read_structure(run_dir)
+    structure.h5 (every structure has the same frames: the first one's, for a feed's many rags)."""
+    import h5py
+    with h5py.File(os.path.join(run_dir, "structure.h5"), "r") as f:
+        first = sorted(f["structures"].keys())[0] if "structures" in f and len(f["structures"]) else None
+    times, _, _, _, _, _, h5_config = rag_metrics.read_structure(run_dir, first)
     config, source = rag_metrics.read_config(run_dir, case_dir, h5_config)
     geometry = rag_metrics.load_geometry(case_dir, config, source)[0]
     return geometry, times

@@ -319,7 +319,7 @@ def view_limits(pump, run, kind):
     if len(sections):
         pts.append(sections.reshape(-1, 3)[:, plane])
     pts = np.concatenate(pts) * MM
-    low, high = pts.min(axis=0), pts.max(axis=0)
+    low, high = np.nanmin(pts, axis=0), np.nanmax(pts, axis=0)   # NaN: a fed rag not in the scene
     margin = 0.03 * max(high - low) + 1.0
     return (low[0] - margin, high[0] + margin), (low[1] - margin, high[1] + margin)
 

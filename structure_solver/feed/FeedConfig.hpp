@@ -7,6 +7,7 @@
 // remove_when_past, so that every process of a run sees the same rags.
 
 #include "structure_solver/StructureConfig.hpp"
+#include "structure_solver/feed/ClogCriterionConfig.hpp"
 #include "structure_solver/feed/FeedSchedule.hpp"
 
 #include <optional>
@@ -39,9 +40,11 @@ struct FeedConfig {
   double first_release_s = 0.0;
   FeedRegion region;
   bool random_turn = true;
+  Vec3 turn_axis = Vec3::Zero();
   KindOrder kind_order = KindOrder::cycle;
   std::vector<StructureConfig> kinds;
   std::optional<common::StopPlane> remove_when_past;
+  std::optional<ClogCriterionConfig> clog_criterion;
 
   template <class V> void visit(V &v) {
     v.integer("rags", rags, common::Range::between(1, 10000, "1"), "How many rags the feed releases.");
@@ -56,7 +59,10 @@ struct FeedConfig {
     v.number("first_release_s", first_release_s, common::Range::non_negative("s"), "When the first rag is released.");
     v.section("region", region, "The box in the sump the rags' centroids are drawn in, uniformly.");
     v.flag("random_turn", random_turn,
-           "Turn each rag about its centroid uniformly over all rotations (false: as its kind declares it).");
+           "Turn each rag about its centroid at random (false: as its kind declares it).");
+    v.vec3("turn_axis", turn_axis, "1",
+           "[0, 0, 0]: the random turns are uniform over all rotations; an axis: about it only, by a uniform "
+           "angle (rags declared upright in a sump lower than they are long stay upright).");
     v.choice("kind_order", kind_order, {{"cycle", KindOrder::cycle}, {"random", KindOrder::random}},
              "Which kind each rag is: the kinds in turn, or drawn with equal chances.");
     v.list("kinds", kinds,
@@ -65,6 +71,8 @@ struct FeedConfig {
     v.optional_section("remove_when_past", remove_when_past,
                        "The plane past which a rag has left (the discharge): it is removed from the scene there. "
                        "A kind's own remove_when_past takes precedence.");
+    v.optional_section("clog_criterion", clog_criterion,
+                       "When the fed pump counts as clogged (read by the feed report, python/fsi/feed_report.py).");
     if constexpr (std::is_same_v<V, common::ConfigReader>) {
       if (kinds.empty())
         v.fail_value("kinds", "is empty: declare at least one kind of rag (a structure entry).");
@@ -85,6 +93,7 @@ struct FeedConfig {
     p.region_min_m = region.min_m;
     p.region_max_m = region.max_m;
     p.random_turn = random_turn;
+    p.turn_axis = turn_axis;
     p.kinds = static_cast<int>(kinds.size());
     p.random_kind = kind_order == KindOrder::random;
     return p;

@@ -22,6 +22,11 @@ Eigen::Quaterniond random_turn(std::mt19937_64 &generator) {
                             b * std::sin(two_pi * u3));
 }
 
+/// Uniform in angle about `axis` (a unit vector).
+Eigen::Quaterniond random_turn_about(std::mt19937_64 &generator, const Vec3 &axis) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(2.0 * M_PI * unit(generator), axis));
+}
+
 } // namespace
 
 std::vector<Release> draw_releases(const FeedPlan &plan) {
@@ -40,6 +45,10 @@ std::vector<Release> draw_releases(const FeedPlan &plan) {
       throw std::invalid_argument("feed.region: min_m[" + std::to_string(k) + "] = " +
                                   std::to_string(plan.region_min_m[k]) + " is above max_m[" + std::to_string(k) +
                                   "] = " + std::to_string(plan.region_max_m[k]));
+  if (!plan.turn_axis.allFinite())
+    throw std::invalid_argument("feed.turn_axis: not a finite vector");
+  const bool about_axis = plan.turn_axis.norm() > 0.0;
+  const Vec3 axis = about_axis ? Vec3(plan.turn_axis.normalized()) : Vec3::UnitZ();
   std::mt19937_64 generator(plan.seed);
   std::vector<Release> releases;
   double t = plan.first_release_s;
@@ -52,7 +61,7 @@ std::vector<Release> draw_releases(const FeedPlan &plan) {
     for (int k = 0; k < 3; ++k)
       r.centre_m[k] = plan.region_min_m[k] + unit(generator) * (plan.region_max_m[k] - plan.region_min_m[k]);
     if (plan.random_turn)
-      r.turn = random_turn(generator);
+      r.turn = about_axis ? random_turn_about(generator, axis) : random_turn(generator);
     r.kind = plan.random_kind ? std::min(plan.kinds - 1, static_cast<int>(unit(generator) * plan.kinds))
                               : i % plan.kinds;
     releases.push_back(r);

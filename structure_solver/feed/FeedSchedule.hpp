@@ -2,7 +2,7 @@
 // When and where the rags of a feed are released (issue 33: rags fed in sequence, as test rigs
 // do): a fixed interval or a Poisson stream at a mean interval, each rag's centre drawn
 // uniformly in a box of the sump and its orientation turned at random (uniform over all
-// rotations), all from one seed. The whole schedule is drawn at setup, so that every process,
+// rotations, or about one axis only), all from one seed. The whole schedule is drawn at setup, so that every process,
 // a restart and a rerun with the same seed see the same rags at the same times.
 //
 // The draws come from std::mt19937_64's raw output mapped by this file (53 bits to [0, 1)), not
@@ -29,6 +29,7 @@ struct FeedPlan {
   Vec3 region_min_m = Vec3::Zero(); ///< the box the centres are drawn in (min <= max)
   Vec3 region_max_m = Vec3::Zero();
   bool random_turn = true;          ///< false: every rag as its kind is declared
+  Vec3 turn_axis = Vec3::Zero();    ///< zero: turns uniform over all rotations; else about this axis only
   int kinds = 1;                    ///< kinds of rag to choose from (>= 1)
   bool random_kind = false;         ///< false: the kinds in turn; true: drawn with equal chances
 };

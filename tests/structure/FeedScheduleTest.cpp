@@ -90,6 +90,24 @@ TEST(FeedSchedule, CentresFillTheBoxAndTurnsCoverAllOrientations) {
   EXPECT_TRUE(draw_releases(unturned).back().turn.isApprox(Eigen::Quaterniond::Identity(), 0.0));
 }
 
+TEST(FeedSchedule, TurnsAboutAnAxisKeepThatAxisAndSpreadTheAngleUniformly) {
+  const int n = 2000;
+  auto p = plan(n, Spacing::fixed);
+  p.turn_axis = Vec3(0, 0, 2); // any length: its direction
+  double mean_cos = 0.0, mean_sin = 0.0;
+  for (const auto &release : draw_releases(p)) {
+    // An upright rag stays upright: z is not moved, to round-off.
+    EXPECT_LT((release.turn * Vec3::UnitZ() - Vec3::UnitZ()).norm(), 1e-15);
+    const Vec3 x = release.turn * Vec3::UnitX();
+    const double angle = std::atan2(x[1], x[0]);
+    mean_cos += std::cos(angle) / n;
+    mean_sin += std::sin(angle) / n;
+  }
+  // Uniform in angle: cos and sin have mean 0 and variance 1/2 (4 standard errors).
+  EXPECT_NEAR(mean_cos, 0.0, 4.0 * std::sqrt(0.5 / n));
+  EXPECT_NEAR(mean_sin, 0.0, 4.0 * std::sqrt(0.5 / n));
+}
+
 TEST(FeedSchedule, PlansThatCannotBeDrawnAreRefusedNamingTheField) {
   const auto refused = [](FeedPlan p, const std::string &word) {
     try {

@@ -198,6 +198,34 @@ TEST(Feed, AKindThatSetsWhatTheFeedSetsIsRefusedByName) {
   }
 }
 
+TEST(Feed, TheClogCriterionIsReadStrictlyAndEmittedAsGiven) {
+  std::string yaml = feed_case;
+  yaml += "  clog_criterion: {power_rise_fraction: 0.05, retained_rags: 3}\n";
+  const auto config = case_config::CaseConfig::load(testing::make_case_dir(yaml));
+  ASSERT_TRUE(config.feed->clog_criterion);
+  const auto &c = *config.feed->clog_criterion;
+  EXPECT_FALSE(c.head_drop_fraction);
+  EXPECT_EQ(c.power_rise_fraction, 0.05);
+  EXPECT_EQ(c.retained_rags, 3);
+  EXPECT_EQ(c.held_revolutions, 3);
+  const std::string emitted = common::to_yaml(const_cast<case_config::CaseConfig &>(config));
+  EXPECT_NE(emitted.find("power_rise_fraction: 0.05"), std::string::npos) << emitted;
+  EXPECT_EQ(emitted.find("head_drop_fraction"), std::string::npos) << emitted; // absent stays absent
+  const auto refused = [&](const std::string &criterion, const std::string &words) {
+    try {
+      case_config::CaseConfig::load(testing::make_case_dir(std::string(feed_case) + "  clog_criterion: " + criterion + "\n"));
+      ADD_FAILURE() << "accepted: " << criterion;
+    } catch (const common::ConfigError &e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refused("{held_revolutions: 2}", "feed.clog_criterion");
+  refused("{held_revolutions: 2}", "has no condition");
+  refused("{head_drop_fraction: 1.0}", "feed.clog_criterion.head_drop_fraction");
+  refused("{retained_rags: 0}", "feed.clog_criterion.retained_rags");
+  refused("{retained_rag: 2}", "retained_rag");
+}
+
 TEST(Feed, ADeclaredStructureNamedAsAFedRagIsRefused) {
   std::string yaml = feed_case;
   yaml += R"(structures:

@@ -1,0 +1,447 @@
+#!/usr/bin/python3
+"""The report of a rag feed (issue 33): rags released in sequence into a running pump, as test
+rigs feed them. From a run of a case with a `feed` section (cases/rag-feed):
+
+  RUN_DIR/feed_rags.csv         one row per rag: its release and exit times (s), how long it was
+                                in the scene (s and revolutions), its outcome and where it is held
+  RUN_DIR/feed_revolutions.csv  one row per whole revolution: the mean head (m) and shaft power
+                                (W), their change against the clean pump at the same flow, the
+                                rags in the scene and retained at its end
+  RUN_DIR/feed_report.yaml      the clog criterion of the case (feed.clog_criterion) and its
+                                verdict: met or not, when, at which rag count and why, the degree
+                                of saturation (the most rags and mass retained before), with the
+                                clean pump it is judged against and the definitions
+  RUN_DIR/feed_timeline.png     the feed over time: each rag from release to exit or to the end
+                                (coloured by outcome), below it the revolution means of the head
+                                and power change with the releases marked and the clog time
+  RUN_DIR/feed_retained.png     the rags still in the pump at the end on the impeller at its pose
+                                (top and side sections, as plot_rag_in_pump.py's)
+  RUN_DIR/feed.mp4              every saved frame of the feed (with --animation)
+
+A rag's outcome (the residence rule of python/fsi/clog_criterion.py: residence_revolutions of
+the criterion, 10 without one):
+  passed    left the scene (past feed.remove_when_past, the exit_time_s of structure.h5) within
+            the rule after its release
+  passed_late  left later than that
+  retained  still in the scene at the end, released at least the rule's revolutions before it
+  in_pump   still in the scene at the end, released less than that before it
+  waiting   not released by the end of the run
+Where a rag in the scene at the end is held: the trap site (rag_metrics.SITES) its points
+touched longest over the last revolution of the run (python/fsi/rag_metrics.py: the contact
+distance 1.5 d_c), or "free" when it touched none.
+
+Usage: feed_report.py RUN_DIR CASE_DIR [--animation]
+Python: write_report(run_dir, case_dir, animation=False) -> the report dict.
+"""
+import argparse
+import csv
+import dataclasses
+import math
+import os
+import re
+import sys
+
+import numpy as np
+
+from fsi import clog_criterion
+from fsi import rag_metrics
+
+OUTCOMES = ("passed", "passed_late", "retained", "in_pump", "waiting")
+OUTCOME_COLOURS = {"passed": "tab:green", "passed_late": "tab:olive", "retained": "tab:red",
+                   "in_pump": "tab:orange", "waiting": "0.7"}
+
+
+class FeedError(Exception):
+    """A run that is not a feed's, or a file missing from it: says which and what is expected."""
+
+
+# ---------------------------------------------------------------------------------- reading
+
+def read_feed_rags(run_dir):
+    """[{name, release_time_s, exit_time_s (None: in to the end), grid_shape, area_m2}] of
+    RUN_DIR/structure.h5 in release order, and its frame times [F]."""
+    import h5py
+    path = os.path.join(run_dir, "structure.h5")
+    if not os.path.isfile(path):
+        raise FeedError("%s: no such file (RUN_DIR must be the output folder of a feed's run)" % path)
+    rags = []
+    with h5py.File(path, "r") as f:
+        if "time_s" not in f or "structures" not in f:
+            raise FeedError("%s: no /time_s or /structures (docs/results.md describes the layout)" % path)
+        rows = rag_metrics.complete_rows(f)
+        times = np.asarray(f["time_s"][:rows], float)
+        for name, g in f["structures"].items():
+            if "release_time_s" not in g.attrs:
+                raise FeedError("%s: /structures/%s has no release_time_s (written since issue 33: rerun the case)"
+                                % (path, name))
+            exit_time = float(g.attrs.get("exit_time_s", float("nan")))
+            n1, n2 = (int(v) for v in g.attrs["grid_shape"])
+            first = np.asarray(g["position_m"][0], float).reshape(n1, n2, 3)
+            rags.append({"name": name, "release_time_s": float(g.attrs["release_time_s"]),
+                         "exit_time_s": None if math.isnan(exit_time) else exit_time,
+                         "grid_shape": (n1, n2), "area_m2": grid_area(first)})
+    if not rags:
+        raise FeedError("%s: no structure" % path)
+    rags.sort(key=lambda r: (r["release_time_s"], r["name"]))
+    return rags, times
+
+
+def grid_area(points):
+    """Area (m^2) of a grid of points [n1, n2, 3], two triangles per cell."""
+    a, b, c, d = points[:-1, :-1], points[1:, :-1], points[1:, 1:], points[:-1, 1:]
+    return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1)
+                        + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
+
+
+def kind_of(name, kinds):
+    """The feed's kind entry a fed rag's name comes from (its name without the release index)."""
+    base = re.sub(r"\d+$", "", name)
+    for kind in kinds:
+        if (kind.get("name") or "rag") == base:
+            return kind
+    raise FeedError("structure '%s' is not a rag of the feed (kinds: %s)"
+                    % (name, ", ".join(k.get("name") or "rag" for k in kinds)))
+
+
+def criterion_of(feed):
+    """The case's clog criterion (clog_criterion.ClogCriterion), or None when it states none."""
+    mapping = feed.get("clog_criterion")
+    if not mapping:
+        return None
+    return clog_criterion.ClogCriterion.from_mapping(mapping, "feed.clog_criterion")
+
+
+# ---------------------------------------------------------------------------------- analysis
+
+def outcomes(rags, end_time_s, residence_s):
+    """Each rag's outcome at the end of the run (the module's definitions), in place."""
+    for r in rags:
+        if r["release_time_s"] > end_time_s + 1e-12:
+            r["outcome"] = "waiting"
+        elif r["exit_time_s"] is not None:
+            r["outcome"] = "passed" if r["exit_time_s"] - r["release_time_s"] <= residence_s + 1e-12 else "passed_late"
+        else:
+            r["outcome"] = "retained" if end_time_s - r["release_time_s"] >= residence_s - 1e-12 else "in_pump"
+        until = r["exit_time_s"] if r["exit_time_s"] is not None else end_time_s
+        r["time_in_scene_s"] = max(0.0, until - r["release_time_s"]) if r["outcome"] != "waiting" else 0.0
+    return rags
+
+
+def held_where(run_dir, rag, times, geometry, threshold_m, period_s):
+    """The trap site a rag in the scene at the end touched longest over the run's last
+    revolution, and that time (s); ("free", 0) when it touched none."""
+    t_end = times[-1]
+    keep = (times >= max(rag["release_time_s"], t_end - period_s) - 1e-12)
+    if np.count_nonzero(keep) < 1:
+        return "free", 0.0
+    t, x, grid, *_ = rag_metrics.read_structure(run_dir, rag["name"])
+    t, x = t[keep[:len(t)]], x[keep[:len(t)]]
+    metrics, _ = rag_metrics.analyse(t, x, grid, geometry, threshold_m)
+    contact = {site: metrics["trap_contact_time_s." + site] for site in rag_metrics.SITES}
+    site = max(contact, key=contact.get)
+    return (site, contact[site]) if contact[site] > 0 else ("free", 0.0)
+
+
+def load_traces(run_dir, geometry, config):
+    """(t, head m, t, shaft power W, clean head m, clean power W, notes): the run's head and power
+    and the clean pump's (the precursor's whole revolutions, rag_metrics.clean_from_precursor)."""
+    surfaces = (config.get("collisions") or {}).get("surfaces") or []
+    index = next((k for k, s in enumerate(surfaces) if ((s or {}).get("motion") or {}).get("rotation")), 0)
+    loads, notes = rag_metrics.read_loads(run_dir, geometry, config, index)
+    clean, clean_notes = rag_metrics.clean_from_precursor(run_dir, geometry, config, index)
+    notes += clean_notes
+    rate = abs(geometry.rate)
+    torque, head = loads["torque"], loads["head"]
+    return {"head": head, "power": (torque[0], torque[1] * rate) if torque is not None else None,
+            "clean_head_m": (clean or {}).get("head"),
+            "clean_power_w": (clean or {}).get("torque") * rate if (clean or {}).get("torque") is not None else None,
+            "clean_source": (clean or {}).get("source"), "notes": notes}
+
+
+def in_scene_counts(rags, t, residence_s):
+    """(in the scene, retained) at each time of t."""
+    t = np.asarray(t, float)
+    inside = np.zeros(len(t), int)
+    held = np.zeros(len(t), int)
+    for r in rags:
+        until = r["exit_time_s"] if r["exit_time_s"] is not None else np.inf
+        now = (t >= r["release_time_s"]) & (t < until)
+        inside += now
+        held += now & (t - r["release_time_s"] >= residence_s)
+    return inside, held
+
+
+def revolutions_table(rags, traces, period_s, residence_s):
+    """Rows per whole revolution of the traces (both head and power needed), or []."""
+    if traces["head"] is None or traces["power"] is None:
+        return []
+    ends, heads = clog_criterion.revolution_means(traces["head"][0], traces["head"][1], period_s)
+    ends_p, powers = clog_criterion.revolution_means(traces["power"][0], traces["power"][1], period_s)
+    n = min(len(ends), len(ends_p))
+    inside, held = in_scene_counts(rags, ends[:n] - 1e-9, residence_s)
+    rows = []
+    for k in range(n):
+        h, p = float(heads[k]), float(powers[k])
+        ch, cp = traces["clean_head_m"], traces["clean_power_w"]
+        rows.append({"revolution": int(round(ends[k] / period_s)), "end_time_s": float(ends[k]), "head_m": h,
+                     "shaft_power_w": p, "head_change": h / ch - 1.0 if ch else None,
+                     "power_change": p / cp - 1.0 if cp else None,
+                     "rags_in_scene": int(inside[k]), "rags_retained": int(held[k])})
+    return rows
+
+
+def verdict(criterion, rags, traces, period_s, end_time_s):
+    """The criterion's result as a plain dict, and notes (None without a criterion). Without the
+    run's head and power or the clean pump's (a precursor shorter than four revolutions), the
+    head and power conditions are left out and the verdict says so (`not_evaluated`)."""
+    if criterion is None:
+        return None, []
+    feed_rags = [clog_criterion.Rag(r["release_time_s"], r["exit_time_s"], r["mass_kg"]) for r in rags]
+    have_traces = (traces["head"] is not None and traces["power"] is not None and bool(traces["clean_head_m"])
+                   and bool(traces["clean_power_w"]))
+    skipped, notes = [], []
+    if not have_traces:
+        skipped = [k for k in ("head_drop_fraction", "power_rise_fraction") if getattr(criterion, k) is not None]
+        if skipped:
+            notes.append("clog criterion: %s not evaluated (no head and power of the run and of the clean pump: %s)"
+                         % (" and ".join(skipped), "; ".join(traces["notes"])))
+            criterion = dataclasses.replace(criterion, head_drop_fraction=None, power_rise_fraction=None)
+        if criterion.retained_rags is None:
+            return {"clogged": None, "not_evaluated": skipped}, notes
+    if have_traces:
+        t, head = traces["head"]
+        power = np.interp(t, *traces["power"])
+        clean_h, clean_p = traces["clean_head_m"], traces["clean_power_w"]
+    else:  # the retained rags alone: the traces are not read
+        t, head, power = np.array([0.0, end_time_s]), np.ones(2), np.ones(2)
+        clean_h, clean_p = 1.0, 1.0
+    result = clog_criterion.evaluate(criterion, period_s, t, head, power, clean_h, clean_p, feed_rags)
+    return {"clogged": result.clogged, "time_s": result.time_s,
+            "revolution": result.time_s / period_s if result.time_s is not None else None,
+            "reason": result.reason, "rags_released": result.rags_released, "rags_retained": result.rags_retained,
+            "saturation_rags": result.saturation_rags, "saturation_kg": result.saturation_kg,
+            "not_evaluated": skipped}, notes
+
+
+# ---------------------------------------------------------------------------------- outputs
+
+def _plain(value):
+    """YAML-safe: numpy scalars to Python numbers, tuples to lists, recursively."""
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def write_csv(path, rows, columns):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for row in rows:
+            w.writerow(["" if row.get(c) is None else ("%.9g" % row[c] if isinstance(row[c], float) else row[c])
+                        for c in columns])
+
+
+RAG_COLUMNS = ["name", "release_time_s", "exit_time_s", "time_in_scene_s", "time_in_scene_revolutions", "outcome",
+               "held_at", "held_contact_time_s", "mass_kg"]
+REVOLUTION_COLUMNS = ["revolution", "end_time_s", "head_m", "shaft_power_w", "head_change", "power_change",
+                      "rags_in_scene", "rags_retained"]
+
+
+def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    has_traces = bool(revolutions) and revolutions[0]["head_change"] is not None
+    fig, axes = plt.subplots(2 if has_traces else 1, 1, figsize=(9, 7 if has_traces else 4.5), sharex=True,
+                             squeeze=False, gridspec_kw={"height_ratios": [3, 2] if has_traces else [1]})
+    ax = axes[0, 0]
+    rev = 1.0 / period_s
+    for k, r in enumerate(rags):
+        if r["outcome"] == "waiting":
+            ax.plot([r["release_time_s"] * rev], [k + 1], "o", mfc="none", color=OUTCOME_COLOURS["waiting"], ms=4)
+            continue
+        until = r["exit_time_s"] if r["exit_time_s"] is not None else end_time_s
+        ax.plot([r["release_time_s"] * rev, until * rev], [k + 1, k + 1], "-", lw=4, solid_capstyle="butt",
+                color=OUTCOME_COLOURS[r["outcome"]])
+        if r.get("held_at") and r["held_at"] != "free":
+            ax.text(until * rev, k + 1, " " + r["held_at"], va="center", fontsize=7)
+    for outcome in OUTCOMES:
+        if any(r["outcome"] == outcome for r in rags):
+            ax.plot([], [], "-", lw=4, color=OUTCOME_COLOURS[outcome], label=outcome.replace("_", " "))
+    ax.set_ylabel("rag (release order)")
+    ax.set_yticks(range(1, len(rags) + 1))
+    ax.set_yticklabels([r["name"] for r in rags], fontsize=7 if len(rags) <= 30 else 5)
+    ax.set_ylim(len(rags) + 1, 0)
+    ax.legend(fontsize=8, loc="lower left", ncol=3)
+    ax.grid(alpha=0.3)
+    ax.set_title(title, fontsize=9)
+    if has_traces:
+        ax2 = axes[1, 0]
+        x = [r["end_time_s"] * rev - 0.5 for r in revolutions]
+        ax2.step(x, [100 * r["head_change"] for r in revolutions], where="mid", label="head")
+        ax2.step(x, [100 * r["power_change"] for r in revolutions], where="mid", label="shaft power")
+        for r in rags:
+            if r["outcome"] != "waiting":
+                ax2.axvline(r["release_time_s"] * rev, color="0.8", lw=0.6, zorder=0)
+        ax2.axhline(0, color="k", lw=0.6)
+        ax2.set_ylabel("revolution mean against\nthe clean pump (%)")
+        ax2.legend(fontsize=8)
+        ax2.grid(alpha=0.3)
+    if result and result.get("clogged"):
+        for a in axes[:, 0]:
+            a.axvline(result["time_s"] * rev, color="k", ls="--", lw=1.0)
+        axes[0, 0].text(result["time_s"] * rev, 0.5, " clogged (%s)" % result["reason"], fontsize=8, va="top")
+    axes[-1, 0].set_xlabel("impeller revolutions since the start (releases: grey lines)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def masked_run(run_dir, rags, end_frames=None):
+    """plot_rag_in_pump.Run of the feed with each rag's points NaN where it is not in the scene
+    (before its release, after its exit), and the wall distances of the points in the scene."""
+    from fsi import plot_rag_in_pump as plot
+    run = plot.Run(run_dir)
+    shown = np.ones(run.points.shape[:2], bool)
+    timing = {r["name"]: r for r in rags}
+    for name, start, n1, n2 in run.structures:
+        r = timing[name]
+        until = r["exit_time_s"] if r["exit_time_s"] is not None else np.inf
+        off = (run.time_s < r["release_time_s"] - 1e-12) | (run.time_s >= until)
+        shown[off, start:start + n1 * n2] = False
+    return run, shown
+
+
+def draw_retained(path, run_dir, case_dir, rags, title):
+    """The rags in the scene at the last frame, on the impeller at its pose (top and side)."""
+    from fsi import plot_rag_in_pump as plot
+    run, shown = masked_run(run_dir, rags)
+    last = len(run.time_s) - 1
+    keep = shown[last]
+    if not keep.any():
+        return False
+    pump = plot.Pump(run_dir, case_dir)
+    index = np.flatnonzero(keep)
+    remap = -np.ones(run.points.shape[1], int)
+    remap[index] = np.arange(len(index))
+    pairs = run.pairs[keep[run.pairs].all(axis=1)]
+    run.points = run.points[last:last + 1][:, index]
+    run.time_s = run.time_s[last:last + 1]
+    run.pairs = remap[pairs]
+    wall, _ = plot.distances(run, pump)
+    plot.draw_sequence(run, pump, wall, [0], path, title)
+    return True
+
+
+def draw_movie(path, run_dir, case_dir, rags, title):
+    from fsi import plot_rag_in_pump as plot
+    run, shown = masked_run(run_dir, rags)
+    pump = plot.Pump(run_dir, case_dir)
+    wall, _ = plot.distances(run, pump)
+    run.points = np.where(shown[:, :, None], run.points, np.nan)
+    return plot.draw_animation(run, pump, wall, path, title)
+
+
+def describe(criterion, result):
+    """The criterion in a few words, with the conditions the run could not evaluate."""
+    parts = []
+    if criterion.head_drop_fraction is not None:
+        parts.append("head -%g %%" % (100 * criterion.head_drop_fraction))
+    if criterion.power_rise_fraction is not None:
+        parts.append("power +%g %%" % (100 * criterion.power_rise_fraction))
+    words = " or ".join(parts)
+    if words:
+        words += " for %d revolutions" % criterion.held_revolutions
+    if criterion.retained_rags is not None:
+        words += (" or " if words else "") + "%d rags retained" % criterion.retained_rags
+    if result.get("not_evaluated"):
+        words += "; head and power not evaluated (no clean pump)"
+    return words
+
+
+def write_report(run_dir, case_dir, animation=False):
+    """Reads RUN_DIR and CASE_DIR, writes the files of the module's docstring, returns the report."""
+    config, source = rag_metrics.read_config(run_dir, case_dir)
+    feed = config.get("feed")
+    if not feed:
+        raise FeedError("%s: no feed section (a run of a case with `feed`, e.g. cases/rag-feed)" % source)
+    criterion = criterion_of(feed)
+    residence_rev = criterion.residence_revolutions if criterion else clog_criterion.ClogCriterion.residence_revolutions
+    geometry, d_c, _, geometry_notes, _ = rag_metrics.load_geometry(case_dir, config, source)
+    period = 2 * math.pi / abs(geometry.rate)
+    residence_s = residence_rev * period
+    rags, times = read_feed_rags(run_dir)
+    end_time = float(times[-1])
+    for r in rags:
+        kind = kind_of(r["name"], feed.get("kinds") or [])
+        rho = float(((kind.get("material") or {}).get("mass_per_area_kg_per_m2", 0.0)))
+        r["mass_kg"] = rho * r["area_m2"]
+    outcomes(rags, end_time, residence_s)
+    for r in rags:
+        r["time_in_scene_revolutions"] = r["time_in_scene_s"] / period
+        if r["outcome"] in ("retained", "in_pump"):
+            r["held_at"], r["held_contact_time_s"] = held_where(run_dir, r, times, geometry, d_c, period)
+    traces = load_traces(run_dir, geometry, config)
+    revolutions = revolutions_table(rags, traces, period, residence_s)
+    result, verdict_notes = verdict(criterion, rags, traces, period, end_time)
+    write_csv(os.path.join(run_dir, "feed_rags.csv"), rags, RAG_COLUMNS)
+    write_csv(os.path.join(run_dir, "feed_revolutions.csv"), revolutions, REVOLUTION_COLUMNS)
+    counts = {o: sum(1 for r in rags if r["outcome"] == o) for o in OUTCOMES}
+    held = {}
+    for r in rags:
+        if r.get("held_at"):
+            held[r["held_at"]] = held.get(r["held_at"], 0) + 1
+    report = {
+        "end_time_s": end_time, "end_revolution": end_time / period, "period_s": period,
+        "rags": len(rags), "outcomes": counts, "held_at": held,
+        "residence_revolutions": residence_rev,
+        "clog_criterion": dict(feed.get("clog_criterion") or {}) or None,
+        "verdict": result,
+        "clean_pump": {"head_m": traces["clean_head_m"], "shaft_power_w": traces["clean_power_w"],
+                       "source": traces["clean_source"]},
+        "sources": {"run_dir": os.path.abspath(run_dir), "case_dir": os.path.abspath(case_dir),
+                    "configuration": source},
+        "notes": geometry_notes + traces["notes"] + verdict_notes,
+    }
+    import yaml
+    with open(os.path.join(run_dir, "feed_report.yaml"), "w") as f:
+        f.write("# The rag feed's report (python/fsi/feed_report.py; per rag feed_rags.csv, per revolution\n"
+                "# feed_revolutions.csv). SI units: s, m, W, kg; changes are fractions of the clean pump's.\n")
+        yaml.safe_dump(_plain(report), f, sort_keys=False)
+    name = os.path.basename(os.path.normpath(case_dir))
+    title = "%s: %d rags, %s" % (name, len(rags), ", ".join("%d %s" % (n, o.replace("_", " "))
+                                                            for o, n in counts.items() if n))
+    if result is not None and result["clogged"] is not None:
+        title += "\n" + (("clogged at %.1f revolutions (%s), %d rags released, %d retained"
+                          % (result["revolution"], result["reason"], result["rags_released"], result["rags_retained"]))
+                         if result["clogged"] else "not clogged by the end (%s)" % describe(criterion, result))
+    draw_timeline(os.path.join(run_dir, "feed_timeline.png"), rags, revolutions, result, period, end_time, title)
+    draw_retained(os.path.join(run_dir, "feed_retained.png"), run_dir, case_dir, rags,
+                  "%s: the rags in the pump at t = %.3g s (%.1f revolutions)" % (name, end_time, end_time / period))
+    if animation:
+        draw_movie(os.path.join(run_dir, "feed.mp4"), run_dir, case_dir, rags, name)
+    return report
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="feed_report.py", description=__doc__.split("\n\n")[0])
+    p.add_argument("run_dir")
+    p.add_argument("case_dir")
+    p.add_argument("--animation", action="store_true", help="also feed.mp4 (every saved frame)")
+    args = p.parse_args(argv)
+    try:
+        report = write_report(args.run_dir, args.case_dir, animation=args.animation)
+    except (FeedError, rag_metrics.MetricsError, clog_criterion.CriterionError) as error:
+        sys.exit("feed_report.py: %s" % error)
+    v = report["verdict"]
+    print("%d rags: %s%s" % (report["rags"], ", ".join("%d %s" % (n, o) for o, n in report["outcomes"].items() if n),
+                             "" if v is None or v["clogged"] is None else ("; clogged at %.2f revolutions (%s)" % (v["revolution"], v["reason"])
+                                                   if v["clogged"] else "; not clogged")))
+
+
+if __name__ == "__main__":
+    main()
