@@ -1,20 +1,22 @@
 #!/usr/bin/python3
 """Generates this case's pump: the pump of cases/rag-in-pump (its pump.yaml, copied here so that
 the feed always runs in the rag study's pump), then geometry/ and the openfoam-* folders with the
-centrifugal-pump case's prepare.py (the same generator, cache and stamps).
+centrifugal-pump case's prepare.py (the same generator, cache and stamps). A pump.yaml of your
+own in the case folder (one without the first line this script writes) is kept: the feed then
+runs in that pump (./fsi feed-compare writes one per design).
 
     prepare.py CASE_DIR BIN_DIR     (python/fsi/fsi_launch.py runs it before every run of the case,
                                      with python/ on PYTHONPATH: also from a copy of the case)
 """
 
 import os
-import shutil
 import sys
 
 from fsi import ROOT, case_module
 
 # The repository's cases/centrifugal-pump/prepare.py (also for a copy of this case elsewhere).
 prepare = case_module("centrifugal-pump", "prepare")
+MARK = b"# Copied from cases/rag-in-pump/pump.yaml by prepare.py before every run (your own pump.yaml: without this line)\n"
 
 
 def main(argv):
@@ -25,9 +27,11 @@ def main(argv):
     if not os.path.isfile(source):
         sys.exit("prepare.py: %s: no such file (the rag study's pump, which the feed runs in)" % source)
     with open(source, "rb") as f:
-        design = f.read()
-    if not os.path.isfile(target) or open(target, "rb").read() != design:
-        shutil.copyfile(source, target + ".partial")
+        design = MARK + f.read()
+    own = os.path.isfile(target) and not open(target, "rb").read().startswith(MARK)
+    if not own and (not os.path.isfile(target) or open(target, "rb").read() != design):
+        with open(target + ".partial", "wb") as f:
+            f.write(design)
         os.replace(target + ".partial", target)
     status = prepare.main(argv, pump_curve_variants=False)
     # The OpenFOAM folders are generated with the geometry; written again when one is missing.
