@@ -52,6 +52,11 @@
 #                      [--resolution NAME] [--end-time S] [-o DIR] CASE_DIR
 #                             rag releases into a pump case (cases/rag-in-pump): P(hang-up) with its
 #                             interval, residence and wrap distributions (ensemble.csv, ensemble.png)
+#   ./fsi feed-compare [--designs A.yaml,B.yaml] [--flow-fractions 1,0.36] [--seeds 4] [--rags N] [--jobs N]
+#                      [--submit] [-o DIR] CASE_DIR
+#                             the same rag feed (cases/rag-feed) into two pump designs over seeds: rags to
+#                             clog per design with intervals, P(A outlasts B) (compare.md, compare.png);
+#                             --submit: as a SLURM job array, then again without it to compare
 #
 # The cases: cases/README.md. Their results: docs/results.md.
 #
@@ -331,6 +336,9 @@ case "${1:-help}" in
   rag-ensemble)
     shift; [ $# -ge 1 ] || die "usage: ./fsi rag-ensemble [--runs N] [--seed S] [--flow-fraction F] [--sizes LxW,...] [--jobs N] CASE_DIR"
     prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.rag_ensemble --bin-dir "$BUILD/bin" "$@" ;;
+  feed-compare)
+    shift; [ $# -ge 1 ] || die "usage: ./fsi feed-compare [--designs A.yaml,B.yaml] [--flow-fractions F,...] [--seeds N] [--rags N] [--jobs N] [--submit] CASE_DIR"
+    prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.feed_compare --bin-dir "$BUILD/bin" "$@" ;;
   coupling-study)
     shift; prepare "${RUN_TARGETS[@]}"; /usr/bin/python3 -m fsi.coupling_study --bin-dir "$BUILD/bin" "$@" ;;
   disc-study)
@@ -348,5 +356,5 @@ case "${1:-help}" in
     shift; [ $# -ge 1 ] || die "usage: ./fsi keys [--force] CASE_DIR"
     prepare fsi-coupler; "$BUILD/bin/fsi-coupler" --make-keys "$@" ;;
   help|-h|--help) sed -n '2,/^set -euo/p' "$0" | grep '^#' | sed 's/^# \{0,1\}//' ;;
-  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, pump-compare, rag-ensemble, coupling-study, disc-study, ercoftac-study, build, help)" ;;
+  *) die "unknown command '$1' (commands: run, submit, check, keys, test, fuzz, bench, report, schema, pump-design, pump-curve, pump-compare, rag-ensemble, feed-compare, coupling-study, disc-study, ercoftac-study, build, help)" ;;
 esac

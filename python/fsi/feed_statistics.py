@@ -76,6 +76,8 @@ class Comparison:
     median_a_95: List[float]
     median_b: float
     median_b_95: List[float]
+    runs_a: int
+    runs_b: int
     censored_a: int
     censored_b: int
     p_a_outlasts_b: float
@@ -106,22 +108,25 @@ def compare(a: Sequence[RagsToClog], b: Sequence[RagsToClog], resamples=BOOTSTRA
     m_a, m_b = median([r.rags for r in a]), median([r.rags for r in b])
     return Comparison(
         median_a=m_a, median_a_95=ci_a, median_b=m_b, median_b_95=ci_b,
-        censored_a=sum(r.censored for r in a), censored_b=sum(r.censored for r in b),
+        runs_a=len(a), runs_b=len(b), censored_a=sum(r.censored for r in a), censored_b=sum(r.censored for r in b),
         p_a_outlasts_b=p_outlasts(a, b), p_a_outlasts_b_95=[percentile(ps, 0.025), percentile(ps, 0.975)],
         resolved=resolved, later=("A" if m_a > m_b else "B") if resolved else None)
 
 
 def statement(c: Comparison, name_a: str, name_b: str) -> str:
     """The comparison in a sentence a designer reads."""
-    def design(median_value, ci, censored):
-        return "%g rags (95 %% interval %g-%g%s)" % (median_value, ci[0], ci[1],
+    def design(median_value, ci, censored, runs):
+        if censored == runs:
+            return "no clog in any of its %d runs (it coped with the %g rags fed)" % (runs, median_value)
+        return "clogs after %g rags (95 %% interval %g-%g%s)" % (median_value, ci[0], ci[1],
                                                        ", a lower bound: %d run%s did not clog"
                                                        % (censored, "" if censored == 1 else "s") if censored else "")
-    text = "%s clogs after %s, %s after %s. P(%s outlasts %s) = %.2f (95 %% interval %.2f-%.2f). " % (
-        name_a, design(c.median_a, c.median_a_95, c.censored_a), name_b, design(c.median_b, c.median_b_95, c.censored_b),
+    text = "%s: %s; %s: %s. P(%s outlasts %s) = %.2f (95 %% interval %.2f-%.2f). " % (
+        name_a, design(c.median_a, c.median_a_95, c.censored_a, c.runs_a), name_b,
+        design(c.median_b, c.median_b_95, c.censored_b, c.runs_b),
         name_a, name_b, c.p_a_outlasts_b, c.p_a_outlasts_b_95[0], c.p_a_outlasts_b_95[1])
     if c.resolved:
-        text += "%s clogs later: the intervals do not overlap." % (name_a if c.later == "A" else name_b)
+        text += "%s lasts longer: the intervals do not overlap." % (name_a if c.later == "A" else name_b)
     else:
         text += "Not resolved: the intervals overlap; more seeds would narrow them."
     return text

@@ -9,6 +9,8 @@ this machine). docs/cluster.md.
   its script again, which resumes from the newest checkpoint (--restart); the results equal the
   uninterrupted run's.
 - Array: two cases as a job array, one task each; each equals its ./fsi run.
+- FeedCompare: ./fsi feed-compare --submit: a feed into two pump designs as a job array, then
+  collected and compared.
 - Refusal: a coupled case without CURVE is refused before anything is submitted.
 
 Needs root, slurm-wlm and munge (skipped otherwise). FSI_BIN_DIR: the executables."""
@@ -158,6 +160,38 @@ class Array(SubmitTest):
             local = os.path.join(self.tmp, "member%d_local" % i)
             self.local_run(case, local)
             self.assert_same_results(local, os.path.join(case, "output"))
+
+
+class FeedCompare(SubmitTest):
+    """./fsi feed-compare --submit: a feed (cases/rag-feed, shortened) into two pump designs as a
+    job array, one task a member, with OpenFOAM; then feed-compare again collects the members'
+    results without running them again, and compares."""
+
+    def test_a_feed_comparison_runs_as_a_job_array_and_is_collected(self):
+        case = os.path.join(self.tmp, "feed")
+        shutil.copytree(os.path.join(ROOT, "cases", "rag-feed"), case, ignore=shutil.ignore_patterns(
+            "output", "geometry", "openfoam-*", "pump.yaml", ".geometry.lock"))
+        path = os.path.join(case, "case.yaml")
+        text = read(path).replace("precursor_time_s: 0.5", "precursor_time_s: 0.0025")
+        with open(path, "w") as f:
+            f.write(text.replace("interval_s: 0.083333", "interval_s: 0.001"))
+        out = os.path.join(self.tmp, "compare")
+        command = [sys.executable, os.path.join(ROOT, "python", "fsi", "feed_compare.py"), "--bin-dir", BIN_DIR,
+                   "--seeds", "1", "--flow-fractions", "1", "--rags", "2", "--end-time", "0.003", "-o", out, case]
+        env = dict(self.cluster.env, PYTHONPATH=os.path.join(ROOT, "python"))
+        made = subprocess.run(command + ["--submit"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              text=True, timeout=300)
+        self.assertEqual(made.returncode, 0, made.stderr[-3000:])
+        job = made.stdout.strip().splitlines()[-1]
+        self.assertEqual(self.cluster.wait(job, 400), "COMPLETED")
+        made = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=300)
+        self.assertEqual(made.returncode, 0, made.stderr[-3000:])
+        self.assertNotIn("ran in", made.stderr)   # collected, not run again here
+        table = read(os.path.join(out, "compare.md"))
+        self.assertIn("| 1.00 | >2 | >2 | 0.50 (0.50-0.50) |", table)
+        for design in ("A-rag-in-pump", "B-two-blade"):
+            member = os.path.join(out, design, "q1.00", "seed-1", "case", "output")
+            self.assertTrue(os.path.isfile(os.path.join(member, "feed_report.yaml")), member)
 
 
 class Refusal(SubmitTest):

@@ -56,14 +56,16 @@ class FeedStatistics(unittest.TestCase):
         self.assertFalse(close.resolved)
         self.assertIsNone(close.later)
         self.assertIn("Not resolved", statement(close, "thin blade", "two blades"))
-        self.assertIn("thin blade clogs later", statement(far, "thin blade", "two blades"))
+        self.assertIn("thin blade lasts longer", statement(far, "thin blade", "two blades"))
 
     def test_censored_runs_are_counted_as_lower_bounds_and_said(self):
         c = compare([RagsToClog(20, True)] * 3, clogged(6, 7, 8))
         self.assertTrue(c.resolved)
         self.assertEqual(c.censored_a, 3)
         self.assertEqual(c.p_a_outlasts_b, 1.0)
-        self.assertIn("a lower bound: 3 runs did not clog", statement(c, "A", "B"))
+        self.assertIn("A: no clog in any of its 3 runs (it coped with the 20 rags fed)", statement(c, "A", "B"))
+        some = compare([RagsToClog(20, True)] * 2 + clogged(18, 19), clogged(6, 7, 8))
+        self.assertIn("a lower bound: 2 runs did not clog", statement(some, "A", "B"))
 
     def test_the_medians_interval_covers_the_true_median_about_as_often_as_it_says(self):
         # Runs whose rags to clog are uniform on 1..19 (true median 10), 9 seeds a design: the

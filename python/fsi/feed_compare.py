@@ -1,0 +1,385 @@
+#!/usr/bin/python3
+"""./fsi feed-compare: the same rag feed into two pump designs at the same operating points,
+repeated over seeds, and which design clogs later with a confidence statement (issue 33,
+section 3): per design and flow, the rags to clog of each seed, their median with a 95 %
+interval, and P(A outlasts B) (python/fsi/feed_statistics.py). compare.md, compare.yaml,
+compare.csv and compare.png in the output folder.
+
+    feed_compare.py --bin-dir BIN [--designs A.yaml,B.yaml] [--flow-fractions 1,0.36] [--seeds 4]
+                    [--rags 20] [--jobs N] [--end-time S] [--submit [--sbatch-arg ARG ...]] [-o DIR] CASE_DIR
+
+CASE_DIR is a feed case (cases/rag-feed). Each design is a pump.yaml (pump/designs/); default:
+the case's own pump (cases/rag-in-pump's) against pump/designs/two-blade.yaml. Every design is
+given the case's inlet (its sump), so that the rags start in the same place in every pump. The
+flow rates are the fractions of the case's (fluid.openfoam.operating_point): the same duty for
+both designs. A member is one design, flow and seed: a copy of the case in
+DIR/<design>/q<fraction>/seed-<seed>/case with the design's pump.yaml and its flow rate, seed and
+rag count written into its case.yaml, run as ./fsi run runs it (results in its output/), then
+the feed's report (feed_report.py). Locally the precursor of one design and flow is run once and
+shared by its seeds; members run in parallel up to --jobs (default: half the cores). A finished
+member (its structure.h5 completed) is reused; an interrupted one resumes from its last
+checkpoint. --submit runs the members as a SLURM job array instead (./fsi submit: one task a
+member, each requeueable and resumed from its checkpoints); feed-compare again, without
+--submit, collects what they wrote and compares.
+"""
+
+import argparse
+import concurrent.futures
+import csv
+import os
+import shutil
+import sys
+import threading
+import time
+
+import yaml
+
+from fsi import ROOT
+from fsi import feed_report
+from fsi import feed_statistics
+from fsi import fsi_launch
+from fsi import pump_curve
+
+LOCK = threading.Lock()
+
+
+def say(message):
+    with LOCK:
+        sys.stderr.write("feed-compare: %s\n" % message)
+        sys.stderr.flush()
+
+
+class Member:
+    def __init__(self, design, fraction, seed, out):
+        self.design, self.fraction, self.seed = design, fraction, seed
+        self.name = "%s q%.2f seed %d" % (design.name, fraction, seed)
+        self.case = os.path.join(out, design.name, "q%.2f" % fraction, "seed-%d" % seed, "case")
+        self.folder = os.path.join(self.case, "output")   # where ./fsi run and ./fsi submit write
+        self.state, self.error, self.verdict = "waiting", None, None
+
+
+class Design:
+    def __init__(self, path, index):
+        self.path = os.path.abspath(path)
+        base = os.path.splitext(os.path.basename(path))[0]
+        if base == "pump":   # a case's pump.yaml: named after its case
+            base = os.path.basename(os.path.dirname(self.path))
+        self.name = "%s-%s" % ("AB"[index], base)
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(prog="./fsi feed-compare", description=__doc__.split("\n\n")[0])
+    p.add_argument("--bin-dir", required=True)
+    p.add_argument("--designs", default="", help="two pump.yaml files A,B (default: the case's pump and "
+                                                 "pump/designs/two-blade.yaml)")
+    p.add_argument("--flow-fractions", default="1,0.36", help="of the case's flow rate (default 1,0.36)")
+    p.add_argument("--seeds", type=int, default=4, help="seeds 1..N per design and flow (default 4)")
+    p.add_argument("--rags", type=int, default=0, help="rags per feed (default: the case's feed.rags)")
+    p.add_argument("--jobs", type=int, default=0, help="members at once (default: half the cores, at least 1)")
+    p.add_argument("--resolution", default="", help="a preset of the case")
+    p.add_argument("--end-time", type=float, default=0.0, help="stop each member at this time (s)")
+    p.add_argument("--submit", action="store_true", help="run the members as a SLURM job array (./fsi submit)")
+    p.add_argument("--sbatch-arg", action="append", default=[], metavar="ARG", help="with --submit: to sbatch")
+    p.add_argument("-o", "--output", default="", help="results folder (default CASE/output/compare)")
+    p.add_argument("case_dir")
+    args = p.parse_args(argv)
+    args.case_dir = os.path.abspath(args.case_dir)
+    try:
+        args.fractions = [float(v) for v in args.flow_fractions.split(",")]
+    except ValueError:
+        p.error("--flow-fractions %r: comma-separated numbers, e.g. 1,0.36" % args.flow_fractions)
+    if not args.fractions or any(f <= 0 for f in args.fractions):
+        p.error("--flow-fractions %r: each above 0" % args.flow_fractions)
+    if args.seeds < 1:
+        p.error("--seeds %d: at least 1" % args.seeds)
+    paths = [v for v in args.designs.split(",") if v] if args.designs else \
+        [os.path.join(ROOT, "cases", "rag-in-pump", "pump.yaml"), os.path.join(ROOT, "pump", "designs", "two-blade.yaml")]
+    if len(paths) != 2:
+        p.error("--designs %r: two pump.yaml files, A,B" % args.designs)
+    for path in paths:
+        if not os.path.isfile(path):
+            p.error("--designs: %s: no such file (a pump.yaml, e.g. pump/designs/two-blade.yaml)" % path)
+    args.designs = [Design(path, k) for k, path in enumerate(paths)]
+    if args.designs[0].name[2:] == args.designs[1].name[2:] and \
+            open(paths[0]).read() == open(paths[1]).read():
+        p.error("--designs: A and B are the same file")
+    return args
+
+
+def case_inputs(case_dir):
+    """(case.yaml, the case's flow rate, its feed's rag count, its inlet section) of a feed case."""
+    path = os.path.join(case_dir, "case.yaml")
+    if not os.path.isfile(path):
+        raise SystemExit("feed-compare: %s: no such file (CASE_DIR: a feed case, e.g. cases/rag-feed)" % path)
+    with open(path) as f:
+        case = yaml.safe_load(f)
+    if not case.get("feed"):
+        raise SystemExit("feed-compare: %s: no feed section (a feed case, e.g. cases/rag-feed)" % path)
+    point = ((case.get("fluid") or {}).get("openfoam") or {}).get("operating_point") or {}
+    if "flow_rate_m3_per_s" not in point:
+        raise SystemExit("feed-compare: %s: no fluid.openfoam.operating_point.flow_rate_m3_per_s (the flow rate "
+                         "--flow-fractions multiply)" % path)
+    source = os.path.join(case_dir, "pump.yaml")
+    if not os.path.isfile(source):
+        source = os.path.join(ROOT, "cases", "rag-in-pump", "pump.yaml")
+    with open(source) as f:
+        inlet = (yaml.safe_load(f) or {}).get("inlet")
+    if not inlet or not inlet.get("sump_diameter_m"):
+        raise SystemExit("feed-compare: %s has no inlet sump (inlet.sump_diameter_m): the rags are released in it"
+                         % source)
+    return float(point["flow_rate_m3_per_s"]), int(case["feed"].get("rags", 1)), inlet
+
+
+def write_member_case(args, member, inlet, flow_rate, rags):
+    """The member's copy of the case: the design's pump.yaml given the case's inlet, and the
+    member's flow rate, seed and rag count in its case.yaml. Unchanged files are not rewritten."""
+    if not os.path.isdir(member.case):
+        shutil.copytree(args.case_dir, member.case, symlinks=True, ignore=shutil.ignore_patterns(
+            "output", "__pycache__", "geometry", "geometry.partial-*", "geometry.old-*", ".geometry.lock",
+            "openfoam-*", "pump.yaml"))
+    with open(member.design.path) as f:
+        design = yaml.safe_load(f)
+    design["inlet"] = inlet
+    with open(os.path.join(args.case_dir, "case.yaml")) as f:
+        case = yaml.safe_load(f)
+    case["feed"]["seed"] = member.seed
+    case["feed"]["rags"] = rags
+    case["fluid"]["openfoam"]["operating_point"]["flow_rate_m3_per_s"] = flow_rate * member.fraction
+    if args.end_time:
+        case["run"]["end_time_s"] = args.end_time   # in the case: a SLURM task runs it as it is
+    # The pump.yaml is the same for every member of a design (its geometry is generated once).
+    pump_text = "# Written by ./fsi feed-compare: %s with the inlet of %s\n" % (member.design.path, args.case_dir)
+    case_text = "# Written by ./fsi feed-compare: member %s of %s\n" % (member.name, args.case_dir)
+    for name, text in (("pump.yaml", pump_text + yaml.safe_dump(design, sort_keys=False)),
+                       ("case.yaml", case_text + yaml.safe_dump(case, sort_keys=False))):
+        target = os.path.join(member.case, name)
+        if not os.path.isfile(target) or open(target).read() != text:
+            with open(target, "w") as f:
+                f.write(text)
+
+
+def finished(member):
+    """The member's run completed (its structure.h5 says so)."""
+    import h5py
+    path = os.path.join(member.folder, "structure.h5")
+    if not os.path.isfile(path):
+        return False
+    try:
+        with h5py.File(path, "r") as f:
+            status = f.attrs.get("status", "")
+    except OSError:
+        return False
+    return (status.decode() if isinstance(status, bytes) else str(status)) == "completed"
+
+
+def member_command(args, member):
+    command = [sys.executable, pump_curve.LAUNCHER, "--bin-dir", args.bin_dir, "-o", member.folder]
+    command += ["--resolution", args.resolution] if args.resolution else []
+    command += ["--end-time", str(args.end_time)] if args.end_time else []
+    if os.path.isdir(os.path.join(member.folder, "checkpoints")):
+        command.append("--restart")
+    return command + [member.case]
+
+
+def run_member(args, member):
+    if not finished(member):
+        member.state = "running"
+        started = time.monotonic()
+        os.makedirs(member.folder, exist_ok=True)
+        code = pump_curve.run_logged(member_command(args, member), os.path.join(member.folder, "feed_compare.log"),
+                                     lambda line: None, append=True)
+        if code != 0:
+            member.state, member.error = "failed", "exit code %d (log: %s)" % (
+                code, os.path.join(member.folder, "feed_compare.log"))
+            return
+        say("%s: ran in %.0f s" % (member.name, time.monotonic() - started))
+    collect(member)
+
+
+def collect(member):
+    """The member's verdict from its feed report (written anew)."""
+    if not finished(member):
+        member.state = "not run" if not os.path.isdir(member.folder) else "unfinished"
+        return
+    try:
+        report = feed_report.write_report(member.folder, member.case, animation=False)
+    except (feed_report.FeedError, OSError, ValueError) as error:
+        member.state, member.error = "failed", "report: %s" % error
+        return
+    verdict = report.get("verdict") or {}
+    if verdict.get("clogged") is None:
+        member.state, member.error = "failed", "no clog criterion evaluated (feed.clog_criterion)"
+        return
+    member.verdict = verdict
+    member.state = "done"
+
+
+def rags_to_clog(member):
+    v = member.verdict
+    return feed_statistics.RagsToClog(int(v["rags_released"]), not v["clogged"])
+
+
+def summarise(args, members):
+    """Per flow fraction: the comparison of A against B over the members that finished."""
+    a_name, b_name = args.designs[0].name, args.designs[1].name
+    results = []
+    for fraction in args.fractions:
+        done = {d.name: [m for m in members if m.design is d and m.fraction == fraction and m.verdict]
+                for d in args.designs}
+        row = {"flow_fraction": fraction, "design_a": a_name, "design_b": b_name,
+               "runs_a": len(done[a_name]), "runs_b": len(done[b_name]),
+               "rags_to_clog_a": [[rags_to_clog(m).rags, rags_to_clog(m).censored] for m in done[a_name]],
+               "rags_to_clog_b": [[rags_to_clog(m).rags, rags_to_clog(m).censored] for m in done[b_name]]}
+        if done[a_name] and done[b_name]:
+            c = feed_statistics.compare([rags_to_clog(m) for m in done[a_name]],
+                                        [rags_to_clog(m) for m in done[b_name]])
+            row.update({k: v for k, v in vars(c).items()})
+            row["statement"] = feed_statistics.statement(c, a_name, b_name)
+        else:
+            row["statement"] = "not compared: a design has no finished run at this flow"
+        results.append(row)
+    return results
+
+
+def write_outputs(args, members, results, out):
+    with open(os.path.join(out, "compare.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["design", "flow_fraction", "seed", "state", "clogged", "rags_released", "time_s", "reason",
+                    "saturation_rags", "saturation_kg", "error"])
+        for m in members:
+            v = m.verdict or {}
+            w.writerow([m.design.name, m.fraction, m.seed, m.state, v.get("clogged"), v.get("rags_released"),
+                        v.get("time_s"), v.get("reason"), v.get("saturation_rags"), v.get("saturation_kg"),
+                        m.error or ""])
+    with open(os.path.join(out, "compare.yaml"), "w") as f:
+        yaml.safe_dump({"designs": {d.name: d.path for d in args.designs}, "seeds": args.seeds,
+                        "comparisons": feed_report._plain(results)}, f, sort_keys=False)
+    lines = ["# Feed comparison: %s against %s, %d seeds\n" % (args.designs[0].path, args.designs[1].path, args.seeds),
+             "| flow (of the case's) | %s: rags to clog per seed | %s: rags to clog per seed | P(A outlasts B) |"
+             % (args.designs[0].name, args.designs[1].name), "|---|---|---|---|"]
+
+    def runs(values):
+        return ", ".join("%s%d" % (">" if censored else "", n) for n, censored in values) or "none"
+    for r in results:
+        p = ("%.2f (%.2f-%.2f)" % (r["p_a_outlasts_b"], *r["p_a_outlasts_b_95"])) if "p_a_outlasts_b" in r else "n/a"
+        lines.append("| %.2f | %s | %s | %s |" % (r["flow_fraction"], runs(r["rags_to_clog_a"]),
+                                                  runs(r["rags_to_clog_b"]), p))
+    lines.append("\n>N: the pump coped with the N rags it was fed (not clogged by the end).\n")
+    lines += ["- **%.2f Q**: %s" % (r["flow_fraction"], r["statement"]) for r in results]
+    with open(os.path.join(out, "compare.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    draw(args, results, os.path.join(out, "compare.png"))
+
+
+def draw(args, results, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(results), figsize=(4.5 * len(results), 4.2), squeeze=False)
+    for ax, r in zip(axes[0], results):
+        for k, key in enumerate(("a", "b")):
+            values = r["rags_to_clog_" + key]
+            xs = [k + 0.08 * (i - (len(values) - 1) / 2) for i in range(len(values))]
+            ax.scatter(xs, [n for n, _ in values], marker="o", facecolors=["none" if c else "C%d" % k for _, c in values],
+                       edgecolors="C%d" % k, zorder=3)
+            if "median_" + key in r:
+                m, ci = r["median_" + key], r["median_%s_95" % key]
+                ax.errorbar([k + 0.3], [m], yerr=[[m - ci[0]], [ci[1] - m]], fmt="s", color="k", capsize=6)
+        ax.set_xticks([0, 1])
+        ax.set_xticklabels([r["design_a"], r["design_b"]], fontsize=8)
+        ax.set_xlim(-0.6, 1.6)
+        ax.set_ylabel("rags released when clogged (open: not clogged)")
+        title = "%.2f x the case's flow" % r["flow_fraction"]
+        if "p_a_outlasts_b" in r:
+            title += "\nP(A outlasts B) = %.2f (%.2f-%.2f)" % (r["p_a_outlasts_b"], *r["p_a_outlasts_b_95"])
+        ax.set_title(title, fontsize=9)
+        ax.grid(alpha=0.3)
+    fig.suptitle("feed comparison over %d seeds: median and 95 %% interval in black" % args.seeds, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plan(args, out, inlet, flow_rate, rags):
+    members = [Member(d, f, s, out) for f in args.fractions for d in args.designs for s in range(1, args.seeds + 1)]
+    for m in members:
+        write_member_case(args, m, inlet, flow_rate, rags)
+    return members
+
+
+def prepare_members(args, members):
+    """Each design's pump generated once (its first member), its geometry and OpenFOAM folders
+    copied to the design's other members, then each member prepared (up to date: quick)."""
+    for design in args.designs:
+        mine = [m for m in members if m.design is design]
+        try:
+            fsi_launch.prepare_case(mine[0].case, args.bin_dir, args.resolution or None)
+            for m in mine[1:]:
+                for name in os.listdir(mine[0].case):
+                    if (name == "geometry" or name.startswith("openfoam-")) and \
+                            not os.path.exists(os.path.join(m.case, name)):
+                        shutil.copytree(os.path.join(mine[0].case, name), os.path.join(m.case, name), symlinks=True)
+                fsi_launch.prepare_case(m.case, args.bin_dir, args.resolution or None)
+        except fsi_launch.UserError as e:
+            raise SystemExit("feed-compare: %s: %s" % (design.path, e))
+
+
+def run_all(args, members, jobs):
+    """Per design and flow, the first seed alone (its precursor serves the others), then the rest."""
+    firsts = [m for m in members if m.seed == 1]
+    rest = [m for m in members if m.seed != 1]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        list(pool.map(lambda m: run_member(args, m), firsts))
+        for m in rest:
+            first = next(f for f in firsts if f.design is m.design and f.fraction == m.fraction)
+            source, target = os.path.join(first.folder, "precursor"), os.path.join(m.folder, "precursor")
+            if os.path.isdir(source) and not os.path.exists(target):
+                os.makedirs(m.folder, exist_ok=True)
+                shutil.copytree(source, target, copy_function=os.link)
+        list(pool.map(lambda m: run_member(args, m), rest))
+
+
+def submit(args, members):
+    """The unfinished members as one SLURM job array (./fsi submit)."""
+    from fsi import fsi_submit
+    todo = [m.case for m in members if not finished(m)]
+    if not todo:
+        say("every member has finished: nothing to submit; run feed-compare without --submit to compare")
+        return 0
+    extra = []
+    for a in args.sbatch_arg:
+        extra += ["--sbatch-arg", a]
+    say("%d members to SLURM; afterwards: ./fsi feed-compare (the same options, without --submit)" % len(todo))
+    return fsi_submit.main(["--bin-dir", args.bin_dir] + extra + todo)
+
+
+def main(argv):
+    args = parse_args(argv)
+    flow_rate, case_rags, inlet = case_inputs(args.case_dir)
+    rags = args.rags or case_rags
+    out = os.path.abspath(args.output or os.path.join(args.case_dir, "output", "compare"))
+    os.makedirs(out, exist_ok=True)
+    members = plan(args, out, inlet, flow_rate, rags)
+    prepare_members(args, members)
+    if args.submit:
+        if args.resolution:
+            raise SystemExit("feed-compare: --resolution with --submit: ./fsi submit runs a case as it is; "
+                             "give the preset's keys in the case instead")
+        return submit(args, members)
+    jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
+    say("%d members (2 designs x %d flows x %d seeds, %d rags each), %d at once, into %s"
+        % (len(members), len(args.fractions), args.seeds, rags, jobs, out))
+    run_all(args, members, jobs)
+    for m in members:
+        if m.state == "failed":
+            say("%s failed: %s" % (m.name, m.error))
+    results = summarise(args, members)
+    write_outputs(args, members, results, out)
+    for r in results:
+        say("%.2f Q: %s" % (r["flow_fraction"], r["statement"]))
+    say("%s" % os.path.join(out, "compare.md"))
+    return 0 if any(m.verdict for m in members) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
