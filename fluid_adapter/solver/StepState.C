@@ -9,6 +9,22 @@
 #include <stdexcept>
 
 namespace fsi::fluid {
+namespace {
+
+/// Fields written with every digit of a double while it lives. Binary fields hold their values
+/// exactly, but OpenFOAM writes a uniform patch value as text (`value uniform 2.1043826e-07;`,
+/// writePrecision digits: 8 in these cases): Spalart-Allmaras' nut on the inlet, calculated and
+/// uniform, came back rounded, and a turbulent restart differed from the uninterrupted run by
+/// round-off from its first step (issue 33). 17 significant digits read back to the same double.
+struct FullPrecision {
+  unsigned saved = Foam::IOstream::defaultPrecision(17);
+  ~FullPrecision() { Foam::IOstream::defaultPrecision(saved); }
+  FullPrecision() = default;
+  FullPrecision(const FullPrecision &) = delete;
+  FullPrecision &operator=(const FullPrecision &) = delete;
+};
+
+} // namespace
 
 void OpenFoamFlow::start_step(double dt_s) {
   if (good_)
@@ -67,8 +83,16 @@ void OpenFoamFlow::advance(double dt_s) {
     throw std::runtime_error(problem + kept);
   }
   good_.reset();
-  runTime_->write();
+  {
+    const FullPrecision exact;
+    runTime_->write();
+  }
   runTime_->functionObjects().execute();
+}
+
+void OpenFoamFlow::write_now() {
+  const FullPrecision exact;
+  runTime_->writeNow();
 }
 
 template <class FieldType> void OpenFoamFlow::SavedFields<FieldType>::save(Foam::fvMesh &mesh) {
