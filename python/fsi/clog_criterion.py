@@ -5,8 +5,8 @@ revolutions, or when it holds a number of rags; its "degree of saturation" is th
 pump holds before it stops coping.
 
 Here the same on the traces of a run, revolution by revolution:
-  - each whole revolution's mean head H_k (m) and shaft power P_k (W) against the clean pump's
-    means at the same flow, H_clean and P_clean (a mean over whole revolutions is the phase
+  - each whole revolution's time mean head H_k (m) and shaft power P_k (W) (the samples joined by
+    step each sample stands for, window_mean) against the clean pump's means at the same flow, H_clean and P_clean (a mean over whole revolutions is the phase
     average over them; the once-per-revolution pulsation of a single blade cancels);
   - a rag is retained at time t when it was released at t_r <= t, has not left (its exit time
     t_e > t, or it never left) and has been in the pump for at least the residence rule:
@@ -25,7 +25,6 @@ from typing import List, Optional, Sequence
 
 import numpy as np
 
-from fsi.pump_point import revolution_series
 
 KEYS = {
     "head_drop_fraction": "clogged when the revolution mean head is this fraction under the clean pump's (0 < f < 1)",
@@ -116,15 +115,28 @@ class ClogResult:
     revolutions: List[Revolution] = field(default_factory=list)
 
 
+def window_mean(t_s, values, lo, hi):
+    """The time mean of `values` over [lo, hi], each sample standing for its step (the interval
+    since the sample before it; the first for a step as long as the second's), weighted by how
+    much of that step lies in the window. Not the mean of the samples inside: with a time step
+    that does not divide the period (166.67 steps a revolution in the pump), windows hold 166 and
+    167 samples in turn, and a once-per-revolution pulsation makes the sample mean swing from one
+    revolution to the next (0.036 % for a sinusoidal 30 %, more for a spiky torque)."""
+    t_s = np.asarray(t_s, float)
+    starts = np.concatenate([[t_s[0] - (t_s[1] - t_s[0]) if len(t_s) > 1 else t_s[0]], t_s[:-1]])
+    overlap = np.clip(np.minimum(t_s, hi) - np.maximum(starts, lo), 0.0, None)
+    return float(np.sum(overlap * np.asarray(values, float)) / np.sum(overlap))
+
+
 def revolution_means(t_s, values, period_s):
-    """Means of `values` over each whole revolution (k P, (k + 1) P] the samples t_s cover (they
-    start within one sample spacing of its start and reach its end): (end times, means)."""
+    """Time means of `values` over each whole revolution [k P, (k + 1) P] the samples t_s cover
+    (they start within one sample spacing of its start and reach its end): (end times, means)."""
     t_s, values = np.asarray(t_s, float), np.asarray(values, float)
     spacing = float(np.median(np.diff(t_s))) if len(t_s) > 1 else period_s
     first = max(0, int(np.ceil((t_s[0] - spacing - 1e-9) / period_s)))
     n = max(0, int(np.floor((t_s[-1] + 1e-9) / period_s)) - first)
-    return (np.arange(first + 1, first + n + 1) * period_s,
-            np.array(revolution_series(t_s, values, first * period_s, period_s, n)))
+    ends = np.arange(first + 1, first + n + 1) * period_s
+    return ends, np.array([window_mean(t_s, values, e - period_s, e) for e in ends])
 
 
 def retained_at(rags: Sequence[Rag], time_s, residence_s):
