@@ -4,8 +4,9 @@ rigs feed them. From a run of a case with a `feed` section (cases/rag-feed):
 
   RUN_DIR/feed_rags.csv         one row per rag: its release and exit times (s), how long it was
                                 in the scene (s and revolutions), its outcome and where it is held
-  RUN_DIR/feed_revolutions.csv  one row per whole revolution: the mean head (m) and shaft power
-                                (W), their change against the clean pump at the same flow, the
+  RUN_DIR/feed_revolutions.csv  one row per whole revolution: the time mean head (m) and shaft
+                                power (W), their change against the clean pump at the same flow,
+                                the efficiency rho g Q H / P and its change (a difference), the
                                 rags in the scene and retained at its end
   RUN_DIR/feed_report.yaml      the clog criterion of the case (feed.clog_criterion) and its
                                 verdict: met or not, when, at which rag count and why, the degree
@@ -171,8 +172,9 @@ def in_scene_counts(rags, t, residence_s):
     return inside, held
 
 
-def revolutions_table(rags, traces, period_s, residence_s):
-    """Rows per whole revolution of the traces (both head and power needed), or []."""
+def revolutions_table(rags, traces, period_s, residence_s, flow_rate_m3_per_s=None, density_kg_per_m3=1000.0):
+    """Rows per whole revolution of the traces (both head and power needed), or []. With the
+    flow rate, the efficiency rho g Q H / P of each revolution's means and the clean pump's."""
     if traces["head"] is None or traces["power"] is None:
         return []
     ends, heads = clog_criterion.revolution_means(traces["head"][0], traces["head"][1], period_s)
@@ -183,9 +185,13 @@ def revolutions_table(rags, traces, period_s, residence_s):
     for k in range(n):
         h, p = float(heads[k]), float(powers[k])
         ch, cp = traces["clean_head_m"], traces["clean_power_w"]
+        eta = density_kg_per_m3 * rag_metrics.G * flow_rate_m3_per_s * h / p if flow_rate_m3_per_s and p > 0 else None
+        eta_clean = (density_kg_per_m3 * rag_metrics.G * flow_rate_m3_per_s * ch / cp
+                     if flow_rate_m3_per_s and ch and cp else None)
         rows.append({"revolution": int(round(ends[k] / period_s)), "end_time_s": float(ends[k]), "head_m": h,
                      "shaft_power_w": p, "head_change": h / ch - 1.0 if ch else None,
-                     "power_change": p / cp - 1.0 if cp else None,
+                     "power_change": p / cp - 1.0 if cp else None, "efficiency": eta,
+                     "efficiency_change": eta - eta_clean if eta is not None and eta_clean is not None else None,
                      "rags_in_scene": int(inside[k]), "rags_retained": int(held[k])})
     return rows
 
@@ -248,7 +254,7 @@ def write_csv(path, rows, columns):
 RAG_COLUMNS = ["name", "release_time_s", "exit_time_s", "time_in_scene_s", "time_in_scene_revolutions", "outcome",
                "held_at", "held_contact_time_s", "mass_kg"]
 REVOLUTION_COLUMNS = ["revolution", "end_time_s", "head_m", "shaft_power_w", "head_change", "power_change",
-                      "rags_in_scene", "rags_retained"]
+                      "efficiency", "efficiency_change", "rags_in_scene", "rags_retained"]
 
 
 def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
@@ -386,7 +392,10 @@ def write_report(run_dir, case_dir, animation=False):
         if r["outcome"] in ("retained", "in_pump"):
             r["held_at"], r["held_contact_time_s"] = held_where(run_dir, r, times, geometry, d_c, period)
     traces = load_traces(run_dir, geometry, config)
-    revolutions = revolutions_table(rags, traces, period, residence_s)
+    foam = (config.get("fluid") or {}).get("openfoam") or {}
+    flow_rate = (foam.get("operating_point") or {}).get("flow_rate_m3_per_s")
+    density = float(foam.get("density_kg_per_m3", 1000.0))
+    revolutions = revolutions_table(rags, traces, period, residence_s, flow_rate, density)
     result, verdict_notes = verdict(criterion, rags, traces, period, end_time)
     write_csv(os.path.join(run_dir, "feed_rags.csv"), rags, RAG_COLUMNS)
     write_csv(os.path.join(run_dir, "feed_revolutions.csv"), revolutions, REVOLUTION_COLUMNS)
@@ -402,6 +411,9 @@ def write_report(run_dir, case_dir, animation=False):
         "clog_criterion": dict(feed.get("clog_criterion") or {}) or None,
         "verdict": result,
         "clean_pump": {"head_m": traces["clean_head_m"], "shaft_power_w": traces["clean_power_w"],
+                       "flow_rate_m3_per_s": flow_rate,
+                       "efficiency": (density * rag_metrics.G * flow_rate * traces["clean_head_m"] / traces["clean_power_w"]
+                                      if flow_rate and traces["clean_head_m"] and traces["clean_power_w"] else None),
                        "source": traces["clean_source"]},
         "sources": {"run_dir": os.path.abspath(run_dir), "case_dir": os.path.abspath(case_dir),
                     "configuration": source},
