@@ -519,57 +519,6 @@ class RagInPump(CaseTest):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
 
 
-class RagFeed(CaseTest):
-    """cases/rag-feed, shortened (a precursor of 10 steps, 3 rags released 4 steps apart, 24
-    coupled steps) through the launcher, all three processes over ZeroMQ with OpenFOAM: each rag
-    waits where the feed placed it, bit for bit, until its release time, and is carried up by the
-    water after it; the structures' release times are in structure.h5; the case's postprocess.py
-    writes the feed's report (every rag in the pump, none retained: the run is shorter than the
-    residence rule; the clog criterion not met) and its pictures. The feed itself takes hours:
-    ./fsi run cases/rag-feed."""
-
-    STEPS = 24
-
-    def test_rags_enter_at_their_release_times_and_the_report_is_written(self):
-        need_openfoam(self)
-        case = self.copy_case("rag-feed")
-        path = os.path.join(case, "case.yaml")
-        self.edit(path, "precursor_time_s: 0.5", "precursor_time_s: 0.0025")
-        self.edit(path, "rags: 20", "rags: 3")
-        self.edit(path, "interval_s: 0.083333", "interval_s: 0.001")
-        with open(path) as f:
-            config = load_case_yaml(f)
-        dt = config["run"]["time_step_s"]
-        out = os.path.join(self.tmp, "out")
-        result = subprocess.run([PYTHON, LAUNCHER, "--bin-dir", BIN_DIR, "-o", out, "--end-time",
-                                 repr(self.STEPS * dt), case], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, timeout=600)
-        self.assertEqual(result.returncode, 0, result.stderr.decode()[-3000:])
-        with h5py.File(os.path.join(out, "structure.h5"), "r") as f:
-            times = f["time_s"][:]
-            names = sorted(f["structures"].keys())
-            self.assertEqual(names, ["rag01", "rag03", "square02"])
-            for name, release in (("rag01", 0.0), ("square02", 0.001), ("rag03", 0.002)):
-                g = f["structures"][name]
-                self.assertAlmostEqual(float(g.attrs["release_time_s"]), release, delta=1e-12)
-                self.assertTrue(np.isnan(g.attrs["exit_time_s"]), name)   # none has left
-                x = g["position_m"][:]
-                before = times < release - 1e-9
-                self.assertTrue(np.array_equal(x[before], np.broadcast_to(x[0], x[before].shape)), name)
-                self.assertGreater(float(np.mean(x[-1, :, 2] - x[0, :, 2])), 0.0, name)   # carried up
-        made = subprocess.run([PYTHON, os.path.join(case, "postprocess.py"), out, case, "--no-animation"],
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=fsi_launch.case_script_env())
-        self.assertEqual(made.returncode, 0, made.stdout.decode()[-3000:])
-        with open(os.path.join(out, "feed_report.yaml")) as f:
-            report = yaml.safe_load(f)
-        self.assertEqual(report["rags"], 3)
-        self.assertEqual(report["outcomes"]["in_pump"], 3)
-        self.assertFalse(report["verdict"]["clogged"])
-        self.assertEqual(report["verdict"]["saturation_rags"], 0)
-        for name in ("feed_rags.csv", "feed_revolutions.csv", "feed_timeline.png", "feed_retained.png"):
-            self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
-
-
 class PumpOperatingPoint(CaseTest):
     """The pump's flow rate is fluid.openfoam.operating_point of case.yaml (a key of the schema),
     set per run with --set (./fsi pump-curve, ./fsi rag-ensemble), never an edited OpenFOAM
