@@ -39,6 +39,7 @@ from fsi import feed_report
 from fsi import feed_statistics
 from fsi import fsi_launch
 from fsi import pump_curve
+from fsi.rag_ensemble import PROGRESS   # the coupler's progress line
 
 LOCK = threading.Lock()
 
@@ -56,6 +57,7 @@ class Member:
         self.case = os.path.join(out, design.name, "q%.2f" % fraction, "seed-%d" % seed, "case")
         self.folder = os.path.join(self.case, "output")   # where ./fsi run and ./fsi submit write
         self.state, self.error, self.verdict = "waiting", None, None
+        self.progress, self.eta = 0.0, ""
 
 
 class Design:
@@ -186,8 +188,13 @@ def run_member(args, member):
         member.state = "running"
         started = time.monotonic()
         os.makedirs(member.folder, exist_ok=True)
+        def on_line(line):
+            match = PROGRESS.search(line)
+            if match:
+                member.progress, member.eta = int(match.group(1)) / int(match.group(2)), match.group(3)
+
         code = pump_curve.run_logged(member_command(args, member), os.path.join(member.folder, "feed_compare.log"),
-                                     lambda line: None, append=True)
+                                     on_line, append=True)
         if code != 0:
             member.state, member.error = "failed", "exit code %d (log: %s)" % (
                 code, os.path.join(member.folder, "feed_compare.log"))
@@ -324,10 +331,28 @@ def prepare_members(args, members):
             raise SystemExit("feed-compare: %s: %s" % (design.path, e))
 
 
+def report_progress(members, stop):
+    """Every minute: members done, and each running one's progress and ETA (its coupler's)."""
+    while not stop.wait(60.0):
+        running = [m for m in members if m.state == "running"]
+        done = sum(m.state in ("done", "failed") for m in members)
+        say("%d/%d members done; %s" % (done, len(members), ", ".join(
+            "%s %.0f %% (ETA %s)" % (m.name, 100 * m.progress, m.eta or "?") for m in running) or "starting"))
+
+
 def run_all(args, members, jobs):
     """Per design and flow, the first seed alone (its precursor serves the others), then the rest."""
     firsts = [m for m in members if m.seed == 1]
     rest = [m for m in members if m.seed != 1]
+    stop = threading.Event()
+    threading.Thread(target=report_progress, args=(members, stop), daemon=True).start()
+    try:
+        run_pool(args, firsts, rest, jobs)
+    finally:
+        stop.set()
+
+
+def run_pool(args, firsts, rest, jobs):
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
         list(pool.map(lambda m: run_member(args, m), firsts))
         for m in rest:
