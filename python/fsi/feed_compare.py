@@ -160,6 +160,28 @@ def write_member_case(args, member, inlet, flow_rate, rags):
                 f.write(text)
 
 
+def stamp_of(member, args):
+    """What a member's results depend on: its case.yaml and pump.yaml, and the preset."""
+    return "case %s resolution %s\n" % (pump_curve.files_digest(member.case, [
+        os.path.join(member.case, "case.yaml"), os.path.join(member.case, "pump.yaml")]), args.resolution or "-")
+
+
+def start_folder(member, args):
+    """The member's output folder for its current case: results of another case (other options,
+    another pump.yaml) are moved aside to <folder>.old-<n>, not reused nor deleted."""
+    path = os.path.join(member.folder, "feed_compare.stamp")
+    stamp = stamp_of(member, args)
+    if os.path.isdir(member.folder) and (not os.path.isfile(path) or open(path).read() != stamp):
+        n = 1
+        while os.path.exists("%s.old-%d" % (member.folder, n)):
+            n += 1
+        os.rename(member.folder, "%s.old-%d" % (member.folder, n))
+        say("%s: results of another case moved to %s.old-%d" % (member.name, member.folder, n))
+    os.makedirs(member.folder, exist_ok=True)
+    with open(path, "w") as f:
+        f.write(stamp)
+
+
 def finished(member):
     """The member's run completed (its structure.h5 says so)."""
     import h5py
@@ -184,10 +206,10 @@ def member_command(args, member):
 
 
 def run_member(args, member):
+    start_folder(member, args)
     if not finished(member):
         member.state = "running"
         started = time.monotonic()
-        os.makedirs(member.folder, exist_ok=True)
         def on_line(line):
             match = PROGRESS.search(line)
             if match:
@@ -367,6 +389,8 @@ def run_pool(args, firsts, rest, jobs):
 def submit(args, members):
     """The unfinished members as one SLURM job array (./fsi submit)."""
     from fsi import fsi_submit
+    for m in members:
+        start_folder(m, args)
     todo = [m.case for m in members if not finished(m)]
     if not todo:
         say("every member has finished: nothing to submit; run feed-compare without --submit to compare")
@@ -394,6 +418,8 @@ def main(argv):
     jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
     say("%d members (2 designs x %d flows x %d seeds, %d rags each), %d at once, into %s"
         % (len(members), len(args.fractions), args.seeds, rags, jobs, out))
+    for m in members:   # the precursor copies below go into folders of this case
+        start_folder(m, args)
     run_all(args, members, jobs)
     for m in members:
         if m.state == "failed":
