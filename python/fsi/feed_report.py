@@ -262,8 +262,8 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     has_traces = bool(revolutions) and revolutions[0]["head_change"] is not None
-    fig, axes = plt.subplots(2 if has_traces else 1, 1, figsize=(9, 7 if has_traces else 4.5), sharex=True,
-                             squeeze=False, gridspec_kw={"height_ratios": [3, 2] if has_traces else [1]})
+    fig, axes = plt.subplots(3 if has_traces else 1, 1, figsize=(9, 8.5 if has_traces else 4.5), sharex=True,
+                             squeeze=False, gridspec_kw={"height_ratios": [3, 2, 1.2] if has_traces else [1]})
     ax = axes[0, 0]
     rev = 1.0 / period_s
     for k, r in enumerate(rags):
@@ -297,6 +297,13 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
         ax2.set_ylabel("revolution mean against\nthe clean pump (%)")
         ax2.legend(fontsize=8)
         ax2.grid(alpha=0.3)
+        ax3 = axes[2, 0]
+        ax3.step(x, [r["rags_in_scene"] for r in revolutions], where="mid", color="0.3", label="in the pump")
+        ax3.step(x, [r["rags_retained"] for r in revolutions], where="mid", color="tab:red", label="retained")
+        ax3.set_ylabel("rags at the\nrevolution's end")
+        ax3.set_ylim(bottom=0)
+        ax3.legend(fontsize=8)
+        ax3.grid(alpha=0.3)
     if result and result.get("clogged"):
         for a in axes[:, 0]:
             a.axvline(result["time_s"] * rev, color="k", ls="--", lw=1.0)
