@@ -139,10 +139,14 @@ def revolution_means(t_s, values, period_s):
     return ends, np.array([window_mean(t_s, values, e - period_s, e) for e in ends])
 
 
+TIME_TOLERANCE_S = 1e-9   # release + residence - release is residence only to round-off
+
+
 def retained_at(rags: Sequence[Rag], time_s, residence_s):
-    """The rags retained at time_s: released, not left, in for residence_s or longer."""
+    """The rags retained at time_s: released, not left, in for residence_s or longer (to
+    TIME_TOLERANCE_S: a rag becomes retained at the event release + residence itself)."""
     return [r for r in rags if r.release_time_s <= time_s and (r.exit_time_s is None or r.exit_time_s > time_s)
-            and time_s - r.release_time_s >= residence_s]
+            and time_s - r.release_time_s >= residence_s - TIME_TOLERANCE_S]
 
 
 def evaluate(criterion: ClogCriterion, period_s, t_s, head_m, power_w, clean_head_m, clean_power_w,

@@ -66,6 +66,15 @@ class Evaluate(unittest.TestCase):
         sample_means = [np.mean(y[(t > k * P) & (t <= (k + 1) * P)]) for k in range(19)]
         self.assertGreater(np.max(np.abs(np.array(sample_means) - 1.0)), 2e-4)   # the control
 
+    def test_a_rag_is_retained_at_the_instant_its_residence_ends(self):
+        # release + residence - release is not residence in floating point for every release
+        # (1.583327 + 10 P here): the criterion must still count the rag at that event.
+        from fsi.clog_criterion import retained_at
+        release = 1.583327
+        residence = 10 * 0.041665685060872586
+        self.assertNotEqual((release + residence) - release, residence)   # the round-off is there
+        self.assertEqual(len(retained_at([Rag(release, None, 0.001)], release + residence, residence)), 1)
+
     def test_revolution_means_are_phase_averages(self):
         # The 30 % pulsation cancels over whole revolutions: each mean is its step's value.
         r = self.run_criterion(head_drop_fraction=0.05).revolutions
