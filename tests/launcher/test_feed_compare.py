@@ -1,0 +1,52 @@
+#!/usr/bin/python3
+"""./fsi feed-compare's refusals of bad input, before anything runs (python/fsi/feed_compare.py):
+a design file that does not exist, the same design twice, flow fractions that are not positive
+numbers, no seeds, and a case without a feed; each message names the option or file and what is
+allowed. Its runs: tests/cluster/test_slurm.py FeedCompare (as a SLURM array, with OpenFOAM).
+    /usr/bin/python3 tests/launcher/test_feed_compare.py
+"""
+import contextlib
+import io
+import os
+import sys
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from fsi import feed_compare  # noqa: E402
+
+FEED = os.path.join(ROOT, "cases", "rag-feed")
+TWO_BLADE = os.path.join(ROOT, "pump", "designs", "two-blade.yaml")
+
+
+class Refusals(unittest.TestCase):
+    def refused(self, argv, *words):
+        stderr = io.StringIO()
+        with contextlib.redirect_stderr(stderr), self.assertRaises(SystemExit) as raised:
+            feed_compare.parse_args(["--bin-dir", "bin"] + argv + [FEED])
+        text = stderr.getvalue() + str(raised.exception.code)
+        for word in words:
+            self.assertIn(word, text)
+
+    def test_bad_options_are_refused_naming_them(self):
+        self.refused(["--designs", "nowhere.yaml," + TWO_BLADE], "--designs", "nowhere.yaml", "no such file")
+        self.refused(["--designs", TWO_BLADE + "," + TWO_BLADE], "the same file")
+        self.refused(["--designs", TWO_BLADE], "two pump.yaml files")
+        self.refused(["--flow-fractions", "1,x"], "--flow-fractions", "1,0.36")
+        self.refused(["--flow-fractions", "1,-0.36"], "each above 0")
+        self.refused(["--seeds", "0"], "--seeds 0", "at least 1")
+
+    def test_the_defaults_are_the_feed_s_pump_against_the_two_blade_design(self):
+        args = feed_compare.parse_args(["--bin-dir", "bin", FEED])
+        self.assertEqual([d.name for d in args.designs], ["A-rag-in-pump", "B-two-blade"])
+        self.assertEqual(args.fractions, [1.0, 0.36])
+
+    def test_a_case_without_a_feed_is_refused(self):
+        with self.assertRaises(SystemExit) as raised:
+            feed_compare.case_inputs(os.path.join(ROOT, "cases", "rag-in-pump"))
+        self.assertIn("no feed section", str(raised.exception.code))
+
+
+if __name__ == "__main__":
+    unittest.main()
