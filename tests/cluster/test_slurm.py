@@ -172,12 +172,12 @@ class FeedCompare(SubmitTest):
         shutil.copytree(os.path.join(ROOT, "cases", "rag-feed"), case, ignore=shutil.ignore_patterns(
             "output", "geometry", "openfoam-*", "pump.yaml", ".geometry.lock"))
         path = os.path.join(case, "case.yaml")
-        text = read(path).replace("precursor_time_s: 0.5", "precursor_time_s: 0.0025")
+        text = read(path).replace("precursor_time_s: 0.5", "precursor_time_s: 0.0005")
         with open(path, "w") as f:
-            f.write(text.replace("interval_s: 0.083333", "interval_s: 0.001"))
+            f.write(text.replace("interval_s: 0.083333", "interval_s: 0.0005"))
         out = os.path.join(self.tmp, "compare")
         command = [sys.executable, os.path.join(ROOT, "python", "fsi", "feed_compare.py"), "--bin-dir", BIN_DIR,
-                   "--seeds", "1", "--flow-fractions", "1", "--rags", "2", "--end-time", "0.003", "-o", out, case]
+                   "--seeds", "1", "--flow-fractions", "1", "--rags", "2", "--end-time", "0.001", "-o", out, case]
         env = dict(self.cluster.env, PYTHONPATH=os.path.join(ROOT, "python"))
         made = subprocess.run(command + ["--submit"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                               text=True, timeout=300)
