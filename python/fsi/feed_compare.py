@@ -27,6 +27,7 @@ import argparse
 import concurrent.futures
 import csv
 import os
+import re
 import shutil
 import sys
 import threading
@@ -40,6 +41,9 @@ from fsi import feed_statistics
 from fsi import fsi_launch
 from fsi import pump_curve
 from fsi.rag_ensemble import PROGRESS   # the coupler's progress line
+
+# The fluid's progress line in the precursor: "precursor: t = 0.0355 of 0.5 s, step 142/2000, ... ETA 3m19s"
+PRECURSOR = re.compile(r"precursor: t = \S+ of \S+ s, step (\d+)/(\d+),.*\bETA (\S+)")
 
 LOCK = threading.Lock()
 
@@ -57,7 +61,7 @@ class Member:
         self.case = os.path.join(out, design.name, "q%.2f" % fraction, "seed-%d" % seed, "case")
         self.folder = os.path.join(self.case, "output")   # where ./fsi run and ./fsi submit write
         self.state, self.error, self.verdict = "waiting", None, None
-        self.progress, self.eta = 0.0, ""
+        self.progress, self.eta, self.phase = 0.0, "", ""
 
 
 class Design:
@@ -211,9 +215,11 @@ def run_member(args, member):
         member.state = "running"
         started = time.monotonic()
         def on_line(line):
-            match = PROGRESS.search(line)
-            if match:
-                member.progress, member.eta = int(match.group(1)) / int(match.group(2)), match.group(3)
+            for phase, pattern in (("precursor ", PRECURSOR), ("", PROGRESS)):
+                match = pattern.search(line)
+                if match:
+                    member.progress, member.eta = int(match.group(1)) / int(match.group(2)), match.group(3)
+                    member.phase = phase
 
         code = pump_curve.run_logged(member_command(args, member), os.path.join(member.folder, "feed_compare.log"),
                                      on_line, append=True)
@@ -359,7 +365,8 @@ def report_progress(members, stop):
         running = [m for m in members if m.state == "running"]
         done = sum(m.state in ("done", "failed") for m in members)
         say("%d/%d members done; %s" % (done, len(members), ", ".join(
-            "%s %.0f %% (ETA %s)" % (m.name, 100 * m.progress, m.eta or "?") for m in running) or "starting"))
+            "%s: %s%.0f %% (ETA %s)" % (m.name, m.phase, 100 * m.progress, m.eta or "?") for m in running)
+            or "starting"))
 
 
 def run_all(args, members, jobs):
