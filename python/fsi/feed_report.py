@@ -7,7 +7,9 @@ rigs feed them. From a run of a case with a `feed` section (cases/rag-feed):
   RUN_DIR/feed_revolutions.csv  one row per whole revolution: the time mean head (m) and shaft
                                 power (W), their change against the clean pump at the same flow,
                                 the efficiency rho g Q H / P and its change (a difference), the
-                                rags in the scene and retained at its end
+                                rags in the scene and retained at its end, and where the rags
+                                in the scene are then (at_<site>: how many touch each trap site,
+                                at_free: how many touch none)
   RUN_DIR/feed_report.yaml      the clog criterion of the case (feed.clog_criterion) and its
                                 verdict: met or not, when, at which rag count and why, the degree
                                 of saturation (the most rags and mass retained before), with the
@@ -143,6 +145,27 @@ def held_where(run_dir, rag, times, geometry, threshold_m, period_s):
     return (site, contact[site]) if contact[site] > 0 else ("free", 0.0)
 
 
+def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
+    """Per revolution end (the saved frame nearest to it): how many rags in the scene touch each
+    trap site (rag_metrics' sites and contact distance; a rag touching two counts at both), and
+    how many touch none ("free"). [{site: count}] in the order of `ends`."""
+    frames = np.array([int(np.argmin(np.abs(times - e))) for e in ends], int)
+    counts = [dict() for _ in ends]
+    for r in rags:
+        until = r["exit_time_s"] if r["exit_time_s"] is not None else np.inf
+        inside = [k for k, f in enumerate(frames) if r["release_time_s"] <= times[f] < until]
+        if not inside:
+            continue
+        t, x, grid, *_ = rag_metrics.read_structure(run_dir, r["name"])
+        picked = frames[inside]
+        _, series = rag_metrics.analyse(t[picked], x[picked], grid, geometry, threshold_m)
+        for j, k in enumerate(inside):
+            touched = [site for site in rag_metrics.SITES if series["sites"][site][j]] or ["free"]
+            for site in touched:
+                counts[k][site] = counts[k].get(site, 0) + 1
+    return counts
+
+
 def load_traces(run_dir, geometry, config):
     """(t, head m, t, shaft power W, clean head m, clean power W, notes): the run's head and power
     and the clean pump's (the precursor's whole revolutions, rag_metrics.clean_from_precursor)."""
@@ -254,7 +277,8 @@ def write_csv(path, rows, columns):
 RAG_COLUMNS = ["name", "release_time_s", "exit_time_s", "time_in_scene_s", "time_in_scene_revolutions", "outcome",
                "held_at", "held_contact_time_s", "mass_kg"]
 REVOLUTION_COLUMNS = ["revolution", "end_time_s", "head_m", "shaft_power_w", "head_change", "power_change",
-                      "efficiency", "efficiency_change", "rags_in_scene", "rags_retained"]
+                      "efficiency", "efficiency_change", "rags_in_scene", "rags_retained"] + [
+                          "at_" + site for site in rag_metrics.SITES + ("free",)]
 
 
 def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
@@ -403,6 +427,10 @@ def write_report(run_dir, case_dir, animation=False):
     flow_rate = (foam.get("operating_point") or {}).get("flow_rate_m3_per_s")
     density = float(foam.get("density_kg_per_m3", 1000.0))
     revolutions = revolutions_table(rags, traces, period, residence_s, flow_rate, density)
+    if revolutions:
+        where = sites_over_time(run_dir, rags, times, [r["end_time_s"] for r in revolutions], geometry, d_c)
+        for row, counts in zip(revolutions, where):
+            row.update({"at_" + site: counts.get(site, 0) for site in rag_metrics.SITES + ("free",)})
     result, verdict_notes = verdict(criterion, rags, traces, period, end_time)
     write_csv(os.path.join(run_dir, "feed_rags.csv"), rags, RAG_COLUMNS)
     write_csv(os.path.join(run_dir, "feed_revolutions.csv"), revolutions, REVOLUTION_COLUMNS)
