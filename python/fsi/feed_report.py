@@ -31,7 +31,9 @@ the criterion, 10 without one):
   waiting   not released by the end of the run
 Where a rag in the scene at the end is held: the trap site (rag_metrics.SITES) its points
 touched longest over the last revolution of the run (python/fsi/rag_metrics.py: the contact
-distance 1.5 d_c), or "free" when it touched none.
+distance 1.5 d_c), or "free" when it touched none; "sump" for the `suction` site when the rag
+lies mostly outside the suction pipe's radius (the casing's suction_wall region holds the
+sump's walls too).
 
 Usage: feed_report.py RUN_DIR CASE_DIR [--animation]
 Python: write_report(run_dir, case_dir, animation=False) -> the report dict.
@@ -130,6 +132,27 @@ def outcomes(rags, end_time_s, residence_s):
     return rags
 
 
+SITES = rag_metrics.SITES + ("sump", "free")
+
+
+def suction_pipe_radius(geometry):
+    """The suction pipe's radius when the casing has a sump wider than it (its suction_wall
+    region then holds both: the pipe's wall at the smallest radius, the sump's further out);
+    None without a sump."""
+    walls = geometry.casing.get("suction_wall")
+    if walls is None or not len(walls):
+        return None
+    r = geometry.radius(np.asarray(walls).reshape(-1, 3))
+    return float(r.min()) if r.max() > 1.2 * r.min() else None
+
+
+def sump_or_suction(site, points, geometry, pipe_radius):
+    """`suction` told apart: a rag whose points lie mostly outside the pipe's radius is in the sump."""
+    if site == "suction" and pipe_radius is not None and np.median(geometry.radius(points)) > pipe_radius:
+        return "sump"
+    return site
+
+
 def held_where(run_dir, rag, times, geometry, threshold_m, period_s):
     """The trap site a rag in the scene at the end touched longest over the run's last
     revolution, and that time (s); ("free", 0) when it touched none."""
@@ -142,7 +165,9 @@ def held_where(run_dir, rag, times, geometry, threshold_m, period_s):
     metrics, _ = rag_metrics.analyse(t, x, grid, geometry, threshold_m)
     contact = {site: metrics["trap_contact_time_s." + site] for site in rag_metrics.SITES}
     site = max(contact, key=contact.get)
-    return (site, contact[site]) if contact[site] > 0 else ("free", 0.0)
+    if contact[site] <= 0:
+        return "free", 0.0
+    return sump_or_suction(site, x[-1], geometry, suction_pipe_radius(geometry)), contact[site]
 
 
 def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
@@ -151,6 +176,7 @@ def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
     how many touch none ("free"). [{site: count}] in the order of `ends`."""
     frames = np.array([int(np.argmin(np.abs(times - e))) for e in ends], int)
     counts = [dict() for _ in ends]
+    pipe_radius = suction_pipe_radius(geometry)
     for r in rags:
         until = r["exit_time_s"] if r["exit_time_s"] is not None else np.inf
         inside = [k for k, f in enumerate(frames) if r["release_time_s"] <= times[f] < until]
@@ -160,7 +186,8 @@ def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
         picked = frames[inside]
         _, series = rag_metrics.analyse(t[picked], x[picked], grid, geometry, threshold_m)
         for j, k in enumerate(inside):
-            touched = [site for site in rag_metrics.SITES if series["sites"][site][j]] or ["free"]
+            touched = [sump_or_suction(site, x[picked[j]], geometry, pipe_radius)
+                       for site in rag_metrics.SITES if series["sites"][site][j]] or ["free"]
             for site in touched:
                 counts[k][site] = counts[k].get(site, 0) + 1
     return counts
@@ -278,7 +305,7 @@ RAG_COLUMNS = ["name", "release_time_s", "exit_time_s", "time_in_scene_s", "time
                "held_at", "held_contact_time_s", "mass_kg"]
 REVOLUTION_COLUMNS = ["revolution", "end_time_s", "head_m", "shaft_power_w", "head_change", "power_change",
                       "efficiency", "efficiency_change", "rags_in_scene", "rags_retained"] + [
-                          "at_" + site for site in rag_metrics.SITES + ("free",)]
+                          "at_" + site for site in SITES]
 
 
 def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
@@ -430,7 +457,7 @@ def write_report(run_dir, case_dir, animation=False):
     if revolutions:
         where = sites_over_time(run_dir, rags, times, [r["end_time_s"] for r in revolutions], geometry, d_c)
         for row, counts in zip(revolutions, where):
-            row.update({"at_" + site: counts.get(site, 0) for site in rag_metrics.SITES + ("free",)})
+            row.update({"at_" + site: counts.get(site, 0) for site in SITES})
     result, verdict_notes = verdict(criterion, rags, traces, period, end_time)
     write_csv(os.path.join(run_dir, "feed_rags.csv"), rags, RAG_COLUMNS)
     write_csv(os.path.join(run_dir, "feed_revolutions.csv"), revolutions, REVOLUTION_COLUMNS)
