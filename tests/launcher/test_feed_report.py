@@ -13,7 +13,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from fsi.feed_report import FeedError, grid_area, in_scene_counts, kind_of, outcomes  # noqa: E402
+from fsi.feed_report import (FeedError, grid_area, in_scene_counts, kind_of, outcomes,  # noqa: E402
+                             suction_pipe_radius, sump_or_suction)
 
 P = 0.04      # s, a revolution
 RULE = 10 * P  # the residence rule
@@ -52,6 +53,39 @@ class FeedReport(unittest.TestCase):
         self.assertIs(kind_of("square12", kinds), kinds[1])
         with self.assertRaises(FeedError):
             kind_of("wipe01", kinds[:2])
+
+
+class AxialGeometry:
+    """The parts of rag_metrics.PumpGeometry the sump rule reads: the axis z, the casing's regions."""
+
+    def __init__(self, suction_wall):
+        self.casing = {"suction_wall": suction_wall}
+
+    @staticmethod
+    def radius(x):
+        x = np.asarray(x, float)
+        return np.hypot(x[..., 0], x[..., 1])
+
+
+def ring(radius, z):
+    a = np.linspace(0, 2 * np.pi, 9)[:-1]
+    return np.stack([radius * np.cos(a), radius * np.sin(a), np.full_like(a, z)], axis=1)
+
+
+class Sump(unittest.TestCase):
+    def test_a_rag_at_the_suction_wall_outside_the_pipe_is_in_the_sump(self):
+        # A pipe of radius 0.05 m over a sump of 0.1 m (rag-in-pump's): triangles of both walls.
+        pipe, sump = ring(0.05, -0.05), ring(0.1, -0.2)
+        walls = np.stack([pipe[:3], pipe[3:6], sump[:3], sump[3:6]])
+        g = AxialGeometry(walls)
+        self.assertAlmostEqual(suction_pipe_radius(g), 0.05, delta=1e-15)
+        in_sump = ring(0.08, -0.2)
+        in_pipe = ring(0.03, -0.05)
+        self.assertEqual(sump_or_suction("suction", in_sump, g, 0.05), "sump")
+        self.assertEqual(sump_or_suction("suction", in_pipe, g, 0.05), "suction")
+        self.assertEqual(sump_or_suction("leading_edge", in_sump, g, 0.05), "leading_edge")
+        # A pipe without a sump: no radius, no sump.
+        self.assertIsNone(suction_pipe_radius(AxialGeometry(np.stack([pipe[:3], pipe[3:6]]))))
 
 
 if __name__ == "__main__":
