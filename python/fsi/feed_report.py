@@ -8,8 +8,8 @@ rigs feed them. From a run of a case with a `feed` section (cases/rag-feed):
                                 power (W), their change against the clean pump at the same flow,
                                 the efficiency rho g Q H / P and its change (a difference), the
                                 rags in the scene and retained at its end, and where the rags
-                                in the scene are then (at_<site>: how many touch each trap site,
-                                at_free: how many touch none)
+                                in the scene are then (at_<site>: how many are at each trap site,
+                                each counted once, SITE_PRIORITY; at_free: touching none)
   RUN_DIR/feed_report.yaml      the clog criterion of the case (feed.clog_criterion) and its
                                 verdict: met or not, when, at which rag count and why, the degree
                                 of saturation (the most rags and mass retained before), with the
@@ -170,26 +170,33 @@ def held_where(run_dir, rag, times, geometry, threshold_m, period_s):
     return sump_or_suction(site, x[-1], geometry, suction_pipe_radius(geometry)), contact[site]
 
 
+# A rag touching several sites at once is counted at the first of them in this order: the sites
+# that hold a rag (the leading edge, the cut-water) before those it slides along.
+SITE_PRIORITY = ("leading_edge", "cut_water", "eye_and_hub", "blade_sides", "shroud", "side_gap", "volute_wall",
+                 "discharge", "suction")
+
+
 def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
-    """Per revolution end (the saved frame nearest to it): how many rags in the scene touch each
-    trap site (rag_metrics' sites and contact distance; a rag touching two counts at both), and
-    how many touch none ("free"). [{site: count}] in the order of `ends`."""
+    """Per revolution end (the saved frame nearest to it): how many rags in the scene are at each
+    trap site (rag_metrics' sites and contact distance; a rag touching several counted once, at
+    the first in SITE_PRIORITY; `suction` told from `sump`), and how many touch none ("free").
+    [{site: count}] in the order of `ends`: the counts of a revolution add up to its rags."""
     frames = np.array([int(np.argmin(np.abs(times - e))) for e in ends], int)
     counts = [dict() for _ in ends]
     pipe_radius = suction_pipe_radius(geometry)
     for r in rags:
         until = r["exit_time_s"] if r["exit_time_s"] is not None else np.inf
-        inside = [k for k, f in enumerate(frames) if r["release_time_s"] <= times[f] < until]
+        # In the scene at the revolution's end, as in_scene_counts: released before it, not gone.
+        inside = [k for k, e in enumerate(ends) if r["release_time_s"] <= e - 1e-9 < until]
         if not inside:
             continue
         t, x, grid, *_ = rag_metrics.read_structure(run_dir, r["name"])
         picked = frames[inside]
         _, series = rag_metrics.analyse(t[picked], x[picked], grid, geometry, threshold_m)
         for j, k in enumerate(inside):
-            touched = [sump_or_suction(site, x[picked[j]], geometry, pipe_radius)
-                       for site in rag_metrics.SITES if series["sites"][site][j]] or ["free"]
-            for site in touched:
-                counts[k][site] = counts[k].get(site, 0) + 1
+            site = next((sump_or_suction(site, x[picked[j]], geometry, pipe_radius)
+                         for site in SITE_PRIORITY if series["sites"][site][j]), "free")
+            counts[k][site] = counts[k].get(site, 0) + 1
     return counts
 
 
@@ -314,7 +321,7 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
     import matplotlib.pyplot as plt
     has_traces = bool(revolutions) and revolutions[0]["head_change"] is not None
     fig, axes = plt.subplots(3 if has_traces else 1, 1, figsize=(9, 8.5 if has_traces else 4.5), sharex=True,
-                             squeeze=False, gridspec_kw={"height_ratios": [3, 2, 1.2] if has_traces else [1]})
+                             squeeze=False, gridspec_kw={"height_ratios": [3, 2, 1.6] if has_traces else [1]})
     ax = axes[0, 0]
     rev = 1.0 / period_s
     for k, r in enumerate(rags):
@@ -349,11 +356,18 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
         ax2.legend(fontsize=8)
         ax2.grid(alpha=0.3)
         ax3 = axes[2, 0]
-        ax3.step(x, [r["rags_in_scene"] for r in revolutions], where="mid", color="0.3", label="in the pump")
-        ax3.step(x, [r["rags_retained"] for r in revolutions], where="mid", color="tab:red", label="retained")
-        ax3.set_ylabel("rags at the\nrevolution's end")
+        # Where the rags in the pump are at each revolution's end, stacked (each rag once), and
+        # how many of them are retained.
+        sites = [site for site in SITES if any(r.get("at_" + site) for r in revolutions)]
+        if sites:
+            ax3.stackplot([r["end_time_s"] * rev for r in revolutions],
+                          *[[r.get("at_" + site, 0) for r in revolutions] for site in sites],
+                          labels=[site.replace("_", " ") for site in sites], step="pre", alpha=0.8,
+                          colors=[plt.get_cmap("tab20")(SITES.index(site) / 20.0) for site in sites])
+        ax3.step(x, [r["rags_retained"] for r in revolutions], where="mid", color="k", lw=1.5, label="retained")
+        ax3.set_ylabel("rags in the pump\nby where they are")
         ax3.set_ylim(bottom=0)
-        ax3.legend(fontsize=8)
+        ax3.legend(fontsize=6, ncol=4, loc="upper left")
         ax3.grid(alpha=0.3)
     if result and result.get("clogged"):
         for a in axes[:, 0]:
