@@ -92,6 +92,10 @@ void StepExchange::end_step(long n) {
   for (const std::size_t i : life_.remove_past_planes(pointers, t))
     spdlog::info("structure '{}' removed at t = {:g} s: past its remove_when_past plane ({} left in the scene)",
                  roster_.topology[i].name(), t, life_.n_in_scene());
+  for (const std::size_t i : life_.tear_overstretched(max_stretch_ratio_, t))
+    spdlog::warn("structure '{}' torn off the scene at t = {:g} s: stretch ratio {:.4g} above its "
+                 "tear_above_stretch_ratio ({} left in the scene)", roster_.topology[i].name(), t,
+                 max_stretch_ratio_[i], life_.n_in_scene());
   idle_ = life_.idle();
 }
 
@@ -212,6 +216,16 @@ void StepExchange::take_structure_reply(const proto::Incoming &incoming, long n)
                                                       " sent a bad AdvanceReply at step " + std::to_string(n) + ": " +
                                                       rejected(e));
   }
+  const auto &stretch = reply.max_stretch_ratio();
+  bool any_tears = false;
+  for (std::size_t i = 0; i < life_.size(); ++i)
+    any_tears = any_tears || life_.tears(i);
+  if (any_tears && static_cast<std::size_t>(stretch.size()) != life_.size())
+    throw ParticipantFailed(roster_.structure_id, "participant " + roster_.structure_id + " sent " +
+                                                      std::to_string(stretch.size()) + " max_stretch_ratio values at "
+                                                      "step " + std::to_string(n) + " for " +
+                                                      std::to_string(life_.size()) + " structures, some of which tear");
+  max_stretch_ratio_.assign(stretch.begin(), stretch.end());
   state_.x_prev_m.swap(state_.x_now_m);
   state_.x_now_m.swap(x_next_);
 }

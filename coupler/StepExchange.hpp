@@ -75,6 +75,7 @@ private:
 
   LagrangianState state_;
   PointArray x_next_; ///< a structure reply, checked before it becomes X^{n+1}
+  std::vector<double> max_stretch_ratio_; ///< the structure reply's, per structure (for the tears)
   CouplingOutputs coupled_;
   participant::LifeCycle life_;
   std::vector<Eigen::Index> first_point_; ///< per structure, its first row in the arrays (and the total last)

@@ -14,6 +14,12 @@ LifeSpec life_spec_of(const proto::v2::StructureTopology &topology) {
   if (!(spec.release_time_s >= 0.0) || !std::isfinite(spec.release_time_s))
     throw proto::MalformedMessageError("structure '" + topology.name() + "': release_time_s = " +
                                        std::to_string(spec.release_time_s) + " is not a time >= 0");
+  spec.tear_above_stretch_ratio = topology.tear_above_stretch_ratio();
+  if (!std::isfinite(spec.tear_above_stretch_ratio) ||
+      !(spec.tear_above_stretch_ratio == 0.0 || spec.tear_above_stretch_ratio > 1.0))
+    throw proto::MalformedMessageError("structure '" + topology.name() + "': tear_above_stretch_ratio = " +
+                                       std::to_string(spec.tear_above_stretch_ratio) +
+                                       " is neither 0 (never torn) nor a ratio above 1");
   const auto &plane = topology.remove_when_past();
   if (plane.empty())
     return spec;
@@ -30,8 +36,21 @@ LifeSpec life_spec_of(const proto::v2::StructureTopology &topology) {
   return spec;
 }
 
+const char *exit_reason_name(ExitReason reason) {
+  switch (reason) {
+  case ExitReason::past_plane:
+    return "past_plane";
+  case ExitReason::torn:
+    return "torn";
+  case ExitReason::none:
+    break;
+  }
+  return "";
+}
+
 void write_life_spec(const LifeSpec &spec, proto::v2::StructureTopology &topology) {
   topology.set_release_time_s(spec.release_time_s);
+  topology.set_tear_above_stretch_ratio(spec.tear_above_stretch_ratio);
   topology.clear_remove_when_past();
   if (const auto &plane = spec.remove_when_past)
     for (const Vec3 &v : {plane->point_m, plane->normal})
@@ -44,6 +63,8 @@ LifeCycle::LifeCycle(const std::vector<LifeSpec> &structures, double time_step_s
     release_s_.push_back(s.release_time_s);
     exit_s_.push_back(std::numeric_limits<double>::quiet_NaN());
     removal_.push_back(s.remove_when_past);
+    tear_above_.push_back(s.tear_above_stretch_ratio);
+    reason_.push_back(ExitReason::none);
     life_.push_back(due(life_.size(), 0.0) ? Life::in_scene : Life::waiting);
   }
 }
@@ -95,15 +116,29 @@ std::vector<std::size_t> LifeCycle::remove_past_planes(const std::vector<const P
     if (life_[i] == Life::in_scene && removal_[i] && removal_[i]->all_past(*positions_m[i])) {
       life_[i] = Life::gone;
       exit_s_[i] = time_s;
+      reason_[i] = ExitReason::past_plane;
       removed.push_back(i);
     }
   return removed;
+}
+
+std::vector<std::size_t> LifeCycle::tear_overstretched(const std::vector<double> &max_stretch_ratio, double time_s) {
+  std::vector<std::size_t> torn;
+  for (std::size_t i = 0; i < life_.size() && i < max_stretch_ratio.size(); ++i)
+    if (life_[i] == Life::in_scene && tears(i) && !(max_stretch_ratio[i] <= tear_above_[i])) {
+      life_[i] = Life::gone;
+      exit_s_[i] = time_s;
+      reason_[i] = ExitReason::torn;
+      torn.push_back(i);
+    }
+  return torn;
 }
 
 void LifeCycle::save(checkpoint::StateArchive &archive, const std::vector<std::string> &names) const {
   for (std::size_t i = 0; i < life_.size(); ++i) {
     archive.put_integer("life/" + names[i] + "/state", static_cast<std::int64_t>(life_[i]));
     archive.put_double("life/" + names[i] + "/exit_time_s", exit_s_[i]);
+    archive.put_integer("life/" + names[i] + "/exit_reason", static_cast<std::int64_t>(reason_[i]));
   }
 }
 
@@ -113,6 +148,7 @@ void LifeCycle::load(const checkpoint::StateArchive &archive, const std::vector<
     if (!archive.has(key)) {
       life_[i] = due(i, time_s) ? Life::in_scene : Life::waiting;
       exit_s_[i] = std::numeric_limits<double>::quiet_NaN();
+      reason_[i] = ExitReason::none;
       continue;
     }
     const std::int64_t state = archive.integer(key);
@@ -121,6 +157,16 @@ void LifeCycle::load(const checkpoint::StateArchive &archive, const std::vector<
                                         "the scene, 2 gone)");
     life_[i] = static_cast<Life>(state);
     exit_s_[i] = archive.number("life/" + names[i] + "/exit_time_s");
+    // A checkpoint from before structures could tear: a gone one went past its plane.
+    const std::string reason_key = "life/" + names[i] + "/exit_reason";
+    const std::int64_t reason = archive.has(reason_key) ? archive.integer(reason_key)
+                                                        : static_cast<std::int64_t>(life_[i] == Life::gone
+                                                                                        ? ExitReason::past_plane
+                                                                                        : ExitReason::none);
+    if (reason < 0 || reason > static_cast<std::int64_t>(ExitReason::torn))
+      throw checkpoint::CheckpointError(reason_key + " = " + std::to_string(reason) + ": not an exit reason (0 none, "
+                                        "1 past its plane, 2 torn)");
+    reason_[i] = static_cast<ExitReason>(reason);
   }
 }
 

@@ -2,7 +2,8 @@
 // Which structures are in the scene (issue 33: rags fed in sequence into a running pump). A
 // structure waits until its release time (structures[].release_time_s), is in the scene from
 // the first step that starts at or after it, and is gone from the end of the first accepted step
-// at which all its points are past its removal plane (structures[].remove_when_past). Only
+// at which all its points are past its removal plane (structures[].remove_when_past), or at
+// which it is stretched beyond its tear limit (solver.on_max_stretch: tear): torn off. Only
 // structures in the scene are advanced, touch each other and take part in the coupling; one
 // that waits or is gone keeps its state where it was.
 //
@@ -25,11 +26,16 @@
 namespace fsi::participant {
 
 enum class Life { waiting, in_scene, gone };
+/// Why a structure is gone: past its removal plane, or torn (stretched beyond its tear limit).
+enum class ExitReason { none, past_plane, torn };
+const char *exit_reason_name(ExitReason reason); ///< "", "past_plane", "torn"
 
-/// What decides one structure's life: its release time and its removal plane (none: it stays).
+/// What decides one structure's life: its release time, its removal plane (none: it stays) and
+/// the stretch ratio beyond which it is torn off the scene (0: never).
 struct LifeSpec {
   double release_time_s = 0.0;
   std::optional<common::StopPlane> remove_when_past;
+  double tear_above_stretch_ratio = 0.0;
 };
 
 /// The spec as the handshake carries it (StructureTopology.release_time_s, .remove_when_past);
@@ -54,8 +60,9 @@ public:
   /// The same, as it will be once the releases due at a step starting at time_s are made.
   std::vector<std::uint32_t> idle_after_release(double time_s) const;
   double release_time_s(std::size_t i) const { return release_s_[i]; }
-  /// When it was removed (the end of the step that took it past its plane); NaN until then.
+  /// When it was removed (the end of the step that took it past its plane or tore it); NaN until then.
   double exit_time_s(std::size_t i) const { return exit_s_[i]; }
+  ExitReason exit_reason(std::size_t i) const { return reason_[i]; }
 
   /// The structures that enter the scene at a step starting at time_s (waiting ones whose
   /// release time has come), now in the scene.
@@ -63,6 +70,11 @@ public:
   /// The structures in the scene whose points (positions_m[i]) are all past their removal plane
   /// at the end of an accepted step ending at time_s, now gone.
   std::vector<std::size_t> remove_past_planes(const std::vector<const PointArray *> &positions_m, double time_s);
+  /// The structures in the scene whose largest stretch ratio (max_stretch_ratio[i], at the end
+  /// of an accepted step ending at time_s) is above their tear limit, now gone (torn).
+  std::vector<std::size_t> tear_overstretched(const std::vector<double> &max_stretch_ratio, double time_s);
+  /// Whether structure i is torn off rather than stopping the run when stretched too far.
+  bool tears(std::size_t i) const { return tear_above_[i] > 0.0; }
 
   /// The states and exit times, for an exact restart and for a repeated step ("life/<name>/").
   void save(checkpoint::StateArchive &archive, const std::vector<std::string> &names) const;
@@ -75,7 +87,8 @@ private:
 
   double time_step_s_;
   std::vector<Life> life_;
-  std::vector<double> release_s_, exit_s_;
+  std::vector<double> release_s_, exit_s_, tear_above_;
+  std::vector<ExitReason> reason_;
   std::vector<std::optional<common::StopPlane>> removal_;
 };
 

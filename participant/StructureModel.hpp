@@ -37,6 +37,10 @@ public:
   virtual void positions(proto::MutablePointsView x_m) const = 0;
   virtual void velocities(proto::MutablePointsView v_m_per_s) const = 0;
   virtual double time_s() const = 0;
+  /// Per structure (topology order), its largest stretch ratio when it can tear off the scene
+  /// (LifeSpec::tear_above_stretch_ratio), 1 otherwise: the coupler's life cycle tears from these
+  /// the structures this model's own tears (AdvanceReply.max_stretch_ratio). Empty: none can.
+  virtual std::vector<double> max_stretch_ratios() const { return {}; }
 
   /// Advances Eq. (4) and the collisions of Eq. (11) under the load -F_fsi^n (N per unit
   /// measure). Throws Diverged, the last good state kept.

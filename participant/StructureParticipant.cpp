@@ -53,6 +53,9 @@ void StructureParticipant::send_state(std::uint64_t step, double solve_wall_s, b
   model_.positions(reply_.add_points(*reply->mutable_position_m(), n));
   // Per step only X^{n+1}: the coupler has X^n, so V^{n+1} = (X^{n+1} - X^n) / dt is not sent.
   reply->clear_velocity_m_per_s();
+  reply->clear_max_stretch_ratio();
+  for (const double ratio : model_.max_stretch_ratios())
+    reply->add_max_stretch_ratio(ratio);
   if (with_velocity)
     model_.velocities(reply_.add_points(*reply->mutable_velocity_m_per_s(), n));
   reply_.envelope().set_step(step);

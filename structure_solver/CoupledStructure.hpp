@@ -29,6 +29,7 @@ public:
   void positions(proto::MutablePointsView x_m) const override;
   void velocities(proto::MutablePointsView v_m_per_s) const override;
   double time_s() const override;
+  std::vector<double> max_stretch_ratios() const override { return run_.scene().max_stretch_ratios(); }
   void advance(const participant::StructureStep &step, proto::PointsView load_density_n_per_measure) override;
 
 private:

@@ -37,7 +37,7 @@ std::unique_ptr<geometry::RigidSurface> make_surface(const geometry::SurfaceConf
 std::vector<participant::LifeSpec> life_specs(const std::vector<StructureConfig> &structures) {
   std::vector<participant::LifeSpec> specs;
   for (const auto &s : structures)
-    specs.push_back({s.release_time_s, s.remove_when_past});
+    specs.push_back({s.release_time_s, s.remove_when_past, s.tear_above_stretch_ratio});
   return specs;
 }
 
@@ -157,6 +157,29 @@ std::vector<std::size_t> Scene::remove_past_planes() {
                  "left in the scene)", structures_[i]->name(), time_s_, life_.n_in_scene());
   }
   return removed;
+}
+
+std::vector<std::size_t> Scene::tear_overstretched() {
+  const std::vector<double> stretch = max_stretch_ratios();
+  const auto torn = life_.tear_overstretched(stretch, time_s_);
+  for (const std::size_t i : torn) {
+    spdlog::warn("structure '{}' torn off the scene at t = {:g} s: stretch ratio {:.4g} above its "
+                 "tear_above_stretch_ratio ({} left in the scene)", structures_[i]->name(), time_s_, stretch[i],
+                 life_.n_in_scene());
+    structures_[i]->retire();
+  }
+  return torn;
+}
+
+std::vector<double> Scene::max_stretch_ratios() const {
+  // Also a structure's gone this step: the structure accepts a step (and tears) before it
+  // sends it, and the coupler, which tears in the scene only, must see the same value.
+  std::vector<double> stretch;
+  for (std::size_t i = 0; i < structures_.size(); ++i)
+    stretch.push_back(life_.tears(i) && life_.life(i) != participant::Life::waiting
+                          ? structures_[i]->max_stretch_ratio()
+                          : 1.0);
+  return stretch;
 }
 
 std::vector<std::string> Scene::names() const {

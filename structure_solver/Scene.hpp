@@ -40,6 +40,14 @@ public:
   /// After a step is accepted: the structures in the scene past their removal plane are gone
   /// (their solvers' memory freed). Returns them.
   std::vector<std::size_t> remove_past_planes();
+  /// At an accepted step: the structures in the scene stretched beyond their
+  /// tear_above_stretch_ratio, torn off (gone, their solvers freed), as the coupler does from
+  /// max_stretch_ratios() (LifeCycle::tear_overstretched).
+  std::vector<std::size_t> tear_overstretched();
+  /// Per structure, its largest stretch ratio when it can tear and has been released (in the
+  /// scene or gone); 1 otherwise (what the structure sends the coupler in
+  /// AdvanceReply.max_stretch_ratio).
+  std::vector<double> max_stretch_ratios() const;
 
   double time_s() const { return time_s_; }
   const LifeCycle &life() const { return life_; }

@@ -19,6 +19,7 @@ struct StructureConfig {
   double release_time_s = 0.0;
   std::optional<Placement> placement;
   std::optional<common::StopPlane> remove_when_past;
+  double tear_above_stretch_ratio = 0.0;
 
   template <class V> void visit(V &v) {
     v.text("name", name, "Unique name; the HDF5 group /structures/<name>.");
@@ -33,6 +34,15 @@ struct StructureConfig {
                        "Removes the structure from the scene at the first step where all its points are past this "
                        "plane (a rag leaving through a pump's discharge): from then on it is neither advanced nor "
                        "coupled, its solver's memory is freed, and structure.h5 keeps its history and exit time.");
+    v.number("tear_above_stretch_ratio", tear_above_stretch_ratio, common::Range::non_negative("1"),
+             "0: never torn. Above 1: the structure is torn off the scene, as one past remove_when_past leaves it, "
+             "at the first accepted step where an edge is stretched beyond this ratio of its rest length (a rag "
+             "caught between a turning impeller and its casing, which a real one would tear), and its stretch no "
+             "longer stops the run (solver.max_stretch_ratio); exit_reason 'torn' in structure.h5.");
+    if constexpr (std::is_same_v<V, common::ConfigReader>)
+      if (tear_above_stretch_ratio != 0.0 && !(tear_above_stretch_ratio > 1.0))
+        v.fail_value("tear_above_stretch_ratio", "= " + std::to_string(tear_above_stretch_ratio) +
+                                                     ": 0 (never torn) or a ratio above 1.");
     if constexpr (std::is_same_v<V, common::ConfigDocWriter>)
       return; // each model's keys are documented in their own table
     else {

@@ -77,7 +77,7 @@ void StructureRun::open_results() {
     results_->add_structure({s->name(), s->model(), s->grid_shape().first, s->grid_shape().second,
                              scene_->life().release_time_s(i)});
     if (scene_->life().life(i) == Life::gone) // a restart: removed before its checkpoint
-      results_->set_exit_time(i, scene_->life().exit_time_s(i));
+      record_exit(i);
   }
   open_probes();
 }
@@ -171,11 +171,13 @@ void StructureRun::write_state(long step) {
 }
 
 std::optional<Divergence> StructureRun::find_divergence(long step, bool finite_only) const {
-  for (const auto &s : scene_->structures()) {
+  for (std::size_t i = 0; i < scene_->structures().size(); ++i) {
+    const auto &s = scene_->structures()[i];
     const bool finite = s->positions_m().allFinite() && s->velocities_m_per_s().allFinite();
     if (finite && finite_only)
       continue;
-    const double stretch = finite ? s->max_stretch_ratio() : NAN;
+    // A structure that tears is torn at the accepted step instead (Scene::tear_overstretched).
+    const double stretch = finite ? (scene_->life().tears(i) ? 1.0 : s->max_stretch_ratio()) : NAN;
     Eigen::Index fastest = 0;
     const double speed = finite ? std::sqrt(s->velocities_m_per_s().rowwise().squaredNorm().maxCoeff(&fastest)) : NAN;
     if (finite && stretch <= s->stretch_limit() && speed <= s->speed_limit_m_per_s())
@@ -329,10 +331,17 @@ StepOutcome StructureRun::accept_step(long n) {
   return {};
 }
 
+void StructureRun::record_exit(std::size_t i) {
+  const auto &life = scene_->life();
+  results_->set_exit(i, life.exit_time_s(i), participant::exit_reason_name(life.exit_reason(i)));
+}
+
 void StructureRun::record_step(long n) {
   const long step = n + 1, n_total = n_steps();
   for (const std::size_t i : scene_->remove_past_planes())
-    results_->set_exit_time(i, scene_->life().exit_time_s(i));
+    record_exit(i);
+  for (const std::size_t i : scene_->tear_overstretched())
+    record_exit(i);
   if (step % output_every() == 0 || step == n_total)
     write_state(step);
   report_progress(step, n_total, step == n_total);

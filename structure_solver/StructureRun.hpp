@@ -107,6 +107,8 @@ private:
   StepOutcome diverged(const Divergence &divergence, long step);
   /// Output and progress of step n (when due).
   void record_step(long n);
+  /// structure.h5's exit time and reason of structure i, gone.
+  void record_exit(std::size_t i);
   void report_progress(long step, long n_steps, bool force);
   void stop_with(const std::string &status, long last_good_step);
 

@@ -26,6 +26,8 @@ the criterion, 10 without one):
   passed    left the scene (past feed.remove_when_past, the exit_time_s of structure.h5) within
             the rule after its release
   passed_late  left later than that
+  torn      torn off the scene (structures[].tear_above_stretch_ratio: stretched beyond it, caught
+            between the turning impeller and the casing), exit_reason "torn" in structure.h5
   retained  still in the scene at the end, released at least the rule's revolutions before it
   in_pump   still in the scene at the end, released less than that before it
   waiting   not released by the end of the run
@@ -51,8 +53,8 @@ import numpy as np
 from fsi import clog_criterion
 from fsi import rag_metrics
 
-OUTCOMES = ("passed", "passed_late", "retained", "in_pump", "waiting")
-OUTCOME_COLOURS = {"passed": "tab:green", "passed_late": "tab:olive", "retained": "tab:red",
+OUTCOMES = ("passed", "passed_late", "torn", "retained", "in_pump", "waiting")
+OUTCOME_COLOURS = {"passed": "tab:green", "passed_late": "tab:olive", "torn": "tab:purple", "retained": "tab:red",
                    "in_pump": "tab:orange", "waiting": "0.7"}
 
 
@@ -80,10 +82,12 @@ def read_feed_rags(run_dir):
                 raise FeedError("%s: /structures/%s has no release_time_s (written since issue 33: rerun the case)"
                                 % (path, name))
             exit_time = float(g.attrs.get("exit_time_s", float("nan")))
+            reason = g.attrs.get("exit_reason", "")
+            reason = reason.decode() if isinstance(reason, bytes) else str(reason)
             n1, n2 = (int(v) for v in g.attrs["grid_shape"])
             first = np.asarray(g["position_m"][0], float).reshape(n1, n2, 3)
             rags.append({"name": name, "release_time_s": float(g.attrs["release_time_s"]),
-                         "exit_time_s": None if math.isnan(exit_time) else exit_time,
+                         "exit_time_s": None if math.isnan(exit_time) else exit_time, "exit_reason": reason,
                          "grid_shape": (n1, n2), "area_m2": grid_area(first)})
     if not rags:
         raise FeedError("%s: no structure" % path)
@@ -123,6 +127,8 @@ def outcomes(rags, end_time_s, residence_s):
     for r in rags:
         if r["release_time_s"] > end_time_s + 1e-12:
             r["outcome"] = "waiting"
+        elif r["exit_time_s"] is not None and r.get("exit_reason") == "torn":
+            r["outcome"] = "torn"
         elif r["exit_time_s"] is not None:
             r["outcome"] = "passed" if r["exit_time_s"] - r["release_time_s"] <= residence_s + 1e-12 else "passed_late"
         else:

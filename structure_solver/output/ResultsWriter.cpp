@@ -113,10 +113,10 @@ void ResultsWriter::write_step(const StepRecord &record) {
   }
 }
 
-void ResultsWriter::set_exit_time(std::size_t index, double time_s) {
+void ResultsWriter::set_exit(std::size_t index, double time_s, const std::string &reason) {
   throw_if_failed();
   try {
-    structures_.at(index).set_exit_time(time_s);
+    structures_.at(index).set_exit(time_s, reason);
     flush();
   } catch (const std::runtime_error &error) {
     fail(error);

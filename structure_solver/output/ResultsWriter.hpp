@@ -54,8 +54,9 @@ public:
   /// fails, after which the writer refuses further steps.
   void write_step(const StepRecord &record);
 
-  /// Records that structure `index` (add_structure() order) left the scene at time_s, and flushes.
-  void set_exit_time(std::size_t index, double time_s);
+  /// Records that structure `index` (add_structure() order) left the scene at time_s, why
+  /// ("past_plane", "torn"), and flushes.
+  void set_exit(std::size_t index, double time_s, const std::string &reason);
 
   /// Sets the root `status` attribute ("running", "completed", "diverged: <why>",
   /// "interrupted") and flushes.

@@ -63,11 +63,12 @@ void StructureSeries::write_group_attributes() {
   hdf5::write_int64_array_attribute(group_.get(), "grid_shape", {layout_.n1, layout_.n2});
   hdf5::write_string_attribute(group_.get(), "point_order", paths::point_order);
   hdf5::write_double_attribute(group_.get(), "release_time_s", layout_.release_time_s);
-  set_exit_time(std::numeric_limits<double>::quiet_NaN());
+  set_exit(std::numeric_limits<double>::quiet_NaN(), "");
 }
 
-void StructureSeries::set_exit_time(double time_s) {
+void StructureSeries::set_exit(double time_s, const std::string &reason) {
   hdf5::write_double_attribute(group_.get(), "exit_time_s", time_s);
+  hdf5::write_string_attribute(group_.get(), "exit_reason", reason);
 }
 
 void StructureSeries::write_connectivity(const Connectivity &connectivity) {

@@ -23,8 +23,9 @@ public:
   /// Appends one row to every per-step dataset; call check() first.
   void append(const StructureState &state);
 
-  /// Sets the group's `exit_time_s` attribute (NaN until the structure is removed).
-  void set_exit_time(double time_s);
+  /// Sets the group's `exit_time_s` attribute (NaN until the structure is removed) and
+  /// `exit_reason` ("" until then; "past_plane", "torn").
+  void set_exit(double time_s, const std::string &reason);
 
   const StructureLayout &layout() const { return layout_; }
 

@@ -31,6 +31,8 @@ class FeedReport(unittest.TestCase):
         self.assertEqual([r["outcome"] for r in rags], ["passed", "passed_late", "retained", "in_pump", "waiting"])
         self.assertEqual([round(r["time_in_scene_s"], 12) for r in rags], [0.2, 0.8, 1.0, 0.2, 0.0])
         # Exactly at the rule: passed when it left then, retained when still in then.
+        torn = outcomes([dict(rag(0.0, 0.1), exit_reason="torn")], end_time_s=1.2, residence_s=RULE)
+        self.assertEqual(torn[0]["outcome"], "torn")
         edge = outcomes([rag(0.0, RULE), rag(0.8)], end_time_s=0.8 + RULE, residence_s=RULE)
         self.assertEqual([r["outcome"] for r in edge], ["passed", "retained"])
 

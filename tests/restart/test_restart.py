@@ -573,6 +573,41 @@ class FeedRestart(unittest.TestCase):
     def test_a_coupled_feed_resumes_bit_for_bit(self):
         self.check_resumed(self.write_case("coupled", FEED_CASE), COUPLED_FILES)
 
+    def test_a_rag_torn_off_in_a_coupled_run_stays_torn_on_resuming(self):
+        # A rag pinned along an edge in the stream, released at 90 ms and torn off above a stretch
+        # ratio of 1.004 (at 92.85 ms): the structure and the coupler tear it at the same step (or
+        # their idle lists would disagree and stop the run), and the run stopped at 100 ms and
+        # resumed equals the uninterrupted one.
+        text = FEED_CASE + """structures:
+  - name: hanging
+    model: membrane
+    size_m: [0.03, 0.03]
+    n_points: [7, 7]
+    origin_m: [-0.02, -0.1, 0.0]
+    s1_direction: [1, 0, 0]
+    s2_direction: [0, 0, 1]
+    edges: {s1_min: pinned}
+    material:
+      mass_per_area_kg_per_m2: 0.08
+      coefficients: {tension_coefficient_n_per_m: 10, bending_rigidity_n_m: 1.0e-6}
+    release_time_s: 0.09
+    tear_above_stretch_ratio: 1.004
+"""
+        case = self.write_case("torn", text)
+        full, stopped = case + "_full", case + "_stopped"
+        made = launch(case, full)
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertIn("[coupler] [warning] structure 'hanging' torn off the scene", made.stdout)
+        with h5py.File(os.path.join(full, "structure.h5"), "r") as f:
+            g = f["structures"]["hanging"]
+            reason = g.attrs["exit_reason"]
+            self.assertEqual(reason.decode() if isinstance(reason, bytes) else str(reason), "torn")
+            self.assertTrue(0.09 < float(g.attrs["exit_time_s"]) < 0.1, float(g.attrs["exit_time_s"]))
+        self.assertEqual(launch(case, stopped, "--end-time", "0.1").returncode, 0)
+        made = launch(case, stopped, "--restart")
+        self.assertEqual(made.returncode, 0, made.stdout[-3000:])
+        self.assertEqual(differences(full, stopped, COUPLED_FILES), [])
+
     def test_a_structure_feed_resumes_bit_for_bit(self):
         text = FEED_CASE.split("fluid:")[0].replace("gravity_m_per_s2: [0, 0, 0]", "gravity_m_per_s2: [200, 0, 0]")
         self.check_resumed(self.write_case("alone", text), ("structure.h5", "structure.xdmf"))

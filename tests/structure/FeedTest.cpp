@@ -6,6 +6,8 @@
 
 #include "common/ConfigError.hpp"
 #include "structure_solver/feed/FeedSchedule.hpp"
+#include "structure_solver/output/ResultsPaths.hpp"
+#include "structure_solver/output/ResultsReader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,6 +87,92 @@ TEST(Feed, ARagPastItsPlaneIsRemovedKeepsItsLastStateAndFreesItsSolver) {
   EXPECT_EQ(first.positions_m(), left); // gone: stays where it left, never advanced
   EXPECT_LT(second.positions_m().col(2).maxCoeff(), second_then.col(2).minCoeff()); // the other goes on
   EXPECT_EQ(scene.life().n_in_scene(), 1u);
+}
+
+/// A 4 cm rag pinned along one edge and hanging under gravity (it stretches a little), torn off
+/// above a stretch ratio of 1.00001; beside it a free one falling.
+const char *hanging_and_falling = R"(run: {end_time_s: 1, time_step_s: 1.0e-3, output_interval_s: 0.01}
+gravity_m_per_s2: [0, 0, -9.81]
+structures:
+  - name: hanging
+    model: membrane
+    size_m: [0.04, 0.04]
+    n_points: [5, 5]
+    origin_m: [0, 0, 0]
+    s1_direction: [0, 0, -1]
+    s2_direction: [0, 1, 0]
+    edges: {s1_min: pinned}
+    tear_above_stretch_ratio: 1.00001
+    solver: {max_stretch_ratio: 1.000001}
+  - name: falling
+    model: membrane
+    size_m: [0.04, 0.04]
+    n_points: [5, 5]
+    origin_m: [0.1, 0, 0]
+    s1_direction: [1, 0, 0]
+    s2_direction: [0, 1, 0]
+)";
+
+TEST(Feed, ARagStretchedBeyondItsTearLimitIsTornOffAndTheOthersGoOn) {
+  Scene scene(testing::load_case(hanging_and_falling));
+  const auto &hanging = *scene.structures()[0], &falling = *scene.structures()[1];
+  int torn_at = -1;
+  for (int k = 1; k <= 100 && torn_at < 0; ++k) {
+    scene.advance();
+    const double stretch = hanging.max_stretch_ratio();
+    const auto ratios = scene.max_stretch_ratios();
+    ASSERT_EQ(ratios.size(), 2u);
+    EXPECT_EQ(ratios[0], stretch);  // what the coupler gets, bit for bit (also once it is torn)
+    EXPECT_EQ(ratios[1], 1.0);      // the falling one cannot tear
+    if (!scene.tear_overstretched().empty()) {
+      torn_at = k;
+      EXPECT_GT(stretch, 1.00001);
+    } else {
+      EXPECT_LE(stretch, 1.00001) << "step " << k;
+    }
+  }
+  ASSERT_GT(torn_at, 0);
+  EXPECT_EQ(scene.life().life(0), participant::Life::gone);
+  EXPECT_EQ(scene.life().exit_reason(0), participant::ExitReason::torn);
+  EXPECT_NEAR(scene.life().exit_time_s(0), torn_at * 1e-3, 1e-12);
+  EXPECT_TRUE(hanging.retired());
+  const PointArray left = hanging.positions_m(), falling_then = falling.positions_m();
+  for (int k = 0; k < 5; ++k)
+    scene.advance();
+  EXPECT_EQ(hanging.positions_m(), left);
+  EXPECT_LT(falling.positions_m().col(2).maxCoeff(), falling_then.col(2).minCoeff());
+  // The reason survives a checkpoint.
+  checkpoint::StateArchive archive;
+  scene.save_state(archive);
+  Scene resumed(testing::load_case(hanging_and_falling));
+  resumed.load_state(archive);
+  EXPECT_EQ(resumed.life().exit_reason(0), participant::ExitReason::torn);
+  EXPECT_EQ(resumed.life().exit_time_s(0), scene.life().exit_time_s(0));
+}
+
+TEST(Feed, ATornRagNoLongerStopsTheRunAndItsReasonIsInTheResults) {
+  // solver.max_stretch_ratio 1.000001 would stop the run as diverged; the tear limit takes its place.
+  std::string yaml = hanging_and_falling;
+  yaml.replace(yaml.find("end_time_s: 1,"), 14, "end_time_s: 0.1,");
+  const auto dir = testing::make_case_dir(yaml);
+  const auto out = testing::run_structure_solver(dir.string());
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_NE(out.output.find("structure 'hanging' torn off the scene"), std::string::npos) << out.output;
+  output::ResultsReader results(dir / "output" / "structure.h5");
+  EXPECT_EQ(results.string_attribute(output::paths::structure_group("hanging"), "exit_reason"), "torn");
+  EXPECT_EQ(results.string_attribute(output::paths::structure_group("falling"), "exit_reason"), "");
+}
+
+TEST(Feed, ATearLimitOfOneOrLessIsRefused) {
+  std::string yaml = hanging_and_falling;
+  yaml.replace(yaml.find("tear_above_stretch_ratio: 1.00001"), 33, "tear_above_stretch_ratio: 0.9");
+  try {
+    testing::load_case(yaml);
+    FAIL() << "accepted";
+  } catch (const common::ConfigError &e) {
+    EXPECT_NE(std::string(e.what()).find("tear_above_stretch_ratio"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("0 (never torn) or a ratio above 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Feed, TheSceneStateSavedAndLoadedResumesReleasesAndRemovalsBitForBit) {
