@@ -175,7 +175,8 @@ def start_folder(member, args):
     another pump.yaml) are moved aside to <folder>.old-<n>, not reused nor deleted."""
     path = os.path.join(member.folder, "feed_compare.stamp")
     stamp = stamp_of(member, args)
-    if os.path.isdir(member.folder) and (not os.path.isfile(path) or open(path).read() != stamp):
+    holds_results = os.path.isdir(member.folder) and set(os.listdir(member.folder)) - {"feed_compare.stamp"}
+    if holds_results and (not os.path.isfile(path) or open(path).read() != stamp):
         n = 1
         while os.path.exists("%s.old-%d" % (member.folder, n)):
             n += 1
