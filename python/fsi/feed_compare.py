@@ -210,7 +210,7 @@ def member_command(args, member):
     return command + [member.case]
 
 
-def run_member(args, member):
+def run_member(args, member, on_done=None):
     start_folder(member, args)
     if not finished(member):
         member.state = "running"
@@ -230,6 +230,8 @@ def run_member(args, member):
             return
         say("%s: ran in %.0f s" % (member.name, time.monotonic() - started))
     collect(member)
+    if on_done:
+        on_done()
 
 
 def collect(member):
@@ -370,28 +372,28 @@ def report_progress(members, stop):
             or "starting"))
 
 
-def run_all(args, members, jobs):
+def run_all(args, members, jobs, on_done=None):
     """Per design and flow, the first seed alone (its precursor serves the others), then the rest."""
     firsts = [m for m in members if m.seed == 1]
     rest = [m for m in members if m.seed != 1]
     stop = threading.Event()
     threading.Thread(target=report_progress, args=(members, stop), daemon=True).start()
     try:
-        run_pool(args, firsts, rest, jobs)
+        run_pool(args, firsts, rest, jobs, on_done)
     finally:
         stop.set()
 
 
-def run_pool(args, firsts, rest, jobs):
+def run_pool(args, firsts, rest, jobs, on_done):
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        list(pool.map(lambda m: run_member(args, m), firsts))
+        list(pool.map(lambda m: run_member(args, m, on_done), firsts))
         for m in rest:
             first = next(f for f in firsts if f.design is m.design and f.fraction == m.fraction)
             source, target = os.path.join(first.folder, "precursor"), os.path.join(m.folder, "precursor")
             if os.path.isdir(source) and not os.path.exists(target):
                 os.makedirs(m.folder, exist_ok=True)
                 shutil.copytree(source, target, copy_function=os.link)
-        list(pool.map(lambda m: run_member(args, m), rest))
+        list(pool.map(lambda m: run_member(args, m, on_done), rest))
 
 
 def submit(args, members):
@@ -428,7 +430,11 @@ def main(argv):
         % (len(members), len(args.fractions), args.seeds, rags, jobs, out))
     for m in members:   # the precursor copies below go into folders of this case
         start_folder(m, args)
-    run_all(args, members, jobs)
+    def write_so_far():   # after each member: the comparison of what has finished, kept if the run is cut
+        with LOCK:
+            write_outputs(args, members, summarise(args, members), out)
+
+    run_all(args, members, jobs, write_so_far)
     for m in members:
         if m.state == "failed":
             say("%s failed: %s" % (m.name, m.error))
