@@ -43,7 +43,7 @@ from fsi import pump_curve
 from fsi.rag_ensemble import PROGRESS   # the coupler's progress line
 
 # The fluid's progress line in the precursor: "precursor: t = 0.0355 of 0.5 s, step 142/2000, ... ETA 3m19s"
-PRECURSOR = re.compile(r"precursor: t = \S+ of \S+ s, step (\d+)/(\d+),.*\bETA (\S+)")
+PRECURSOR = re.compile(r"precursor: t = \S+ of \S+ s, step (\d+)/(\d+),.*\bETA (\S+(?: s)?)")
 
 LOCK = threading.Lock()
 
