@@ -385,7 +385,7 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
     plt.close(fig)
 
 
-def masked_run(run_dir, rags, end_frames=None):
+def masked_run(run_dir, rags):
     """plot_rag_in_pump.Run of the feed with each rag's points NaN where it is not in the scene
     (before its release, after its exit), and the wall distances of the points in the scene."""
     from fsi import plot_rag_in_pump as plot
