@@ -170,24 +170,27 @@ void ConfigReader::integer(const std::string &key, int &value, const Range &rang
     fail_value(key, "= " + node_[key].Scalar() + " is out of range: allowed " + range.describe() + ".");
 }
 
-void ConfigReader::optional_number(const std::string &key, std::optional<double> &value, const Range &range,
-                                   const std::string &doc) {
+template <class T>
+void ConfigReader::read_optional(const std::string &key, std::optional<T> &value, const Range &range,
+                                 const std::string &doc,
+                                 void (ConfigReader::*read)(const std::string &, T &, const Range &,
+                                                            const std::string &)) {
   mark_known(key);
   if (!node_[key] || node_[key].IsNull())
     return;
-  double read = 0.0;
-  number(key, read, range, doc);
-  value = read;
+  T read_value{};
+  (this->*read)(key, read_value, range, doc);
+  value = read_value;
+}
+
+void ConfigReader::optional_number(const std::string &key, std::optional<double> &value, const Range &range,
+                                   const std::string &doc) {
+  read_optional(key, value, range, doc, &ConfigReader::number);
 }
 
 void ConfigReader::optional_integer(const std::string &key, std::optional<int> &value, const Range &range,
                                     const std::string &doc) {
-  mark_known(key);
-  if (!node_[key] || node_[key].IsNull())
-    return;
-  int read = 0;
-  integer(key, read, range, doc);
-  value = read;
+  read_optional(key, value, range, doc, &ConfigReader::integer);
 }
 
 void ConfigReader::flag(const std::string &key, bool &value, const std::string &) {

@@ -132,6 +132,10 @@ public:
 
 private:
   template <class T> bool read_scalar(const std::string &key, T &out);
+  /// optional_number and optional_integer: empty when absent or null, else read by `read`.
+  template <class T>
+  void read_optional(const std::string &key, std::optional<T> &value, const Range &range, const std::string &doc,
+                     void (ConfigReader::*read)(const std::string &, T &, const Range &, const std::string &));
   ConfigReader child_reader(const std::string &key);
   void mark_known(const std::string &key) { known_.insert(key); }
   std::string location(const YAML::Node &node) const;

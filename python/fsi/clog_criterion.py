@@ -5,9 +5,10 @@ revolutions, or when it holds a number of rags; its "degree of saturation" is th
 pump holds before it stops coping.
 
 Here the same on the traces of a run, revolution by revolution:
-  - each whole revolution's time mean head H_k (m) and shaft power P_k (W) (the samples joined by
-    step each sample stands for, window_mean) against the clean pump's means at the same flow, H_clean and P_clean (a mean over whole revolutions is the phase
-    average over them; the once-per-revolution pulsation of a single blade cancels);
+  - each whole revolution's time mean head H_k (m) and shaft power P_k (W) (each sample weighted
+    by the step it stands for, time_means.window_mean) against the clean pump's means at the same
+    flow, H_clean and P_clean (a mean over whole revolutions is the phase average over them; the
+    once-per-revolution pulsation of a single blade cancels);
   - a rag is retained at time t when it was released at t_r <= t, has not left (its exit time
     t_e > t, or it never left) and has been in the pump for at least the residence rule:
     t - t_r >= residence_revolutions x the period (the rag metrics' rule, 10 revolutions);
@@ -24,6 +25,8 @@ from dataclasses import dataclass, field
 from typing import List, Optional, Sequence
 
 import numpy as np
+
+from fsi.time_means import window_mean
 
 
 KEYS = {
@@ -113,19 +116,6 @@ class ClogResult:
     saturation_kg: float             # the most retained mass before time_s (over the run when not met)
     saturation_rags: int             # the most retained rags before time_s
     revolutions: List[Revolution] = field(default_factory=list)
-
-
-def window_mean(t_s, values, lo, hi):
-    """The time mean of `values` over [lo, hi], each sample standing for its step (the interval
-    since the sample before it; the first for a step as long as the second's), weighted by how
-    much of that step lies in the window. Not the mean of the samples inside: with a time step
-    that does not divide the period (166.67 steps a revolution in the pump), windows hold 166 and
-    167 samples in turn, and a once-per-revolution pulsation makes the sample mean swing from one
-    revolution to the next (0.036 % for a sinusoidal 30 %, more for a spiky torque)."""
-    t_s = np.asarray(t_s, float)
-    starts = np.concatenate([[t_s[0] - (t_s[1] - t_s[0]) if len(t_s) > 1 else t_s[0]], t_s[:-1]])
-    overlap = np.clip(np.minimum(t_s, hi) - np.maximum(starts, lo), 0.0, None)
-    return float(np.sum(overlap * np.asarray(values, float)) / np.sum(overlap))
 
 
 def revolution_means(t_s, values, period_s):

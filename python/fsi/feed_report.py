@@ -159,14 +159,15 @@ def sump_or_suction(site, points, geometry, pipe_radius):
     return site
 
 
-def held_where(run_dir, rag, times, geometry, threshold_m, period_s):
+def held_where(structure, rag, times, geometry, threshold_m, period_s):
     """The trap site a rag in the scene at the end touched longest over the run's last
-    revolution, and that time (s); ("free", 0) when it touched none."""
+    revolution, and that time (s); ("free", 0) when it touched none. `structure(name)`: the rag's
+    (t, x, grid) as rag_metrics.read_structure gives them."""
     t_end = times[-1]
     keep = (times >= max(rag["release_time_s"], t_end - period_s) - 1e-12)
     if np.count_nonzero(keep) < 1:
         return "free", 0.0
-    t, x, grid, *_ = rag_metrics.read_structure(run_dir, rag["name"])
+    t, x, grid = structure(rag["name"])
     t, x = t[keep[:len(t)]], x[keep[:len(t)]]
     metrics, _ = rag_metrics.analyse(t, x, grid, geometry, threshold_m)
     contact = {site: metrics["trap_contact_time_s." + site] for site in rag_metrics.SITES}
@@ -182,7 +183,7 @@ SITE_PRIORITY = ("leading_edge", "cut_water", "eye_and_hub", "blade_sides", "shr
                  "discharge", "suction")
 
 
-def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
+def sites_over_time(structure, rags, times, ends, geometry, threshold_m):
     """Per revolution end (the saved frame nearest to it): how many rags in the scene are at each
     trap site (rag_metrics' sites and contact distance; a rag touching several counted once, at
     the first in SITE_PRIORITY; `suction` told from `sump`), and how many touch none ("free").
@@ -196,7 +197,7 @@ def sites_over_time(run_dir, rags, times, ends, geometry, threshold_m):
         inside = [k for k, e in enumerate(ends) if r["release_time_s"] <= e - 1e-9 < until]
         if not inside:
             continue
-        t, x, grid, *_ = rag_metrics.read_structure(run_dir, r["name"])
+        t, x, grid = structure(r["name"])
         picked = frames[inside]
         _, series = rag_metrics.analyse(t[picked], x[picked], grid, geometry, threshold_m)
         for j, k in enumerate(inside):
@@ -465,17 +466,27 @@ def write_report(run_dir, case_dir, animation=False):
         rho = float(((kind.get("material") or {}).get("mass_per_area_kg_per_m2", 0.0)))
         r["mass_kg"] = rho * r["area_m2"]
     outcomes(rags, end_time, residence_s)
+    read_once = {}   # the held rags' histories, read for held_where and used again by sites_over_time
+
+    def structure(name):
+        if name not in read_once:
+            read_once[name] = rag_metrics.read_structure(run_dir, name)[:3]
+        return read_once[name]
+
+    def structure_last_use(name):
+        return read_once.pop(name, None) or rag_metrics.read_structure(run_dir, name)[:3]
+
     for r in rags:
         r["time_in_scene_revolutions"] = r["time_in_scene_s"] / period
         if r["outcome"] in ("retained", "in_pump"):
-            r["held_at"], r["held_contact_time_s"] = held_where(run_dir, r, times, geometry, d_c, period)
+            r["held_at"], r["held_contact_time_s"] = held_where(structure, r, times, geometry, d_c, period)
     traces = load_traces(run_dir, geometry, config)
     foam = (config.get("fluid") or {}).get("openfoam") or {}
     flow_rate = (foam.get("operating_point") or {}).get("flow_rate_m3_per_s")
     density = float(foam.get("density_kg_per_m3", 1000.0))
     revolutions = revolutions_table(rags, traces, period, residence_s, flow_rate, density)
     if revolutions:
-        where = sites_over_time(run_dir, rags, times, [r["end_time_s"] for r in revolutions], geometry, d_c)
+        where = sites_over_time(structure_last_use, rags, times, [r["end_time_s"] for r in revolutions], geometry, d_c)
         for row, counts in zip(revolutions, where):
             row.update({"at_" + site: counts.get(site, 0) for site in SITES})
     result, verdict_notes = verdict(criterion, rags, traces, period, end_time)

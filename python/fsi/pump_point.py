@@ -41,6 +41,7 @@ import numpy as np
 import yaml
 
 from fsi.pump_stations import STATIONS
+from fsi.time_means import window_mean
 
 G = 9.81  # m/s^2
 
@@ -137,8 +138,10 @@ def rotor_budget(folder, window, shaft_power_w):
 
 
 def revolution_series(t, y, t0, period, n):
-    """The mean of y (sampled at times t) over each of the n revolutions (t0 + k P, t0 + (k + 1) P]."""
-    return [float(np.mean(y[(t > t0 + k * period + 1e-9) & (t <= t0 + (k + 1) * period + 1e-9)])) for k in range(n)]
+    """The time mean of y (sampled at times t) over each of the n revolutions [t0 + k P, t0 + (k + 1) P]
+    (time_means.window_mean: each sample weighted by its step, so that revolutions holding 166 and
+    167 samples in turn do not swing with the once-per-revolution pulsation)."""
+    return [window_mean(t, y, t0 + k * period, t0 + (k + 1) * period) for k in range(n)]
 
 
 def revolution_means(t_torque, torque, t_head, head, t0, period, n):
