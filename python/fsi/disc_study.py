@@ -36,9 +36,7 @@ LEVELS = {"laminar": [("coarse", "openfoam"), ("medium", "openfoam-medium"), ("f
           "turbulent": [("turbulent", "openfoam-turbulent"), ("turbulent-medium", "openfoam-turbulent-medium")]}
 
 
-def say(message):
-    sys.stderr.write("disc-study: %s\n" % message)
-    sys.stderr.flush()
+say = fsi_launch.speaker("disc-study")
 
 
 def case_fingerprint():

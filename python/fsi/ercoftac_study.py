@@ -39,9 +39,7 @@ SKIPPED_DIRS = {"geometry", "output", "logs", "polyMesh", "postProcessing", "__p
 MODULES = ("ercoftac_pump.py", "ercoftac_mesh.py", "ercoftac_ami_run.py", "pump_ami_run.py", "foam_case.py")
 
 
-def say(message):
-    sys.stderr.write("ercoftac-study: %s\n" % message)
-    sys.stderr.flush()
+say = fsi_launch.speaker("ercoftac-study")
 
 
 def inputs_fingerprint():

@@ -48,10 +48,7 @@ PRECURSOR = re.compile(r"precursor: t = \S+ of \S+ s, step (\d+)/(\d+),.*\bETA (
 LOCK = threading.Lock()
 
 
-def say(message):
-    with LOCK:
-        sys.stderr.write("feed-compare: %s\n" % message)
-        sys.stderr.flush()
+say = fsi_launch.speaker("feed-compare")
 
 
 class Member:

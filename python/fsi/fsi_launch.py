@@ -54,10 +54,17 @@ class UserError(Exception):
         self.code = code
 
 
-def say(message):
-    with PRINT_LOCK:
-        sys.stderr.write("fsi: %s\n" % message)
-        sys.stderr.flush()
+def speaker(prefix):
+    """say(message) for a command: "PREFIX: message" on standard error, a whole line at a time
+    from every thread (the study commands run members on threads)."""
+    def say(message):
+        with PRINT_LOCK:
+            sys.stderr.write("%s: %s\n" % (prefix, message))
+            sys.stderr.flush()
+    return say
+
+
+say = speaker("fsi")
 
 
 def env_seconds(name, default):

@@ -32,7 +32,7 @@ import yaml
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
 from fsi.foam_case import foam_entry, set_foam_entry, write_foam_file, write_operating_point  # noqa: E402
-from fsi.fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
+from fsi.fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT, speaker  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
 for _name, _value in OPENFOAM_ENVIRONMENT.items():
     os.environ.setdefault(_name, _value)
@@ -42,9 +42,7 @@ MESH_DICTS = ("blockMeshDict", "snappyHexMeshDict", "surfaceFeatureExtractDict",
 FORCE_COLUMNS = ["time_s", "body0.fx_n", "body0.fy_n", "body0.fz_n", "body0.tx_n_m", "body0.ty_n_m", "body0.tz_n_m"]
 
 
-def say(message):
-    sys.stderr.write("pump-ami: %s\n" % message)
-    sys.stderr.flush()
+say = speaker("pump-ami")
 
 
 class Fnv1a:

@@ -58,9 +58,7 @@ CHECKPOINTS_PER_REVOLUTION = 4   # the penalized run's (it resumes from the newe
 LOCKS = []              # the run folders' locks, held to the end of the process
 
 
-def say(message):
-    sys.stderr.write("pump-compare: %s\n" % message)
-    sys.stderr.flush()
+say = fsi_launch.speaker("pump-compare")
 
 
 def load_yaml(path):

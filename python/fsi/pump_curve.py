@@ -41,13 +41,9 @@ from fsi import fsi_launch  # noqa: E402
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
 AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
 PROGRESS = re.compile(r"flow: t = ([0-9.eE+-]+) of ([0-9.eE+-]+) s.*ETA (.*)$")
-LOCK = threading.Lock()
 
 
-def say(message):
-    with LOCK:
-        sys.stderr.write("pump-curve: %s\n" % message)
-        sys.stderr.flush()
+say = fsi_launch.speaker("pump-curve")
 
 
 METHODS = {"ibm": "penalized IBM (ours)", "ami": "body-fitted AMI (stock pimpleFoam)"}

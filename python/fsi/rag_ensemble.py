@@ -38,16 +38,12 @@ import yaml
 from fsi import fsi_launch  # noqa: E402
 from fsi import pump_curve  # noqa: E402
 
-LOCK = threading.Lock()
 # The coupler's progress line: "step 1674/2000  t = 0.4185 s (84%)  wall 9m34s  ETA 112.0 s ..."
 # (the precursor counts as nothing: it is a few minutes, once per operating point).
 PROGRESS = re.compile(r"\bstep (\d+)/(\d+)\s.*\bETA (\S+(?: s)?)")
 
 
-def say(message):
-    with LOCK:
-        sys.stderr.write("rag-ensemble: %s\n" % message)
-        sys.stderr.flush()
+say = fsi_launch.speaker("rag-ensemble")
 
 
 def wilson_interval(k, n, z=1.96):
