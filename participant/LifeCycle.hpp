@@ -3,7 +3,7 @@
 // structure waits until its release time (structures[].release_time_s), is in the scene from
 // the first step that starts at or after it, and is gone from the end of the first accepted step
 // at which all its points are past its removal plane (structures[].remove_when_past), or at
-// which it is stretched beyond its tear limit (solver.on_max_stretch: tear): torn off. Only
+// which it is stretched beyond its tear limit (structures[].tear_above_stretch_ratio): torn off. Only
 // structures in the scene are advanced, touch each other and take part in the coupling; one
 // that waits or is gone keeps its state where it was.
 //

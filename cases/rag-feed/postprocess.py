@@ -8,8 +8,10 @@ Usage: postprocess.py RESULTS_DIR CASE_DIR [--no-animation]"""
 
 import sys
 
-from fsi import feed_report  # python/, on PYTHONPATH (./fsi run)
+from fsi import clog_criterion  # python/, on PYTHONPATH (./fsi run)
+from fsi import feed_report
 from fsi import impeller_xdmf
+from fsi import rag_metrics
 
 
 def main(argv):
@@ -19,7 +21,7 @@ def main(argv):
     out, case_dir = args
     try:
         report = feed_report.write_report(out, case_dir, animation="--no-animation" not in argv)
-    except feed_report.FeedError as error:
+    except (feed_report.FeedError, rag_metrics.MetricsError, clog_criterion.CriterionError) as error:
         sys.exit("postprocess.py: %s" % error)
     impeller_xdmf.write(out, case_dir)
     verdict = report["verdict"]

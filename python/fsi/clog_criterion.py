@@ -61,7 +61,7 @@ class ClogCriterion:
                 raise CriterionError("%s.%s: unknown key (allowed: %s)" % (where, key, ", ".join(KEYS)))
 
         def number(key, low, high, integer=False):
-            if key not in mapping:
+            if mapping.get(key) is None:   # absent or null: not given, as the C++ reader takes it
                 return None
             value = mapping[key]
             if isinstance(value, bool) or not isinstance(value, (int, float)) or (integer and value != int(value)):

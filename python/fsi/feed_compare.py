@@ -45,7 +45,8 @@ from fsi.rag_ensemble import PROGRESS   # the coupler's progress line
 # The fluid's progress line in the precursor: "precursor: t = 0.0355 of 0.5 s, step 142/2000, ... ETA 3m19s"
 PRECURSOR = re.compile(r"precursor: t = \S+ of \S+ s, step (\d+)/(\d+),.*\bETA (\S+(?: s)?)")
 
-LOCK = threading.Lock()
+# Held while a report or the comparison is written: pyplot's figures are shared by the threads.
+LOCK = threading.RLock()
 
 
 say = fsi_launch.speaker("feed-compare")
@@ -57,7 +58,7 @@ class Member:
         self.name = "%s q%.2f seed %d" % (design.name, fraction, seed)
         self.case = os.path.join(out, design.name, "q%.2f" % fraction, "seed-%d" % seed, "case")
         self.folder = os.path.join(self.case, "output")   # where ./fsi run and ./fsi submit write
-        self.state, self.error, self.verdict = "waiting", None, None
+        self.state, self.error, self.verdict, self.outcomes = "waiting", None, None, {}
         self.progress, self.eta, self.phase = 0.0, "", ""
 
 
@@ -93,8 +94,15 @@ def parse_args(argv):
         p.error("--flow-fractions %r: comma-separated numbers, e.g. 1,0.36" % args.flow_fractions)
     if not args.fractions or any(f <= 0 for f in args.fractions):
         p.error("--flow-fractions %r: each above 0" % args.flow_fractions)
+    folders = ["q%.2f" % f for f in args.fractions]
+    if len(set(folders)) != len(folders):
+        p.error("--flow-fractions %r: two fractions share a folder (%s; to two decimals): give each once"
+                % (args.flow_fractions, ", ".join(folders)))
     if args.seeds < 1:
         p.error("--seeds %d: at least 1" % args.seeds)
+    for name, value in (("--rags", args.rags), ("--jobs", args.jobs), ("--end-time", args.end_time)):
+        if value < 0:
+            p.error("%s %s: at least 0 (0: the default)" % (name, value))
     paths = [v for v in args.designs.split(",") if v] if args.designs else \
         [os.path.join(ROOT, "cases", "rag-in-pump", "pump.yaml"), os.path.join(ROOT, "pump", "designs", "two-blade.yaml")]
     if len(paths) != 2:
@@ -172,7 +180,8 @@ def start_folder(member, args):
     another pump.yaml) are moved aside to <folder>.old-<n>, not reused nor deleted."""
     path = os.path.join(member.folder, "feed_compare.stamp")
     stamp = stamp_of(member, args)
-    holds_results = os.path.isdir(member.folder) and set(os.listdir(member.folder)) - {"feed_compare.stamp"}
+    holds_results = os.path.isdir(member.folder) and \
+        set(os.listdir(member.folder)) - {"feed_compare.stamp", fsi_launch.RUN_LOCK}
     if holds_results and (not os.path.isfile(path) or open(path).read() != stamp):
         n = 1
         while os.path.exists("%s.old-%d" % (member.folder, n)):
@@ -237,15 +246,24 @@ def collect(member):
         member.state = "not run" if not os.path.isdir(member.folder) else "unfinished"
         return
     try:
-        report = feed_report.write_report(member.folder, member.case, animation=False)
-    except (feed_report.FeedError, OSError, ValueError) as error:
-        member.state, member.error = "failed", "report: %s" % error
+        with LOCK:
+            report = feed_report.write_report(member.folder, member.case, animation=False)
+    except Exception as error:   # one member's report must not stop the others (a traceback in its log)
+        member.state, member.error = "failed", "report: %s: %s" % (type(error).__name__, error)
         return
     verdict = report.get("verdict") or {}
     if verdict.get("clogged") is None:
         member.state, member.error = "failed", "no clog criterion evaluated (feed.clog_criterion)"
         return
+    if verdict.get("not_evaluated"):
+        # Judged on fewer conditions than its case states (no clean pump to compare with): not
+        # comparable with members judged on all of them.
+        said = [n for n in report.get("notes") or [] if n.startswith("clog criterion:")]
+        member.state, member.error = "failed", "report: %s" % (
+            "; ".join(said) or "%s not evaluated" % " and ".join(verdict["not_evaluated"]))
+        return
     member.verdict = verdict
+    member.outcomes = report.get("outcomes") or {}
     member.state = "done"
 
 
@@ -280,26 +298,32 @@ def write_outputs(args, members, results, out):
     with open(os.path.join(out, "compare.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["design", "flow_fraction", "seed", "state", "clogged", "rags_released", "time_s", "reason",
-                    "saturation_rags", "saturation_kg", "error"])
+                    "saturation_rags", "saturation_kg"] + ["rags_" + o for o in feed_report.OUTCOMES] + ["error"])
         for m in members:
             v = m.verdict or {}
             w.writerow([m.design.name, m.fraction, m.seed, m.state, v.get("clogged"), v.get("rags_released"),
-                        v.get("time_s"), v.get("reason"), v.get("saturation_rags"), v.get("saturation_kg"),
-                        m.error or ""])
+                        v.get("time_s"), v.get("reason"), v.get("saturation_rags"), v.get("saturation_kg")]
+                       + [m.outcomes.get(o) if m.outcomes else None for o in feed_report.OUTCOMES] + [m.error or ""])
     with open(os.path.join(out, "compare.yaml"), "w") as f:
         yaml.safe_dump({"designs": {d.name: d.path for d in args.designs}, "seeds": args.seeds,
                         "comparisons": feed_report._plain(results)}, f, sort_keys=False)
     lines = ["# Feed comparison: %s against %s, %d seeds\n" % (args.designs[0].path, args.designs[1].path, args.seeds),
-             "| flow (of the case's) | %s: rags to clog per seed | %s: rags to clog per seed | P(A outlasts B) |"
-             % (args.designs[0].name, args.designs[1].name), "|---|---|---|---|"]
+             "| flow (of the case's) | %s: rags to clog per seed | %s: rags to clog per seed | P(A outlasts B) (95 %% interval) "
+             "| Gehan's test p | rags torn (A, B) |"
+             % (args.designs[0].name, args.designs[1].name), "|---|---|---|---|---|---|"]
 
     def runs(values):
         return ", ".join("%s%d" % (">" if censored else "", n) for n, censored in values) or "none"
     for r in results:
         p = ("%.2f (%.2f-%.2f)" % (r["p_a_outlasts_b"], *r["p_a_outlasts_b_95"])) if "p_a_outlasts_b" in r else "n/a"
-        lines.append("| %.2f | %s | %s | %s |" % (r["flow_fraction"], runs(r["rags_to_clog_a"]),
-                                                  runs(r["rags_to_clog_b"]), p))
-    lines.append("\n>N: the pump coped with the N rags it was fed (not clogged by the end).\n")
+        torn = [sum(m.outcomes.get("torn", 0) for m in members
+                    if m.design is d and m.fraction == r["flow_fraction"] and m.verdict) for d in args.designs]
+        lines.append("| %.2f | %s | %s | %s | %s | %d, %d |" % (
+            r["flow_fraction"], runs(r["rags_to_clog_a"]), runs(r["rags_to_clog_b"]), p,
+            "%.3f" % r["p_value"] if "p_value" in r else "n/a", *torn))
+    lines.append("\n>N: the pump coped with the N rags it was fed (not clogged by the end). A torn rag (stretched "
+                 "past its kind's tear_above_stretch_ratio, caught between the impeller and the casing) counts as "
+                 "held in the pump from its tear on.\n")
     lines += ["- **%.2f Q**: %s" % (r["flow_fraction"], r["statement"]) for r in results]
     with open(os.path.join(out, "compare.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -27,7 +27,9 @@ the criterion, 10 without one):
             the rule after its release
   passed_late  left later than that
   torn      torn off the scene (structures[].tear_above_stretch_ratio: stretched beyond it, caught
-            between the turning impeller and the casing), exit_reason "torn" in structure.h5
+            between the turning impeller and the casing), exit_reason "torn" in structure.h5.
+            The clog criterion and the retained counts take a torn rag as caught, not passed:
+            held in the pump from its tear to the end (criterion_rags)
   retained  still in the scene at the end, released at least the rule's revolutions before it
   in_pump   still in the scene at the end, released less than that before it
   waiting   not released by the end of the run
@@ -223,16 +225,24 @@ def load_traces(run_dir, geometry, config):
             "clean_source": (clean or {}).get("source"), "notes": notes}
 
 
+def criterion_rags(rags):
+    """The rags as the clog criterion sees them: a torn rag was caught (stretched between the
+    turning impeller and the casing), not passed: it never left."""
+    return [clog_criterion.Rag(r["release_time_s"], None if r.get("exit_reason") == "torn" else r["exit_time_s"],
+                               r.get("mass_kg", 0.0)) for r in rags]
+
+
 def in_scene_counts(rags, t, residence_s):
-    """(in the scene, retained) at each time of t."""
+    """(in the scene, retained) at each time of t: in the scene, released and not gone (torn
+    rags gone at their tear); retained as the criterion counts them (clog_criterion.retained_at,
+    torn rags held, criterion_rags)."""
     t = np.asarray(t, float)
     inside = np.zeros(len(t), int)
-    held = np.zeros(len(t), int)
     for r in rags:
         until = r["exit_time_s"] if r["exit_time_s"] is not None else np.inf
-        now = (t >= r["release_time_s"]) & (t < until)
-        inside += now
-        held += now & (t - r["release_time_s"] >= residence_s)
+        inside += (t >= r["release_time_s"]) & (t < until)
+    held_rags = criterion_rags(rags)
+    held = np.array([len(clog_criterion.retained_at(held_rags, time, residence_s)) for time in t], int)
     return inside, held
 
 
@@ -244,7 +254,8 @@ def revolutions_table(rags, traces, period_s, residence_s, flow_rate_m3_per_s=No
     ends, heads = clog_criterion.revolution_means(traces["head"][0], traces["head"][1], period_s)
     ends_p, powers = clog_criterion.revolution_means(traces["power"][0], traces["power"][1], period_s)
     n = min(len(ends), len(ends_p))
-    inside, held = in_scene_counts(rags, ends[:n] - 1e-9, residence_s)
+    inside, _ = in_scene_counts(rags, ends[:n] - 1e-9, residence_s)   # in the scene: just before the end
+    _, held = in_scene_counts(rags, ends[:n], residence_s)               # retained: at the end, as the criterion
     rows = []
     for k in range(n):
         h, p = float(heads[k]), float(powers[k])
@@ -266,7 +277,7 @@ def verdict(criterion, rags, traces, period_s, end_time_s):
     head and power conditions are left out and the verdict says so (`not_evaluated`)."""
     if criterion is None:
         return None, []
-    feed_rags = [clog_criterion.Rag(r["release_time_s"], r["exit_time_s"], r["mass_kg"]) for r in rags]
+    feed_rags = criterion_rags(rags)
     have_traces = (traces["head"] is not None and traces["power"] is not None and bool(traces["clean_head_m"])
                    and bool(traces["clean_power_w"]))
     skipped, notes = [], []

@@ -28,6 +28,7 @@ Environment (mostly for tests): FSI_ENDPOINT_TIMEOUT_S (default 30), FSI_STOP_GR
 
 import argparse
 import collections
+import fcntl
 import os
 import re
 import signal
@@ -256,6 +257,27 @@ def run_precursors(args, plan):
             raise UserError("%s: the precursor run failed with exit code %d (log: %s)"
                             % (name, code, os.path.join(plan.output_dir, "precursor", "%s.log" % name)),
                             code if code in (EXIT_BAD_INPUT, EXIT_INTERRUPTED) else EXIT_RUN_FAILED)
+
+
+RUN_LOCK = ".fsi-run.lock"   # in an output folder while a run writes it
+HELD_LOCKS = []              # the run's lock, held until the launcher exits
+
+
+def lock_output(output_dir):
+    """One run at a time in an output folder: two runs into one (a second `./fsi run -o` of the
+    same folder, a study member started twice, a SLURM task beside a local run) would write over
+    each other's checkpoints and results. Refused naming the folder; released when this launcher
+    exits, however it ends."""
+    os.makedirs(output_dir, exist_ok=True)
+    path = os.path.join(output_dir, RUN_LOCK)
+    lock = open(path, "w")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        lock.close()
+        raise UserError("%s is being written by another run (it holds %s): wait for it to end, or give "
+                        "another output folder (-o)" % (os.path.realpath(output_dir), path))
+    HELD_LOCKS.append(lock)
 
 
 def run_flow_alone(command, output_dir, verbose, restart=False):
@@ -606,9 +628,11 @@ def main(argv):
         name = plan.names()[0]
         command = command_for(name, plan.executable(name), args, None, coupled=False)
         if name == "fluid":
+            lock_output(plan.output_dir)
             return run_flow_alone(command, plan.output_dir, args.verbose, args.restart)
         exec_process(command)
 
+    lock_output(plan.output_dir)
     make_missing_keys(args, plan)
     run_precursors(args, plan)
     return CoupledRun(args, plan).run()

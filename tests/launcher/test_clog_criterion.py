@@ -142,6 +142,13 @@ class Refusals(unittest.TestCase):
         self.refused({"held_revolutions": 0, "retained_rags": 2}, "held_revolutions", "out of range")
         self.refused({"held_revolutions": 3}, "no condition")
         self.refused([0.1], "a mapping")
+        self.refused({"head_drop_fraction": None}, "no condition")
+
+    def test_a_null_key_is_absent_as_the_structure_solver_reads_it(self):
+        c = ClogCriterion.from_mapping({"head_drop_fraction": None, "retained_rags": 3, "held_revolutions": None})
+        self.assertIsNone(c.head_drop_fraction)
+        self.assertEqual(c.retained_rags, 3)
+        self.assertEqual(c.held_revolutions, ClogCriterion().held_revolutions)
 
     def test_clean_pump_must_have_head_and_power(self):
         t, head, power = trace(2)

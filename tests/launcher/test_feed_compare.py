@@ -36,6 +36,11 @@ class Refusals(unittest.TestCase):
         self.refused(["--flow-fractions", "1,x"], "--flow-fractions", "1,0.36")
         self.refused(["--flow-fractions", "1,-0.36"], "each above 0")
         self.refused(["--seeds", "0"], "--seeds 0", "at least 1")
+        self.refused(["--flow-fractions", "1,1"], "share a folder", "q1.00, q1.00")
+        self.refused(["--flow-fractions", "0.356,0.36"], "share a folder", "q0.36, q0.36")
+        self.refused(["--rags", "-2"], "--rags -2", "at least 0")
+        self.refused(["--jobs", "-1"], "--jobs -1")
+        self.refused(["--end-time", "-0.5"], "--end-time -0.5")
 
     def test_the_defaults_are_the_feed_s_pump_against_the_two_blade_design(self):
         args = feed_compare.parse_args(["--bin-dir", "bin", FEED])

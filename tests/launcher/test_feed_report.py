@@ -41,6 +41,14 @@ class FeedReport(unittest.TestCase):
         inside, held = in_scene_counts(rags, [0.05, 0.15, 0.25, 0.35, 0.55, 0.75], RULE)
         self.assertEqual(list(inside), [1, 2, 1, 2, 2, 2])
         self.assertEqual(list(held), [0, 0, 0, 0, 1, 2])   # rag 2 from 0.5 s, rag 3 from 0.7 s
+        # A rag is retained from the instant release + rule itself, as the criterion counts it.
+        _, at_rule = in_scene_counts([rag(0.0)], [RULE - 1e-6, RULE], RULE)
+        self.assertEqual(list(at_rule), [0, 1])
+        # A torn rag leaves the scene at its tear but stays caught for the retained count.
+        torn = dict(rag(0.0, 0.1), exit_reason="torn")
+        inside, held = in_scene_counts([torn], [0.05, 0.15, RULE + 0.01], RULE)
+        self.assertEqual(list(inside), [1, 0, 0])
+        self.assertEqual(list(held), [0, 0, 1])
 
     def test_a_grid_s_area_is_its_rectangle_s(self):
         s1, s2 = np.meshgrid(np.linspace(0, 0.15, 16), np.linspace(0, 0.05, 6), indexing="ij")

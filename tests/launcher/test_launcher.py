@@ -275,6 +275,20 @@ class LauncherTest(unittest.TestCase):
             self.assertIn("ETA 3 s", f.read())
         self.assertLess(elapsed, 5)
 
+    def test_a_second_run_into_a_folder_being_written_is_refused_and_the_lock_released_after(self):
+        self.configure(coupler={"endpoint": ENDPOINT, "sleep": 0.2}, structure={}, fluid={})
+        import fcntl
+        with open(os.path.join(self.out, ".fsi-run.lock"), "w") as held:
+            fcntl.flock(held, fcntl.LOCK_EX)   # another run writes this folder
+            code, _, err, _ = self.launch(self.case)
+        self.assertNotEqual(code, 0)
+        self.assertIn("%s is being written by another run" % os.path.realpath(self.out), err)
+        self.assertIn("-o", err)
+        self.assertNoTraceback(err)
+        self.assertIsNone(self.recorded("coupler"))   # nothing started
+        code, _, err, _ = self.launch(self.case)        # that run ended: this one runs
+        self.assertEqual(code, 0, err)
+
     def test_coupled_verbose_shows_every_line_and_output_dir_is_passed(self):
         other = os.path.join(self.tmp.name, "results")
         os.makedirs(other)
