@@ -60,6 +60,8 @@ class Member:
         self.folder = os.path.join(self.case, "output")   # where ./fsi run and ./fsi submit write
         self.state, self.error, self.verdict, self.outcomes = "waiting", None, None, {}
         self.progress, self.eta, self.phase = 0.0, "", ""
+        self.started, self.seconds = None, None   # monotonic start, wall time of a run to its end (s)
+        self.finished_before = False               # finished by an earlier invocation (reused)
 
 
 class Design:
@@ -220,7 +222,7 @@ def run_member(args, member, on_done=None):
     start_folder(member, args)
     if not finished(member):
         member.state = "running"
-        started = time.monotonic()
+        started = member.started = time.monotonic()
         def on_line(line):
             for phase, pattern in (("precursor ", PRECURSOR), ("", PROGRESS)):
                 match = pattern.search(line)
@@ -234,7 +236,8 @@ def run_member(args, member, on_done=None):
             member.state, member.error = "failed", "exit code %d (log: %s)" % (
                 code, os.path.join(member.folder, "feed_compare.log"))
             return
-        say("%s: ran in %.0f s" % (member.name, time.monotonic() - started))
+        member.seconds = time.monotonic() - started
+        say("%s: ran in %.0f s" % (member.name, member.seconds))
     collect(member)
     if on_done:
         on_done()
@@ -383,12 +386,34 @@ def prepare_members(args, members):
             raise SystemExit("feed-compare: %s: %s" % (design.path, e))
 
 
-def report_progress(members, stop):
-    """Every minute: members done, and each running one's progress and ETA (its coupler's)."""
+def study_eta_s(members, jobs, now=None):
+    """The study's remaining wall time (s), or None before anything can tell: the members still
+    to run and the running ones' remaining shares, at the median wall time of the members that
+    ran to the end in this invocation (else the running ones' pace so far), `jobs` at a time."""
+    now = time.monotonic() if now is None else now
+    running = [m for m in members if m.state == "running"]
+    waiting = sum(m.state == "waiting" and not m.finished_before for m in members)
+    ran = sorted(m.seconds for m in members if m.seconds)
+    if ran:
+        per_member = ran[len(ran) // 2]
+    else:   # a feed's progress (not a precursor's): the elapsed time over the share done
+        paces = [(now - m.started) / m.progress for m in running if not m.phase and m.progress > 0.05]
+        if not paces:
+            return None
+        per_member = sorted(paces)[len(paces) // 2]
+    left = waiting + sum(1.0 - (m.progress if not m.phase else 0.0) for m in running)
+    return left * per_member / max(1, min(jobs, len(running) + waiting))
+
+
+def report_progress(members, stop, jobs):
+    """Every minute: members done, each running one's progress and ETA (its coupler's), and the
+    whole study's ETA (study_eta_s)."""
     while not stop.wait(60.0):
         running = [m for m in members if m.state == "running"]
         done = sum(m.state in ("done", "failed") for m in members)
-        say("%d/%d members done; %s" % (done, len(members), ", ".join(
+        eta = study_eta_s(members, jobs)
+        say("%d/%d members done%s; %s" % (done, len(members), ", study ETA %.1f h" % (eta / 3600.0)
+                                          if eta is not None else "", ", ".join(
             "%s: %s%.0f %% (ETA %s)" % (m.name, m.phase, 100 * m.progress, m.eta or "?") for m in running)
             or "starting"))
 
@@ -398,7 +423,7 @@ def run_all(args, members, jobs, on_done=None):
     firsts = [m for m in members if m.seed == 1]
     rest = [m for m in members if m.seed != 1]
     stop = threading.Event()
-    threading.Thread(target=report_progress, args=(members, stop), daemon=True).start()
+    threading.Thread(target=report_progress, args=(members, stop, jobs), daemon=True).start()
     try:
         run_pool(args, firsts, rest, jobs, on_done)
     finally:
@@ -451,6 +476,7 @@ def main(argv):
         % (len(members), len(args.fractions), args.seeds, rags, jobs, out))
     for m in members:   # the precursor copies below go into folders of this case
         start_folder(m, args)
+        m.finished_before = finished(m)
     def write_so_far():   # after each member: the comparison of what has finished, kept if the run is cut
         with LOCK:
             write_outputs(args, members, summarise(args, members), out)

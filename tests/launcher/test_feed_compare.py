@@ -20,6 +20,33 @@ FEED = os.path.join(ROOT, "cases", "rag-feed")
 TWO_BLADE = os.path.join(ROOT, "pump", "designs", "two-blade.yaml")
 
 
+class StudyEta(unittest.TestCase):
+    def members(self, states):
+        out = []
+        for k, state in enumerate(states):
+            m = feed_compare.Member(feed_compare.Design(TWO_BLADE, 0), 1.0, k + 1, "/nowhere")
+            m.state = state
+            out.append(m)
+        return out
+
+    def test_the_remaining_members_at_the_measured_pace(self):
+        ms = self.members(["done", "running", "running", "waiting", "waiting", "waiting", "done"])
+        ms[0].seconds = 1500.0                       # one ran to its end in 25 min
+        ms[6].finished_before = False
+        ms[1].progress, ms[2].progress = 0.5, 0.25   # half and a quarter done
+        # 3 waiting + 0.5 + 0.75 left = 4.25 members of 1500 s, two at a time
+        self.assertAlmostEqual(feed_compare.study_eta_s(ms, 2), 4.25 * 1500 / 2, delta=1e-9)
+        ms[3].finished_before = True                 # reused: nothing to run
+        self.assertAlmostEqual(feed_compare.study_eta_s(ms, 2), 3.25 * 1500 / 2, delta=1e-9)
+
+    def test_before_any_ended_the_running_ones_pace_and_nothing_in_a_precursor(self):
+        ms = self.members(["running", "waiting"])
+        ms[0].started, ms[0].progress = 100.0, 0.4   # 40 % after 600 s: 1500 s a member
+        self.assertAlmostEqual(feed_compare.study_eta_s(ms, 1, now=700.0), 1.6 * 1500, delta=1e-9)
+        ms[0].phase = "precursor "
+        self.assertIsNone(feed_compare.study_eta_s(ms, 1, now=700.0))
+
+
 class Refusals(unittest.TestCase):
     def refused(self, argv, *words):
         stderr = io.StringIO()
