@@ -29,6 +29,7 @@ import csv
 import os
 import re
 import shutil
+import signal
 import sys
 import threading
 import time
@@ -44,6 +45,8 @@ from fsi.rag_ensemble import PROGRESS   # the coupler's progress line
 
 # The fluid's progress line in the precursor: "precursor: t = 0.0355 of 0.5 s, step 142/2000, ... ETA 3m19s"
 PRECURSOR = re.compile(r"precursor: t = \S+ of \S+ s, step (\d+)/(\d+),.*\bETA (\S+(?: s)?)")
+
+STOP = threading.Event()   # set on Ctrl-C or SIGTERM: no member starts after it
 
 # Held while a report or the comparison is written: pyplot's figures are shared by the threads.
 LOCK = threading.RLock()
@@ -219,6 +222,8 @@ def member_command(args, member):
 
 
 def run_member(args, member, on_done=None):
+    if STOP.is_set():
+        return
     start_folder(member, args)
     if not finished(member):
         member.state = "running"
@@ -432,14 +437,25 @@ def run_all(args, members, jobs, on_done=None):
 
 def run_pool(args, firsts, rest, jobs, on_done):
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        list(pool.map(lambda m: run_member(args, m, on_done), firsts))
-        for m in rest:
-            first = next(f for f in firsts if f.design is m.design and f.fraction == m.fraction)
-            source, target = os.path.join(first.folder, "precursor"), os.path.join(m.folder, "precursor")
-            if os.path.isdir(source) and not os.path.exists(target):
-                os.makedirs(m.folder, exist_ok=True)
-                shutil.copytree(source, target, copy_function=os.link)
-        list(pool.map(lambda m: run_member(args, m, on_done), rest))
+        try:
+            run_stages(args, firsts, rest, pool, on_done)
+        except KeyboardInterrupt:
+            # Ctrl-C: the running members' launchers had it too and checkpoint; none starts after.
+            STOP.set()
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+
+
+def run_stages(args, firsts, rest, pool, on_done):
+    """The first seeds, then the rest with the first's precursor hard-linked into each."""
+    list(pool.map(lambda m: run_member(args, m, on_done), firsts))
+    for m in rest:
+        first = next(f for f in firsts if f.design is m.design and f.fraction == m.fraction)
+        source, target = os.path.join(first.folder, "precursor"), os.path.join(m.folder, "precursor")
+        if os.path.isdir(source) and not os.path.exists(target):
+            os.makedirs(m.folder, exist_ok=True)
+            shutil.copytree(source, target, copy_function=os.link)
+    list(pool.map(lambda m: run_member(args, m, on_done), rest))
 
 
 def submit(args, members):
@@ -481,7 +497,18 @@ def main(argv):
         with LOCK:
             write_outputs(args, members, summarise(args, members), out)
 
-    run_all(args, members, jobs, write_so_far)
+    def terminated(signum, frame):   # SIGTERM (kill, a scheduler): passed on to the running members
+        for process in list(pump_curve.RUNNING):
+            process.send_signal(signal.SIGTERM)
+        raise KeyboardInterrupt
+    signal.signal(signal.SIGTERM, terminated)
+    try:
+        run_all(args, members, jobs, write_so_far)
+    except KeyboardInterrupt:
+        write_so_far()
+        say("interrupted: the running members stopped at a checkpoint; run the same command again to resume "
+            "(finished members are reused); the comparison so far: %s" % os.path.join(out, "compare.md"))
+        return 130
     for m in members:
         if m.state == "failed":
             say("%s failed: %s" % (m.name, m.error))

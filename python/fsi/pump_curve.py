@@ -133,15 +133,23 @@ def launcher_command(args, out, case, flow_rate):
     return command + [case]
 
 
+RUNNING = set()   # the processes run_logged is running (a study forwards a SIGTERM to them)
+
+
 def run_logged(command, log_path, on_line, append=False, env=None):
     """Runs `command`, its output into `log_path` (appended to with `append`), each line of its
-    stderr also to on_line (the progress); returns the exit code."""
+    stderr also to on_line (the progress); returns the exit code. The process is in RUNNING
+    while it runs."""
     with open(log_path, "ab" if append else "wb") as log:
         process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.PIPE, env=env)
-        for raw in iter(process.stderr.readline, b""):
-            log.write(raw)
-            on_line(raw.decode("utf-8", "replace").rstrip())
-        return process.wait()
+        RUNNING.add(process)
+        try:
+            for raw in iter(process.stderr.readline, b""):
+                log.write(raw)
+                on_line(raw.decode("utf-8", "replace").rstrip())
+            return process.wait()
+        finally:
+            RUNNING.discard(process)
 
 
 def run_point(args, point):

@@ -47,6 +47,43 @@ class StudyEta(unittest.TestCase):
         self.assertIsNone(feed_compare.study_eta_s(ms, 1, now=700.0))
 
 
+class Interrupt(unittest.TestCase):
+    def test_ctrl_c_starts_no_further_member_and_waits_for_the_running_ones(self):
+        """Members of 0.3 s, two at a time, six of them; Ctrl-C at 0.45 s (during the second
+        pair): the running two end, none of the last two starts, and run_pool raises."""
+        import signal
+        import threading
+        import time
+        events = []
+        real = feed_compare.run_member
+
+        def fake(args, member, on_done=None):
+            if feed_compare.STOP.is_set():
+                return
+            events.append(("start", member.seed))
+            time.sleep(0.3)
+            events.append(("end", member.seed))
+        members = [feed_compare.Member(feed_compare.Design(TWO_BLADE, 0), 1.0, k, "/nowhere") for k in range(1, 7)]
+        feed_compare.run_member = fake
+        feed_compare.STOP.clear()
+        timer = threading.Timer(0.45, lambda: os.kill(os.getpid(), signal.SIGINT))
+        try:
+            timer.start()
+            with self.assertRaises(KeyboardInterrupt):
+                feed_compare.run_pool(None, members[:2], [], 2, None)   # firsts only: no precursor copies
+                feed_compare.run_pool(None, members[2:], [], 2, None)
+        finally:
+            timer.cancel()
+            feed_compare.run_member = real
+            stopped = feed_compare.STOP.is_set()
+            feed_compare.STOP.clear()
+        self.assertTrue(stopped)
+        started = sorted(seed for what, seed in events if what == "start")
+        ended = sorted(seed for what, seed in events if what == "end")
+        self.assertEqual(started, [1, 2, 3, 4])
+        self.assertEqual(ended, started)   # the running ones were waited for
+
+
 class Refusals(unittest.TestCase):
     def refused(self, argv, *words):
         stderr = io.StringIO()
