@@ -9,9 +9,11 @@ Here the same on the traces of a run, revolution by revolution:
     by the step it stands for, time_means.window_mean) against the clean pump's means at the same
     flow, H_clean and P_clean (a mean over whole revolutions is the phase average over them; the
     once-per-revolution pulsation of a single blade cancels);
-  - a rag is retained at time t when it was released at t_r <= t, has not left (its exit time
-    t_e > t, or it never left) and has been in the pump for at least the residence rule:
-    t - t_r >= residence_revolutions x the period (the rag metrics' rule, 10 revolutions);
+  - a rag is retained at time t when it entered the pump at t_p <= t (past the sump, when the
+    pump has one; else its release), has not left (its exit time t_e > t, or it never left) and
+    has been in the pump for at least the residence rule: t - t_p >= residence_revolutions x
+    the period (the rag metrics' rule, 10 revolutions), and is in the pump at t. A rag in the
+    sump (before its entry, or fallen back into it) is not retained: it is not in the pump;
   - the criterion is met at the end of the first revolution that completes `held_revolutions`
     consecutive revolutions with H_k <= (1 - head_drop_fraction) H_clean, or with
     P_k >= (1 + power_rise_fraction) P_clean, or at the first instant `retained_rags` rags are
@@ -21,8 +23,9 @@ Here the same on the traces of a run, revolution by revolution:
 
 Used on synthetic traces by tests/launcher/test_clog_criterion.py."""
 
+import math
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -90,10 +93,26 @@ class ClogCriterion:
 
 @dataclass(frozen=True)
 class Rag:
-    """One rag of a feed: when it was released and left (None: it never left), its mass."""
+    """One rag of a feed: when it was released and left (None: it never left), its mass, and
+    when it entered the pump (past the sump: the residence rule's clock starts then; None: at
+    its release, a pump without a sump; NEVER: it never did, and is never retained)."""
     release_time_s: float
     exit_time_s: Optional[float]
     mass_kg: float
+    entry_time_s: Optional[float] = None
+    # After its entry, the spans [from, to) it spent back in the sump (to = NEVER: to the end).
+    sump_intervals: Tuple[Tuple[float, float], ...] = ()
+
+    def start_s(self):
+        """When the residence rule's clock starts."""
+        return self.release_time_s if self.entry_time_s is None else self.entry_time_s
+
+    def in_sump(self, time_s):
+        """Back in the sump at time_s (after its entry)."""
+        return any(a - TIME_TOLERANCE_S <= time_s < b - TIME_TOLERANCE_S for a, b in self.sump_intervals)
+
+
+NEVER = math.inf   # Rag.entry_time_s of a rag that never entered the pump
 
 
 @dataclass
@@ -133,10 +152,11 @@ TIME_TOLERANCE_S = 1e-9   # release + residence - release is residence only to r
 
 
 def retained_at(rags: Sequence[Rag], time_s, residence_s):
-    """The rags retained at time_s: released, not left, in for residence_s or longer (to
-    TIME_TOLERANCE_S: a rag becomes retained at the event release + residence itself)."""
-    return [r for r in rags if r.release_time_s <= time_s and (r.exit_time_s is None or r.exit_time_s > time_s)
-            and time_s - r.release_time_s >= residence_s - TIME_TOLERANCE_S]
+    """The rags retained at time_s: in the pump (entered), not left, in for residence_s or
+    longer since they entered (to TIME_TOLERANCE_S: a rag becomes retained at the event entry +
+    residence itself). A rag still in the sump is not retained."""
+    return [r for r in rags if r.start_s() <= time_s and (r.exit_time_s is None or r.exit_time_s > time_s)
+            and time_s - r.start_s() >= residence_s - TIME_TOLERANCE_S and not r.in_sump(time_s)]
 
 
 def evaluate(criterion: ClogCriterion, period_s, t_s, head_m, power_w, clean_head_m, clean_power_w,
@@ -164,8 +184,9 @@ def evaluate(criterion: ClogCriterion, period_s, t_s, head_m, power_w, clean_hea
                 met.append((r.end_time_s, name))
                 break
     # Retained counts change only when a rag passes its residence limit or leaves.
-    events = sorted({r.release_time_s + residence_s for r in rags} | {r.exit_time_s for r in rags
-                                                                       if r.exit_time_s is not None})
+    events = sorted({r.start_s() + residence_s for r in rags if r.start_s() < NEVER}
+                    | {r.exit_time_s for r in rags if r.exit_time_s is not None}
+                    | {b for r in rags for _, b in r.sump_intervals if b < NEVER})
     t_end = float(np.asarray(t_s, float)[-1])
     events = [e for e in events if e <= t_end]
     if criterion.retained_rags is not None:

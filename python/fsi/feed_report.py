@@ -2,8 +2,9 @@
 """The report of a rag feed (issue 33): rags released in sequence into a running pump, as test
 rigs feed them. From a run of a case with a `feed` section (cases/rag-feed):
 
-  RUN_DIR/feed_rags.csv         one row per rag: its release and exit times (s), how long it was
-                                in the scene (s and revolutions), its outcome and where it is held
+  RUN_DIR/feed_rags.csv         one row per rag: its release, entry (into the pump) and exit
+                                times (s), how long it was in the scene and in the pump (s and
+                                revolutions), its outcome and where it is held
   RUN_DIR/feed_revolutions.csv  one row per whole revolution: the time mean head (m) and shaft
                                 power (W), their change against the clean pump at the same flow,
                                 the efficiency rho g Q H / P and its change (a difference), the
@@ -21,17 +22,22 @@ rigs feed them. From a run of a case with a `feed` section (cases/rag-feed):
                                 (top and side sections, as plot_rag_in_pump.py's)
   RUN_DIR/feed.mp4              every saved frame of the feed (with --animation)
 
-A rag's outcome (the residence rule of python/fsi/clog_criterion.py: residence_revolutions of
-the criterion, 10 without one):
+A rag is in the pump from its entry: the first saved frame with half its points or more above
+the sump's top (in the suction pipe; a pump without a sump: from its release), except while it
+is back in the sump (half its points below the top again: entries). A rag's outcome (the
+residence rule of python/fsi/clog_criterion.py: residence_revolutions of the criterion, 10
+without one, counted from its entry):
   passed    left the scene (past feed.remove_when_past, the exit_time_s of structure.h5) within
-            the rule after its release
+            the rule after its entry
   passed_late  left later than that
   torn      torn off the scene (structures[].tear_above_stretch_ratio: stretched beyond it, caught
             between the turning impeller and the casing), exit_reason "torn" in structure.h5.
             The clog criterion and the retained counts take a torn rag as caught, not passed:
             held in the pump from its tear to the end (criterion_rags)
-  retained  still in the scene at the end, released at least the rule's revolutions before it
-  in_pump   still in the scene at the end, released less than that before it
+  retained  in the pump at the end, entered at least the rule's revolutions before it
+  in_pump   in the pump at the end, entered less than that before it
+  in_sump   in the sump at the end: never entered the pump, or fell back into the sump (a pump
+            at part load can throw rags back out of its eye); not retained
   waiting   not released by the end of the run
 Where a rag in the scene at the end is held: the trap site (rag_metrics.SITES) its points
 touched longest over the last revolution of the run (python/fsi/rag_metrics.py: the contact
@@ -55,9 +61,9 @@ import numpy as np
 from fsi import clog_criterion
 from fsi import rag_metrics
 
-OUTCOMES = ("passed", "passed_late", "torn", "retained", "in_pump", "waiting")
+OUTCOMES = ("passed", "passed_late", "torn", "retained", "in_pump", "in_sump", "waiting")
 OUTCOME_COLOURS = {"passed": "tab:green", "passed_late": "tab:olive", "torn": "tab:purple", "retained": "tab:red",
-                   "in_pump": "tab:orange", "waiting": "0.7"}
+                   "in_pump": "tab:orange", "in_sump": "tab:blue", "waiting": "0.7"}
 
 
 class FeedError(Exception):
@@ -125,18 +131,75 @@ def criterion_of(feed):
 # ---------------------------------------------------------------------------------- analysis
 
 def outcomes(rags, end_time_s, residence_s):
-    """Each rag's outcome at the end of the run (the module's definitions), in place."""
+    """Each rag's outcome at the end of the run (the module's definitions), in place, and its
+    time in the scene and in the pump (s). A rag's entry_time_s (entries) starts the residence
+    rule's clock; a rag without the key entered at its release (a pump without a sump), one whose
+    entry_time_s is None never entered."""
     for r in rags:
+        entry = r.get("entry_time_s", r["release_time_s"])
+        until = r["exit_time_s"] if r["exit_time_s"] is not None else end_time_s
         if r["release_time_s"] > end_time_s + 1e-12:
             r["outcome"] = "waiting"
         elif r["exit_time_s"] is not None and r.get("exit_reason") == "torn":
             r["outcome"] = "torn"
         elif r["exit_time_s"] is not None:
-            r["outcome"] = "passed" if r["exit_time_s"] - r["release_time_s"] <= residence_s + 1e-12 else "passed_late"
+            start = entry if entry is not None else r["release_time_s"]   # seen in the pump by no frame
+            r["outcome"] = "passed" if r["exit_time_s"] - start <= residence_s + 1e-12 else "passed_late"
+        elif entry is None or any(b == math.inf for _, b in r.get("sump_intervals", ())):
+            r["outcome"] = "in_sump"   # never entered the pump, or fell back into the sump for good
         else:
-            r["outcome"] = "retained" if end_time_s - r["release_time_s"] >= residence_s - 1e-12 else "in_pump"
-        until = r["exit_time_s"] if r["exit_time_s"] is not None else end_time_s
-        r["time_in_scene_s"] = max(0.0, until - r["release_time_s"]) if r["outcome"] != "waiting" else 0.0
+            r["outcome"] = "retained" if end_time_s - entry >= residence_s - 1e-12 else "in_pump"
+        waiting = r["outcome"] == "waiting"
+        r["time_in_scene_s"] = 0.0 if waiting else max(0.0, until - r["release_time_s"])
+        back = sum(min(b, until) - a for a, b in r.get("sump_intervals", ()) if a < until)
+        r["time_in_pump_s"] = 0.0 if waiting or entry is None else max(0.0, until - entry - back)
+    return rags
+
+
+def sump_top_axial(geometry, pipe_radius):
+    """The sump's top (its walls' highest axial position, toward the impeller; m), or None
+    without a sump (suction_pipe_radius)."""
+    if pipe_radius is None:
+        return None
+    walls = np.asarray(geometry.casing["suction_wall"]).reshape(-1, 3)
+    outer = walls[geometry.radius(walls) > 1.5 * pipe_radius]
+    return float(np.max(geometry.axial(outer))) if len(outer) else None
+
+
+def entries(rags, structure, geometry):
+    """Each rag's entry into the pump and its returns to the sump, in place: entry_time_s, the
+    first saved frame at or after its release with half its points or more above the sump's top
+    (in the suction pipe; the long rag stands as high as the sump), None when there is none; and
+    sump_intervals, the spans [from, to) of frames after it with half its points or more back
+    below (to: the next frame above, or inf). A pump without a sump: entered at its release,
+    never back. `structure(name)`: (t, x, grid)."""
+    top = sump_top_axial(geometry, suction_pipe_radius(geometry))
+    for r in rags:
+        r["sump_intervals"] = []
+        if top is None:
+            r["entry_time_s"] = r["release_time_s"]
+            continue
+        t, x, _ = structure(r["name"])
+        released = t >= r["release_time_s"] - 1e-12
+        above = np.median(geometry.axial(x), axis=1) > top
+        if r["exit_time_s"] is not None:
+            released &= t < r["exit_time_s"] - 1e-12   # after its exit its frames keep its last place
+        first = np.flatnonzero(released & above)
+        if not len(first):
+            r["entry_time_s"] = None
+            continue
+        r["entry_time_s"] = float(t[first[0]])
+        start = None
+        for k in range(first[0], len(t)):
+            if not released[k]:
+                break
+            if not above[k] and start is None:
+                start = float(t[k])
+            elif above[k] and start is not None:
+                r["sump_intervals"].append((start, float(t[k])))
+                start = None
+        if start is not None:
+            r["sump_intervals"].append((start, math.inf))
     return rags
 
 
@@ -227,9 +290,16 @@ def load_traces(run_dir, geometry, config):
 
 def criterion_rags(rags):
     """The rags as the clog criterion sees them: a torn rag was caught (stretched between the
-    turning impeller and the casing), not passed: it never left."""
+    turning impeller and the casing), not passed: it never left; a rag's clock starts when it
+    entered the pump, one that never did is never retained, nor one back in the sump."""
+    def entry(r):
+        if "entry_time_s" not in r:
+            return None
+        return clog_criterion.NEVER if r["entry_time_s"] is None else r["entry_time_s"]
     return [clog_criterion.Rag(r["release_time_s"], None if r.get("exit_reason") == "torn" else r["exit_time_s"],
-                               r.get("mass_kg", 0.0)) for r in rags]
+                               r.get("mass_kg", 0.0), entry(r),
+                               tuple((a, clog_criterion.NEVER if b == math.inf else b)
+                                     for a, b in r.get("sump_intervals", ()))) for r in rags]
 
 
 def in_scene_counts(rags, t, residence_s):
@@ -326,8 +396,8 @@ def write_csv(path, rows, columns):
                         for c in columns])
 
 
-RAG_COLUMNS = ["name", "release_time_s", "exit_time_s", "time_in_scene_s", "time_in_scene_revolutions", "outcome",
-               "held_at", "held_contact_time_s", "mass_kg"]
+RAG_COLUMNS = ["name", "release_time_s", "entry_time_s", "exit_time_s", "time_in_scene_s", "time_in_scene_revolutions",
+               "time_in_pump_s", "time_in_pump_revolutions", "outcome", "held_at", "held_contact_time_s", "mass_kg"]
 REVOLUTION_COLUMNS = ["revolution", "end_time_s", "head_m", "shaft_power_w", "head_change", "power_change",
                       "efficiency", "efficiency_change", "rags_in_scene", "rags_retained"] + [
                           "at_" + site for site in SITES]
@@ -347,13 +417,23 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
             ax.plot([r["release_time_s"] * rev], [k + 1], "o", mfc="none", color=OUTCOME_COLOURS["waiting"], ms=4)
             continue
         until = r["exit_time_s"] if r["exit_time_s"] is not None else end_time_s
-        ax.plot([r["release_time_s"] * rev, until * rev], [k + 1, k + 1], "-", lw=4, solid_capstyle="butt",
-                color=OUTCOME_COLOURS[r["outcome"]])
+        colour = OUTCOME_COLOURS[r["outcome"]]
+        # Thin in the sump (before its entry, or back in it), thick in the pump.
+        entry = r.get("entry_time_s", r["release_time_s"])
+        ax.plot([r["release_time_s"] * rev, (until if entry is None else entry) * rev], [k + 1, k + 1], "-",
+                lw=1.2, color=colour)
+        if entry is not None:
+            edges = [entry] + [v for a, b in r.get("sump_intervals", ()) for v in (a, min(b, until))] + [until]
+            for a, b in zip(edges[0::2], edges[1::2]):
+                ax.plot([a * rev, b * rev], [k + 1, k + 1], "-", lw=4, solid_capstyle="butt", color=colour)
+            for a, b in zip(edges[1::2], edges[2::2]):
+                ax.plot([a * rev, b * rev], [k + 1, k + 1], "-", lw=1.2, color=colour)
         if r.get("held_at") and r["held_at"] != "free":
             ax.text(until * rev, k + 1, " " + r["held_at"], va="center", fontsize=7)
     for outcome in OUTCOMES:
         if any(r["outcome"] == outcome for r in rags):
             ax.plot([], [], "-", lw=4, color=OUTCOME_COLOURS[outcome], label=outcome.replace("_", " "))
+    ax.plot([], [], "-", lw=1.2, color="0.4", label="in the sump")
     ax.set_ylabel("rag (release order)")
     ax.set_yticks(range(1, len(rags) + 1))
     ax.set_yticklabels([r["name"] for r in rags], fontsize=7 if len(rags) <= 30 else 5)
@@ -374,7 +454,7 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
         ax2.legend(fontsize=8)
         ax2.grid(alpha=0.3)
         ax3 = axes[2, 0]
-        # Where the rags in the pump are at each revolution's end, stacked (each rag once), and
+        # Where the rags in the scene are at each revolution's end, stacked (each rag once), and
         # how many of them are retained.
         sites = [site for site in SITES if any(r.get("at_" + site) for r in revolutions)]
         if sites:
@@ -383,7 +463,7 @@ def draw_timeline(path, rags, revolutions, result, period_s, end_time_s, title):
                           labels=[site.replace("_", " ") for site in sites], step="pre", alpha=0.8,
                           colors=[plt.get_cmap("tab20")(SITES.index(site) / 20.0) for site in sites])
         ax3.step(x, [r["rags_retained"] for r in revolutions], where="mid", color="k", lw=1.5, label="retained")
-        ax3.set_ylabel("rags in the pump\nby where they are")
+        ax3.set_ylabel("rags in the scene\nby where they are")
         ax3.set_ylim(bottom=0)
         ax3.legend(fontsize=6, ncol=4, loc="upper left")
         ax3.grid(alpha=0.3)
@@ -476,6 +556,7 @@ def write_report(run_dir, case_dir, animation=False):
         kind = kind_of(r["name"], feed.get("kinds") or [])
         rho = float(((kind.get("material") or {}).get("mass_per_area_kg_per_m2", 0.0)))
         r["mass_kg"] = rho * r["area_m2"]
+    entries(rags, lambda name: rag_metrics.read_structure(run_dir, name)[:3], geometry)
     outcomes(rags, end_time, residence_s)
     read_once = {}   # the held rags' histories, read for held_where and used again by sites_over_time
 
@@ -489,7 +570,8 @@ def write_report(run_dir, case_dir, animation=False):
 
     for r in rags:
         r["time_in_scene_revolutions"] = r["time_in_scene_s"] / period
-        if r["outcome"] in ("retained", "in_pump"):
+        r["time_in_pump_revolutions"] = r["time_in_pump_s"] / period
+        if r["outcome"] in ("retained", "in_pump", "in_sump"):
             r["held_at"], r["held_contact_time_s"] = held_where(structure, r, times, geometry, d_c, period)
     traces = load_traces(run_dir, geometry, config)
     foam = (config.get("fluid") or {}).get("openfoam") or {}
@@ -537,7 +619,7 @@ def write_report(run_dir, case_dir, animation=False):
                          if result["clogged"] else "not clogged by the end (%s)" % describe(criterion, result))
     draw_timeline(os.path.join(run_dir, "feed_timeline.png"), rags, revolutions, result, period, end_time, title)
     draw_retained(os.path.join(run_dir, "feed_retained.png"), run_dir, case_dir, rags,
-                  "%s: the rags in the pump at t = %.3g s (%.1f revolutions)" % (name, end_time, end_time / period))
+                  "%s: the rags in the scene at t = %.3g s (%.1f revolutions)" % (name, end_time, end_time / period))
     if animation:
         draw_movie(os.path.join(run_dir, "feed.mp4"), run_dir, case_dir, rags, name)
     return report

@@ -75,6 +75,23 @@ class Evaluate(unittest.TestCase):
         self.assertNotEqual((release + residence) - release, residence)   # the round-off is there
         self.assertEqual(len(retained_at([Rag(release, None, 0.001)], release + residence, residence)), 1)
 
+    def test_a_rag_in_the_sump_is_not_retained(self):
+        # Retained rags are in the pump: counted from their entry past the sump, not while back
+        # in it, never when they never entered. Five rags released at 0 that would clog the pump
+        # at 5 retained: three entered at 0.1 s, one of them back in the sump from 0.6 s to 0.8 s
+        # and one for good from 0.7 s; one never entered; one entered at 0.3 s.
+        from fsi.clog_criterion import NEVER, retained_at
+        rags = [Rag(0.0, None, 0.001, 0.1), Rag(0.0, None, 0.001, 0.1, ((0.6, 0.8),)),
+                Rag(0.0, None, 0.001, 0.1, ((0.7, NEVER),)), Rag(0.0, None, 0.001, NEVER), Rag(0.0, None, 0.001, 0.3)]
+        residence = 0.4
+        self.assertEqual([len(retained_at(rags, t, residence)) for t in (0.45, 0.5, 0.65, 0.75, 0.85)],
+                         [0, 3, 2, 2, 3])
+        t, head, power = trace(30)
+        result = evaluate(ClogCriterion(retained_rags=4, residence_revolutions=residence / P), P, t, head, power,
+                          H_CLEAN, P_CLEAN, rags)
+        self.assertFalse(result.clogged)   # at most 3 in the pump at once (all 5 if the sump were the pump)
+        self.assertEqual(result.saturation_rags, 3)
+
     def test_revolution_means_are_phase_averages(self):
         # The 30 % pulsation cancels over whole revolutions: each mean is its step's value.
         r = self.run_criterion(head_drop_fraction=0.05).revolutions

@@ -5,6 +5,7 @@ rag's mass), a fed rag's kind from its name, and the refusal of a name that is n
 The whole report on a real run: tests/cases/test_cases.py RagFeed.
     /usr/bin/python3 tests/launcher/test_feed_report.py
 """
+import math
 import os
 import sys
 import unittest
@@ -13,7 +14,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
-from fsi.feed_report import (FeedError, grid_area, in_scene_counts, kind_of, outcomes,  # noqa: E402
+from fsi.feed_report import (FeedError, entries, grid_area, in_scene_counts, kind_of, outcomes, sump_top_axial,  # noqa: E402
                              suction_pipe_radius, sump_or_suction)
 
 P = 0.04      # s, a revolution
@@ -76,6 +77,10 @@ class AxialGeometry:
         x = np.asarray(x, float)
         return np.hypot(x[..., 0], x[..., 1])
 
+    @staticmethod
+    def axial(x):   # up: toward the impeller, +z
+        return np.asarray(x, float)[..., 2]
+
 
 def ring(radius, z):
     a = np.linspace(0, 2 * np.pi, 9)[:-1]
@@ -96,6 +101,39 @@ class Sump(unittest.TestCase):
         self.assertEqual(sump_or_suction("leading_edge", in_sump, g, 0.05), "leading_edge")
         # A pipe without a sump: no radius, no sump.
         self.assertIsNone(suction_pipe_radius(AxialGeometry(np.stack([pipe[:3], pipe[3:6]]))))
+
+    def test_a_rag_is_in_the_pump_from_its_entry_and_not_when_back_in_the_sump(self):
+        # The sump's walls reach z = -0.11 (its top); the pipe above it. A rag of 4 points whose
+        # median rises above -0.11 at 0.2 s, falls back at 0.5 s, rises again at 0.7 s and falls
+        # back for good at 0.9 s; one that never rises; one that rises and leaves at 0.6 s.
+        pipe, sump = ring(0.05, -0.05), ring(0.1, -0.11)
+        g = AxialGeometry(np.stack([pipe[:3], pipe[3:6], sump[:3], sump[3:6], ring(0.1, -0.26)[:3]]))
+        self.assertAlmostEqual(sump_top_axial(g, suction_pipe_radius(g)), -0.11, delta=1e-15)
+        t = np.arange(0, 1.05, 0.1)
+
+        def rag_at(heights):   # 4 points: two at the height, one 1 cm over, one 20 cm under
+            return np.array([[[0, 0, h], [0.01, 0, h], [0, 0, h + 0.01], [0, 0, h - 0.2]] for h in heights])
+        up_down = np.where((t >= 0.2 - 1e-9) & (t < 0.5 - 1e-9) | (t >= 0.7 - 1e-9) & (t < 0.9 - 1e-9), -0.05, -0.2)
+        positions = {"rag01": rag_at(up_down), "square02": rag_at(np.full_like(t, -0.2)),
+                     "rag03": rag_at(np.where(t >= 0.3 - 1e-9, -0.05, -0.2))}
+        rags = [dict(rag(0.0), name="rag01"), dict(rag(0.1), name="square02"), dict(rag(0.1, 0.6), name="rag03")]
+        entries(rags, lambda name: (t, positions[name], None), g)
+        self.assertEqual(rags[0]["entry_time_s"], t[2])
+        self.assertEqual(rags[0]["sump_intervals"], [(t[5], t[7]), (t[9], math.inf)])
+        self.assertIsNone(rags[1]["entry_time_s"])
+        self.assertEqual((rags[2]["entry_time_s"], rags[2]["sump_intervals"]), (t[3], []))
+        outcomes(rags, end_time_s=1.0, residence_s=0.25)
+        self.assertEqual([r["outcome"] for r in rags], ["in_sump", "in_sump", "passed_late"])   # 0.3 s > 0.25
+        self.assertAlmostEqual(rags[0]["time_in_pump_s"], 0.3 + 0.2, delta=1e-12)
+        self.assertAlmostEqual(rags[2]["time_in_pump_s"], 0.3, delta=1e-12)
+        # Retained (in the pump for 0.25 s since its entry, and there): rag01 at 0.45 s and from
+        # 0.7 to 0.9 s, not while back in the sump.
+        _, held = in_scene_counts(rags, [0.4, 0.45, 0.6, 0.75, 0.95], 0.25)
+        self.assertEqual(list(held), [0, 1, 0, 1, 0])
+        # Without a sump every rag is in the pump from its release.
+        plain = [dict(rag(0.0), name="rag01")]
+        entries(plain, lambda name: (t, positions[name], None), AxialGeometry(np.stack([pipe[:3], pipe[3:6]])))
+        self.assertEqual((plain[0]["entry_time_s"], plain[0]["sump_intervals"]), (0.0, []))
 
 
 if __name__ == "__main__":
