@@ -65,6 +65,7 @@ class Member:
         self.progress, self.eta, self.phase = 0.0, "", ""
         self.started, self.seconds = None, None   # monotonic start, wall time of a run to its end (s)
         self.finished_before = False               # finished by an earlier invocation (reused)
+        self.resumed_at = None                     # the feed's progress at its first line here (0..1)
 
 
 class Design:
@@ -234,6 +235,8 @@ def run_member(args, member, on_done=None):
                 if match:
                     member.progress, member.eta = int(match.group(1)) / int(match.group(2)), match.group(3)
                     member.phase = phase
+                    if not phase and member.resumed_at is None:   # a resumed feed starts part done
+                        member.resumed_at, member.started = member.progress, time.monotonic()
 
         code = pump_curve.run_logged(member_command(args, member), os.path.join(member.folder, "feed_compare.log"),
                                      on_line, append=True)
@@ -241,8 +244,11 @@ def run_member(args, member, on_done=None):
             member.state, member.error = "failed", "exit code %d (log: %s)" % (
                 code, os.path.join(member.folder, "feed_compare.log"))
             return
-        member.seconds = time.monotonic() - started
-        say("%s: ran in %.0f s" % (member.name, member.seconds))
+        elapsed = time.monotonic() - started
+        # A whole member's wall time, for the study's ETA: a resumed one ran only its rest.
+        done_here = 1.0 - (member.resumed_at or 0.0)
+        member.seconds = elapsed / done_here if done_here > 0.2 else None
+        say("%s: ran in %.0f s" % (member.name, elapsed))
     collect(member)
     if on_done:
         on_done()
@@ -394,7 +400,8 @@ def prepare_members(args, members):
 def study_eta_s(members, jobs, now=None):
     """The study's remaining wall time (s), or None before anything can tell: the members still
     to run and the running ones' remaining shares, at the median wall time of the members that
-    ran to the end in this invocation (else the running ones' pace so far), `jobs` at a time."""
+    ran to the end in this invocation (else the running ones' pace since their first progress
+    line here: a resumed member starts part done), `jobs` at a time."""
     now = time.monotonic() if now is None else now
     running = [m for m in members if m.state == "running"]
     waiting = sum(m.state == "waiting" and not m.finished_before for m in members)
@@ -402,7 +409,8 @@ def study_eta_s(members, jobs, now=None):
     if ran:
         per_member = ran[len(ran) // 2]
     else:   # a feed's progress (not a precursor's): the elapsed time over the share done
-        paces = [(now - m.started) / m.progress for m in running if not m.phase and m.progress > 0.05]
+        paces = [(now - m.started) / (m.progress - (m.resumed_at or 0.0)) for m in running
+                 if not m.phase and m.started is not None and m.progress - (m.resumed_at or 0.0) > 0.05]
         if not paces:
             return None
         per_member = sorted(paces)[len(paces) // 2]

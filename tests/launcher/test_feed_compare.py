@@ -43,6 +43,8 @@ class StudyEta(unittest.TestCase):
         ms = self.members(["running", "waiting"])
         ms[0].started, ms[0].progress = 100.0, 0.4   # 40 % after 600 s: 1500 s a member
         self.assertAlmostEqual(feed_compare.study_eta_s(ms, 1, now=700.0), 1.6 * 1500, delta=1e-9)
+        ms[0].resumed_at, ms[0].progress = 0.3, 0.4   # resumed at 30 %: 10 % in 600 s
+        self.assertAlmostEqual(feed_compare.study_eta_s(ms, 1, now=700.0), 1.6 * 6000, delta=1e-9)
         ms[0].phase = "precursor "
         self.assertIsNone(feed_compare.study_eta_s(ms, 1, now=700.0))
 
