@@ -66,6 +66,7 @@ class Member:
         self.started, self.seconds = None, None   # monotonic start, wall time of a run to its end (s)
         self.finished_before = False               # finished by an earlier invocation (reused)
         self.resumed_at = None                     # the feed's progress at its first line here (0..1)
+        self.pump_revolutions = []                 # the passed rags' revolutions in the pump
 
 
 class Design:
@@ -278,6 +279,9 @@ def collect(member):
         return
     member.verdict = verdict
     member.outcomes = report.get("outcomes") or {}
+    with open(os.path.join(member.folder, "feed_rags.csv")) as f:
+        member.pump_revolutions = [float(r["time_in_pump_revolutions"]) for r in csv.DictReader(f)
+                                   if r["outcome"] in ("passed", "passed_late")]
     member.state = "done"
 
 
@@ -339,6 +343,24 @@ def write_outputs(args, members, results, out):
                  "past its kind's tear_above_stretch_ratio, caught between the impeller and the casing) counts as "
                  "held in the pump from its tear on.\n")
     lines += ["- **%.2f Q**: %s" % (r["flow_fraction"], r["statement"]) for r in results]
+    lines += ["", "How the rags went, over the finished seeds (outcomes as feed_rags.csv; revolutions in the pump "
+              "from a rag's entry past the sump to its exit):", "",
+              "| flow | design | seeds | rags fed | passed (late) | revolutions in the pump, passed: median (range) "
+              "| torn | retained or in the pump at the end | in the sump at the end |", "|---|---|---|---|---|---|---|---|---|"]
+    for fraction in args.fractions:
+        for d in args.designs:
+            done = [m for m in members if m.design is d and m.fraction == fraction and m.verdict]
+            if not done:
+                continue
+            total = {o: sum(m.outcomes.get(o, 0) for m in done) for o in feed_report.OUTCOMES}
+            times = sorted(v for m in done for v in m.pump_revolutions)
+            spread = ("%.1f (%.1f-%.1f)" % (times[len(times) // 2] if len(times) % 2 else
+                                            0.5 * (times[len(times) // 2 - 1] + times[len(times) // 2]),
+                                            times[0], times[-1])) if times else "n/a"
+            lines.append("| %.2f | %s | %d | %d | %d (%d) | %s | %d | %d | %d |" % (
+                fraction, d.name, len(done), sum(total.values()) - total["waiting"],
+                total["passed"] + total["passed_late"], total["passed_late"], spread, total["torn"],
+                total["retained"] + total["in_pump"], total["in_sump"]))
     with open(os.path.join(out, "compare.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     draw(args, results, os.path.join(out, "compare.png"))

@@ -154,7 +154,8 @@ def statement(c: Comparison, name_a: str, name_b: str) -> str:
     """The comparison in a sentence a designer reads."""
     def design(median_value, ci, censored, runs):
         if censored == runs:
-            return "no clog in any of its %d runs (it coped with the %g rags fed)" % (runs, median_value)
+            return "no clog in %s (it coped with the %g rags fed)" % (
+                "its one run" if runs == 1 else "any of its %d runs" % runs, median_value)
         return "clogs after %g rags (95 %% interval %g-%g%s)" % (median_value, ci[0], ci[1],
                                                        ", a lower bound: %d run%s did not clog"
                                                        % (censored, "" if censored == 1 else "s") if censored else "")
