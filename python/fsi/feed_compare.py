@@ -363,17 +363,26 @@ def write_outputs(args, members, results, out):
                 total["retained"] + total["in_pump"], total["in_sump"]))
     with open(os.path.join(out, "compare.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    draw(args, results, os.path.join(out, "compare.png"))
+    draw(args, results, os.path.join(out, "compare.png"), members)
 
 
-def draw(args, results, path):
+def draw(args, results, path, members=()):
+    """Per flow: the rags to clog of each seed (open: not clogged by the end), their median and
+    95 % interval, P(A outlasts B) and Gehan's p; below, how the rags went in each design (the
+    outcomes summed over its finished seeds)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(results), figsize=(4.5 * len(results), 4.2), squeeze=False)
-    for ax, r in zip(axes[0], results):
+    from matplotlib.ticker import MaxNLocator
+    fig, axes = plt.subplots(2, len(results), figsize=(max(7.0, 4.6 * len(results)), 7.6), squeeze=False,
+                             gridspec_kw={"height_ratios": [3, 2]})
+    shown = [o for o in feed_report.OUTCOMES if o != "waiting"]
+    for column, r in enumerate(results):
+        ax = axes[0, column]
+        top = 1
         for k, key in enumerate(("a", "b")):
             values = r["rags_to_clog_" + key]
+            top = max([top] + [n for n, _ in values])
             xs = [k + 0.08 * (i - (len(values) - 1) / 2) for i in range(len(values))]
             ax.scatter(xs, [n for n, _ in values], marker="o", facecolors=["none" if c else "C%d" % k for _, c in values],
                        edgecolors="C%d" % k, zorder=3)
@@ -383,14 +392,38 @@ def draw(args, results, path):
         ax.set_xticks([0, 1])
         ax.set_xticklabels([r["design_a"], r["design_b"]], fontsize=8)
         ax.set_xlim(-0.6, 1.6)
-        ax.set_ylabel("rags released when clogged (open: not clogged)")
+        ax.set_ylim(0, top + 2)
+        ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_ylabel("rags released when clogged\n(open: not clogged by the end)")
         title = "%.2f x the case's flow" % r["flow_fraction"]
         if "p_a_outlasts_b" in r:
-            title += "\nP(A outlasts B) = %.2f (%.2f-%.2f)" % (r["p_a_outlasts_b"], *r["p_a_outlasts_b_95"])
+            title += "\nP(A outlasts B) = %.2f (%.2f-%.2f), Gehan's p = %.3f" % (
+                r["p_a_outlasts_b"], *r["p_a_outlasts_b_95"], r["p_value"])
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
-    fig.suptitle("feed comparison over %d seeds: median and 95 %% interval in black" % args.seeds, fontsize=10)
-    fig.tight_layout()
+        ax = axes[1, column]
+        for k, d in enumerate(args.designs):
+            done = [m for m in members if m.design is d and m.fraction == r["flow_fraction"] and m.verdict]
+            bottom = 0
+            for outcome in shown:
+                n = sum(m.outcomes.get(outcome, 0) for m in done)
+                if n:
+                    ax.bar([k], [n], bottom=[bottom], width=0.5, color=feed_report.OUTCOME_COLOURS[outcome])
+                    bottom += n
+            ax.text(k, bottom, " %d seed%s" % (len(done), "" if len(done) == 1 else "s"), ha="center",
+                    va="bottom", fontsize=7)
+        ax.set_xticks([0, 1])
+        ax.set_xticklabels([d.name for d in args.designs], fontsize=8)
+        ax.set_xlim(-0.6, 1.6)
+        ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_ylabel("rags, over the seeds")
+        ax.grid(alpha=0.3, axis="y")
+    from matplotlib.patches import Patch
+    fig.legend([Patch(color=feed_report.OUTCOME_COLOURS[o]) for o in shown], [o.replace("_", " ") for o in shown],
+               loc="lower center", ncol=len(shown), fontsize=8)
+    fig.suptitle("feed comparison over %d seeds: median and 95 %% interval in black;\nbelow, how the rags went"
+                 % args.seeds, fontsize=10)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
