@@ -556,9 +556,9 @@ def write_report(run_dir, case_dir, animation=False):
         kind = kind_of(r["name"], feed.get("kinds") or [])
         rho = float(((kind.get("material") or {}).get("mass_per_area_kg_per_m2", 0.0)))
         r["mass_kg"] = rho * r["area_m2"]
-    entries(rags, lambda name: rag_metrics.read_structure(run_dir, name)[:3], geometry)
-    outcomes(rags, end_time, residence_s)
-    read_once = {}   # the held rags' histories, read for held_where and used again by sites_over_time
+    # Each rag's history read once: for its entry into the pump, where it is held, and last for
+    # sites_over_time, which lets it go (tens of MB for a 20-rag feed).
+    read_once = {}
 
     def structure(name):
         if name not in read_once:
@@ -567,6 +567,9 @@ def write_report(run_dir, case_dir, animation=False):
 
     def structure_last_use(name):
         return read_once.pop(name, None) or rag_metrics.read_structure(run_dir, name)[:3]
+
+    entries(rags, structure, geometry)
+    outcomes(rags, end_time, residence_s)
 
     for r in rags:
         r["time_in_scene_revolutions"] = r["time_in_scene_s"] / period
