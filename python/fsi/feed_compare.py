@@ -354,9 +354,7 @@ def write_outputs(args, members, results, out):
                 continue
             total = {o: sum(m.outcomes.get(o, 0) for m in done) for o in feed_report.OUTCOMES}
             times = sorted(v for m in done for v in m.pump_revolutions)
-            spread = ("%.1f (%.1f-%.1f)" % (times[len(times) // 2] if len(times) % 2 else
-                                            0.5 * (times[len(times) // 2 - 1] + times[len(times) // 2]),
-                                            times[0], times[-1])) if times else "n/a"
+            spread = ("%.1f (%.1f-%.1f)" % (feed_statistics.median(times), times[0], times[-1])) if times else "n/a"
             lines.append("| %.2f | %s | %d | %d | %d (%d) | %s | %d | %d | %d |" % (
                 fraction, d.name, len(done), sum(total.values()) - total["waiting"],
                 total["passed"] + total["passed_late"], total["passed_late"], spread, total["torn"],
