@@ -260,6 +260,7 @@ def collect(member):
     if not finished(member):
         member.state = "not run" if not os.path.isdir(member.folder) else "unfinished"
         return
+    member.state = "reporting"
     try:
         with LOCK:
             report = feed_report.write_report(member.folder, member.case, animation=False)
@@ -481,7 +482,8 @@ def report_progress(members, stop, jobs):
         say("%d/%d members done%s; %s" % (done, len(members), ", study ETA %.1f h" % (eta / 3600.0)
                                           if eta is not None else "", ", ".join(
             "%s: %s%.0f %% (ETA %s)" % (m.name, m.phase, 100 * m.progress, m.eta or "?") for m in running)
-            or "starting"))
+            or ("writing the reports of finished members" if any(m.state == "reporting" for m in members)
+                else "starting")))
 
 
 def run_all(args, members, jobs, on_done=None):

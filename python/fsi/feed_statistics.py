@@ -21,7 +21,8 @@ design labels are exchanged among the pooled runs (every relabelling when there 
 bound below the other design's clogs scores 1/2, so a cut-short run cannot win. The exact test
 needs runs: with 2 seeds a design the smallest p is 0.33, with 3 it is 0.10, with 4 0.029 (all
 pairs one way). When no run of either design clogged, more seeds cannot tell them apart: the
-statement says to feed more rags.
+statement says to feed more rags; when most runs coped with all their rags, it asks for a longer
+feed as well as more seeds.
 """
 
 import dataclasses
@@ -170,7 +171,11 @@ def statement(c: Comparison, name_a: str, name_b: str) -> str:
         text += "Not resolved: neither design clogged in any run; more seeds cannot tell them apart, more rags can."
     else:
         smallest = 1.0 / math.comb(c.runs_a + c.runs_b, c.runs_a) * 2
-        text += "Not resolved (%s, needs under %.2f)%s." % (
+        cut_short = c.censored_a + c.censored_b
+        text += "Not resolved (%s, needs under %.2f)%s%s." % (
             test, SIGNIFICANCE, "; with %d and %d runs no outcome can reach it: more seeds" % (c.runs_a, c.runs_b)
-            if smallest >= SIGNIFICANCE else "; more seeds would tell")
+            if smallest >= SIGNIFICANCE else "; more seeds may tell",
+            # Runs that coped with every rag are ties with each other: a longer feed breaks them.
+            ", and a longer feed: %d of the %d runs coped with all their rags" % (cut_short, c.runs_a + c.runs_b)
+            if 2 * cut_short > c.runs_a + c.runs_b else "")
     return text

@@ -83,7 +83,12 @@ class FeedStatistics(unittest.TestCase):
         mixed = compare(clogged(15, 16, 14, 5.5), clogged(5, 6, 4, 7))
         self.assertAlmostEqual(mixed.p_value, 8 / 70, delta=1e-12)
         self.assertFalse(mixed.resolved)
-        self.assertIn("more seeds would tell", statement(mixed, "A", "B"))
+        self.assertIn("more seeds may tell.", statement(mixed, "A", "B"))
+        # The first comparison's part load: one clog in four runs each; the six runs cut short tie.
+        mostly_cut = compare([RagsToClog(20, True)] * 3 + clogged(20), [RagsToClog(20, True)] * 3 + clogged(17))
+        self.assertFalse(mostly_cut.resolved)
+        self.assertIn("more seeds may tell, and a longer feed: 6 of the 8 runs coped with all their rags.",
+                      statement(mostly_cut, "A", "B"))
         # One run each: no outcome can reach 0.05, whatever the intervals look like.
         one = compare(clogged(12), clogged(10))
         self.assertFalse(one.resolved)
