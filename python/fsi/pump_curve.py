@@ -211,7 +211,7 @@ def report_progress(points, stop):
 def write_csv(points, path):
     keys = ["method", "fraction_of_design", "flow_rate_m3_per_s", "head_m", "shaft_torque_n_m", "efficiency",
             "head_coefficient_psi", "flow_coefficient_phi", "torque_pulsation_1_per_rev",
-            "head_pulsation_1_per_rev", "revolutions_averaged"]
+            "head_pulsation_1_per_rev", "head_pulsation_amplitude_m", "revolutions_averaged"]
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(keys)

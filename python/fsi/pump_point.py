@@ -247,6 +247,9 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
         "flow_coefficient_phi": flow_rate / (omega * radius_m ** 3),
         "torque_pulsation_1_per_rev": harmonic(tw, tq, omega) / abs(torque_mean) if torque_mean else float("nan"),
         "head_pulsation_1_per_rev": harmonic(hw, dp, omega) / abs(np.mean(dp)) if np.mean(dp) else float("nan"),
+        # The same amplitudes in their units: the fractions above mean nothing near zero head.
+        "torque_pulsation_amplitude_n_m": harmonic(tw, tq, omega),
+        "head_pulsation_amplitude_m": harmonic(hw, dp, omega) / (rho * G),
         "averaged_from_s": t0,
         "averaged_to_s": t1,
         "revolutions_averaged": n_avg,

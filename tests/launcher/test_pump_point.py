@@ -68,6 +68,10 @@ class RevolutionMeans(unittest.TestCase):
             self.assertLess(p["head_drift_last_3_revolutions"], 1e-3)
             self.assertLess(p["head_standard_error_m"], 1e-3)
             self.assertAlmostEqual(p["shaft_torque_n_m"], np.mean(expected), places=3)
+            # The once-per-revolution amplitudes: 2 N m of torque; none of the head (its is at 3).
+            self.assertAlmostEqual(p["torque_pulsation_amplitude_n_m"], 2.0, delta=0.01)
+            self.assertAlmostEqual(p["torque_pulsation_1_per_rev"], 2.0 / p["shaft_torque_n_m"], delta=0.002)
+            self.assertLess(p["head_pulsation_amplitude_m"], 0.01)
 
     def test_a_continued_run_counts_each_time_once_the_later_start_winning(self):
         with tempfile.TemporaryDirectory() as folder:
