@@ -125,7 +125,10 @@ struct VoluteDesign {
              {{"rectangular", VoluteSection::rectangular}, {"trapezoidal", VoluteSection::trapezoidal}},
              "Cross-section of the spiral: rectangular, or trapezoidal (flanks opening outwards).");
     v.number("base_radius_m", base_radius_m, common::Range::positive("m"),
-             "Base circle of the spiral r3 (the cut-water radius); above D2 / 2.");
+             "Base circle of the spiral r3 (the cut-water radius); above D2 / 2. The body-fitted reference "
+             "puts its sliding interface halfway between D2 / 2 and r3: at 2 mm cells a 5 mm gap leaves 1.25 "
+             "cells on each side, where the impeller's rims (and a single channel's drum) stay stepped "
+             "(snap_quality.yaml of the AMI run); a 10 mm gap (d3/d2 = 1.10) snaps them.");
     v.number("base_width_m", base_width_m, common::Range::positive("m"),
              "Axial width of the section at r3, and of the impeller chamber: the side gaps between the "
              "impeller's discs and the casing are (base_width_m - outlet_width_m) / 2 - blade_thickness_m.");
