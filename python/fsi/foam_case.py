@@ -5,6 +5,7 @@ STL solids, written as text. Standard library only."""
 
 import math
 import os
+import re
 import subprocess
 
 # Debian's OpenFOAM reads its etc/ through WM_PROJECT_DIR while its libraries load, before
@@ -134,3 +135,15 @@ def _stl_solid(name, tris):
         lines += ["    endloop", "  endfacet"]
     lines.append("endsolid %s" % name)
     return "\n".join(lines) + "\n"
+
+
+def patch_names(case_dir):
+    """The patch names of case_dir/constant/polyMesh/boundary (a list of named dictionaries), in
+    order. Raises FileNotFoundError for a case without a mesh."""
+    path = os.path.join(case_dir, "constant", "polyMesh", "boundary")
+    if not os.path.isfile(path):
+        raise FileNotFoundError("%s: no constant/polyMesh/boundary (not a meshed OpenFOAM case)" % case_dir)
+    with open(path) as f:
+        text = re.sub(r"/\*.*?\*/|//[^\n]*", "", f.read(), flags=re.S)
+    body = text[text.index("(", text.index("}") if "FoamFile" in text else 0) + 1:]
+    return re.findall(r"([A-Za-z_][\w.:-]*)\s*\{", body)

@@ -32,7 +32,7 @@ import yaml
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
 from fsi import snap_quality, surface_engine  # noqa: E402
-from fsi.foam_case import foam_entry, set_foam_entry, write_foam_file, write_operating_point  # noqa: E402
+from fsi.foam_case import foam_entry, patch_names, set_foam_entry, write_foam_file, write_operating_point  # noqa: E402
 from fsi.fsi_launch import ALLOCATOR_TUNABLES, OPENFOAM_ENVIRONMENT, speaker  # noqa: E402  (Debian's OpenFOAM finds its etc/ through it)
 
 for _name, _value in OPENFOAM_ENVIRONMENT.items():
@@ -374,8 +374,7 @@ def map_initial_fields(foam_case, logs, source):
     if not times:
         raise SystemExit("pump-ami: %s has no time folder after 0 with fields to start from" % source)
     latest = max(times, key=float)
-    with open(os.path.join(source, "constant", "polyMesh", "boundary")) as f:
-        patches = re.findall(r"^\s*(\w+)\s*\n\s*\{", f.read(), re.M)
+    patches = patch_names(source)
     write_foam_file(foam_case, "system/mapFieldsDict", "dictionary",
                     MAP_FIELDS % " ".join("%s %s" % (p, p) for p in patches))
     run_tool("mapFields", foam_case, logs, ["-sourceTime", latest, source])

@@ -17,7 +17,6 @@ Exits 1 with a message for a missing case, surface or patch.
 """
 import argparse
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -27,7 +26,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from fsi import surface_engine  # noqa: E402
-from fsi.foam_case import OPENFOAM_ENVIRONMENT  # noqa: E402
+from fsi.foam_case import OPENFOAM_ENVIRONMENT, patch_names  # noqa: E402
 
 STEPPED_ANGLE_DEG = 30.0     # a face more than this off the surface's normal is a step
 STEPPED_WARN_FRACTION = 0.05  # a patch with more of its area stepped is not a body-fitted wall
@@ -53,17 +52,25 @@ def unit_normals_and_areas(triangles):
     return normals, area
 
 
-def stepped(mesh_triangles, surface_triangles, angle_deg=STEPPED_ANGLE_DEG):
+class Surface:
+    """A surface's triangles of non-zero area made into the engine's set once, with their normals."""
+
+    def __init__(self, triangles):
+        normals, area = unit_normals_and_areas(triangles)
+        self.normals = normals[area > 0]
+        self.id, _ = surface_engine.engine().add_set(triangles[area > 0])
+
+
+def stepped(mesh_triangles, surface, angle_deg=STEPPED_ANGLE_DEG):
     """(area fraction of mesh_triangles whose normal is more than angle_deg off the normal of
     the surface triangle nearest to its centroid, whatever the normals' senses; area-weighted
-    mean distance of the centroids to the surface (m); area (m^2))."""
+    mean distance of the centroids to the surface (m); area (m^2)). surface: a Surface, or its
+    triangles [n, 3, 3]."""
+    if not isinstance(surface, Surface):
+        surface = Surface(np.asarray(surface, float))
     mesh_n, mesh_a = unit_normals_and_areas(mesh_triangles)
-    surf_n, surf_a = unit_normals_and_areas(surface_triangles)
-    engine = surface_engine.engine()
-    set_id, _ = engine.add_set(surface_triangles[surf_a > 0])
-    surf_n = surf_n[surf_a > 0]
-    distance, nearest = engine.nearest(set_id, mesh_triangles.mean(axis=1), None)
-    cosine = np.abs(np.einsum("ij,ij->i", mesh_n, surf_n[nearest]))
+    distance, nearest = surface_engine.engine().nearest(surface.id, mesh_triangles.mean(axis=1), None)
+    cosine = np.abs(np.einsum("ij,ij->i", mesh_n, surface.normals[nearest]))
     off = cosine < np.cos(np.radians(angle_deg))
     area = mesh_a.sum()
     if not area > 0:
@@ -88,21 +95,13 @@ def extract_patch(foam_case, patch, work):
     return triangles
 
 
-def mesh_patches(foam_case):
-    """The patch names of constant/polyMesh/boundary (a list of named dictionaries)."""
-    path = os.path.join(foam_case, "constant", "polyMesh", "boundary")
-    if not os.path.isfile(path):
-        raise SnapError("%s: no constant/polyMesh/boundary (not a meshed OpenFOAM case)" % foam_case)
-    with open(path) as f:
-        text = re.sub(r"/\*.*?\*/|//[^\n]*", "", f.read(), flags=re.S)
-    body = text[text.index("(", text.index("}") if "FoamFile" in text else 0) + 1:]
-    return re.findall(r"([A-Za-z_][\w.:-]*)\s*\{", body)
-
-
 def report(foam_case, surface_path, patches=None, angle_deg=STEPPED_ANGLE_DEG):
     """{patch: {stepped_area_fraction, mean_distance_m, area_m2}} of the surface's solids in the mesh."""
     surface = read_stl(surface_path)
-    present = mesh_patches(foam_case)
+    try:
+        present = patch_names(foam_case)
+    except FileNotFoundError as error:
+        raise SnapError(str(error))
     if patches is None:
         patches = [name for name in surface if name in present]
         if not patches:
@@ -112,7 +111,7 @@ def report(foam_case, surface_path, patches=None, angle_deg=STEPPED_ANGLE_DEG):
     if missing:
         raise SnapError("patch %s: not both a patch of %s and a solid of %s" % (
             ", ".join(missing), foam_case, surface_path))
-    whole = np.concatenate(list(surface.values()))
+    whole = Surface(np.concatenate(list(surface.values())))
     work = tempfile.mkdtemp(prefix="snap-quality-")
     try:
         out = {}
