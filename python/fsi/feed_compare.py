@@ -37,6 +37,7 @@ import time
 import yaml
 
 from fsi import ROOT
+from fsi import case_copy
 from fsi import feed_report
 from fsi import feed_statistics
 from fsi import fsi_launch
@@ -152,9 +153,9 @@ def write_member_case(args, member, inlet, flow_rate, rags):
     """The member's copy of the case: the design's pump.yaml given the case's inlet, and the
     member's flow rate, seed and rag count in its case.yaml. Unchanged files are not rewritten."""
     if not os.path.isdir(member.case):
-        shutil.copytree(args.case_dir, member.case, symlinks=True, ignore=shutil.ignore_patterns(
+        shutil.copytree(args.case_dir, member.case, symlinks=True, ignore=case_copy.ignore_results([args.output_dir], (
             "output", "__pycache__", "geometry", "geometry.partial-*", "geometry.old-*", ".geometry.lock",
-            "openfoam-*", "pump.yaml"))
+            "openfoam-*", "pump.yaml")))
     with open(member.design.path) as f:
         design = yaml.safe_load(f)
     design["inlet"] = inlet
@@ -543,6 +544,7 @@ def main(argv):
     rags = args.rags or case_rags
     out = os.path.abspath(args.output or os.path.join(args.case_dir, "output", "compare"))
     os.makedirs(out, exist_ok=True)
+    args.output_dir = out
     members = plan(args, out, inlet, flow_rate, rags)
     prepare_members(args, members)
     if args.submit:

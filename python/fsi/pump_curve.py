@@ -36,7 +36,7 @@ import time
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-from fsi import fsi_launch  # noqa: E402
+from fsi import case_copy, fsi_launch  # noqa: E402
 
 LAUNCHER = os.path.join(HERE, "fsi_launch.py")
 AMI_RUN = os.path.join(HERE, "pump_ami_run.py")
@@ -70,11 +70,12 @@ FLOW_RATE_KEY = "fluid.openfoam.operating_point.flow_rate_m3_per_s"
 
 
 def copy_case(case_dir, point):
-    """The case folder without its results (its flow rate is set on the command line)."""
+    """The case folder without its results (its flow rate is set on the command line), nor the
+    study's own folder (the parent of the point's) when that lies inside the case."""
     if os.path.exists(point.case):
         shutil.rmtree(point.case)
     shutil.copytree(case_dir, point.case, symlinks=True,
-                    ignore=shutil.ignore_patterns("output", "__pycache__"))
+                    ignore=case_copy.ignore_results([os.path.dirname(point.folder)]))
 
 
 def flow_rate_assignment(flow_rate):
@@ -92,14 +93,11 @@ def files_digest(base, paths):
     return digest.hexdigest()[:16]
 
 
-def case_fingerprint(case_dir):
-    """A hash of every file of the case folder but its results and logs: a point reruns when it changes."""
-    paths = []
-    for root, dirs, files in os.walk(case_dir, followlinks=False):
-        dirs[:] = sorted(d for d in dirs if d not in ("output", "__pycache__"))
-        # the generator's log (its timings) and its lock are not the case
-        paths += [os.path.join(root, name) for name in sorted(files) if name not in ("generate.log", ".geometry.lock")]
-    return files_digest(case_dir, paths)
+def case_fingerprint(case_dir, out):
+    """A hash of every file of the case folder but its results (output/ and the study's folder
+    `out`, which may lie inside it) and logs: a point reruns when it changes."""
+    # the generator's log (its timings) and its lock are not the case
+    return files_digest(case_dir, case_copy.case_files(case_dir, [out], skipped_files=("generate.log", ".geometry.lock")))
 
 
 def postprocess(args, point):
@@ -389,7 +387,7 @@ def main(argv):
                                                       "pump-curve" + ("-" + args.resolution if args.resolution else "")))
     os.makedirs(out, exist_ok=True)
     jobs = args.jobs or max(1, (os.cpu_count() or 1) // max(ranks, 1))
-    args.fingerprint = case_fingerprint(args.case_dir)
+    args.fingerprint = case_fingerprint(args.case_dir, out)
     args.case_end_time = float(case["run"]["end_time_s"])
     methods = ["ibm", "ami"] if args.method == "both" else [args.method]
     points = [Point(f, design_q, out, m) for m in methods for f in fractions]

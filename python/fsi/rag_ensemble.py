@@ -378,7 +378,7 @@ def main(argv):
         args.case_dir, "output", "ensemble-q%.2f-s%d%s" % (args.flow_fraction, args.seed,
                                                           "-" + args.resolution if args.resolution else "")))
     os.makedirs(out, exist_ok=True)
-    args.fingerprint = pump_curve.case_fingerprint(args.case_dir)
+    args.fingerprint = pump_curve.case_fingerprint(args.case_dir, out)
     members = plan_members(args, inputs, out, flow_rate)
     jobs = args.jobs or max(1, (os.cpu_count() or 2) // 2)
     say("%d runs at Q = %.4g m^3/s (%.3g of the case's), %d at once, into %s"
