@@ -12,7 +12,8 @@ its latest time; its constant/dynamicMeshDict gives omega and the axis (z throug
 PUMP_YAML: the design (impeller.outer_diameter_m, outlet_width_m): the planes are cut to r < R2
 and 0 < z < b2, the channel between the discs. Angles are the impeller's, about +z from its +x
 axis (the mesh's turn at that time taken off). Writes OUT_PREFIX.csv and OUT_PREFIX.png (default
-FOAM_CASE/../channel_budget). Exits 1 with a message for a case without fields or a design
+FOAM_CASE/../channel_budget), and OUT_PREFIX_midplane.png: the rothalpy and the relative velocity on
+the plane z = b2 / 2 inside D2, in the impeller's frame (where the channel loses it, as a map). Exits 1 with a message for a case without fields or a design
 without those keys.
 """
 import argparse
@@ -58,10 +59,9 @@ def channel(pump_yaml):
         fail("%s: no impeller.%s" % (pump_yaml, error))
 
 
-def budget(foam_case, omega_z, r2, b2, step_deg):
-    from paraview import servermanager
+def open_case(foam_case):
+    """ParaView's reader of the case and its latest time after 0."""
     from paraview import simple
-    from vtk.util.numpy_support import vtk_to_numpy
     reader = simple.OpenFOAMReader(FileName=os.path.join(foam_case, "case.foam"))
     reader.MeshRegions = ["internalMesh"]
     reader.CellArrays = ["U", "p"]
@@ -69,7 +69,63 @@ def budget(foam_case, omega_z, r2, b2, step_deg):
     times = [t for t in reader.TimestepValues if t > 0] if reader.TimestepValues else []
     if not times:
         fail("%s: no time after 0 with fields" % foam_case)
-    t = times[-1]
+    return reader, times[-1]
+
+
+def midplane(reader, t, omega_z, r2, z):
+    """The cells cut by the plane at height z inside r2, in the impeller's frame: (x, y) of their
+    centres (m), the relative velocity's (w_x, w_y) (m/s) and the rothalpy as a head (m)."""
+    from paraview import servermanager
+    from paraview import simple
+    from vtk.util.numpy_support import vtk_to_numpy
+    cut = simple.Slice(Input=reader)
+    cut.Triangulatetheslice = 0                               # a cut hex keeps its centre
+    cut.SliceType.Origin = [0.0, 0.0, z]
+    cut.SliceType.Normal = [0.0, 0.0, 1.0]
+    centres = simple.CellCenters(Input=simple.MergeBlocks(Input=cut))
+    centres.UpdatePipeline(t)
+    data = servermanager.Fetch(centres)
+    simple.Delete(centres)
+    if data.GetNumberOfPoints() == 0:
+        return None
+    x = vtk_to_numpy(data.GetPoints().GetData())
+    u = vtk_to_numpy(data.GetPointData().GetArray("U"))
+    p = vtk_to_numpy(data.GetPointData().GetArray("p"))
+    w = u - omega_z * np.column_stack([-x[:, 1], x[:, 0], np.zeros(len(x))])
+    rothalpy = (p + 0.5 * (w ** 2).sum(axis=1) - 0.5 * omega_z ** 2 * (x[:, 0] ** 2 + x[:, 1] ** 2)) / G
+    back = -omega_z * t                                       # the impeller's frame: the turn taken off
+    c, s = math.cos(back), math.sin(back)
+    turn = np.array([[c, -s], [s, c]])
+    xy, wxy = x[:, :2] @ turn.T, w[:, :2] @ turn.T
+    keep = np.hypot(xy[:, 0], xy[:, 1]) < r2
+    return xy[keep], wxy[keep], rothalpy[keep]
+
+
+def draw_midplane(path, plane, t, r2, z):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    xy, wxy, rothalpy = plane
+    fig, ax = plt.subplots(figsize=(8, 7))
+    low, high = np.percentile(rothalpy, [2, 98])
+    shown = ax.scatter(xy[:, 0], xy[:, 1], c=rothalpy, s=4, cmap="coolwarm", vmin=low, vmax=high)
+    fig.colorbar(shown, ax=ax, label="rothalpy p + w^2/2 - u^2/2 as a head (m)")
+    every = max(1, len(xy) // 600)
+    ax.quiver(xy[::every, 0], xy[::every, 1], wxy[::every, 0], wxy[::every, 1], width=0.002)
+    ax.add_patch(matplotlib.patches.Circle((0, 0), r2, fill=False, ls="--"))
+    ax.set_aspect("equal")
+    ax.set_xlabel("x, the impeller's (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title("z = %.3g m at t = %.4g s: relative velocity (arrows) and rothalpy" % (z, t))
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def budget(reader, t, omega_z, r2, b2, step_deg):
+    from paraview import servermanager
+    from paraview import simple
+    from vtk.util.numpy_support import vtk_to_numpy
     turned = omega_z * t
     rows = []
     for theta in np.arange(0.0, 360.0, step_deg):
@@ -100,7 +156,7 @@ def budget(foam_case, omega_z, r2, b2, step_deg):
         rows.append((theta, net, flux[flux > 0].sum(), -flux[flux < 0].sum(),
                      (rothalpy * flux).sum() / net if abs(net) > 1e-5 else float("nan")))
         simple.Delete(centres)
-    return t, np.array(rows)
+    return np.array(rows)
 
 
 def main(argv):
@@ -116,7 +172,8 @@ def main(argv):
     out = args.output or os.path.join(os.path.dirname(foam_case), "channel_budget")
     omega_z = rotation(foam_case)
     r2, b2 = channel(args.pump_yaml)
-    t, rows = budget(foam_case, omega_z, r2, b2, args.step)
+    reader, t = open_case(foam_case)
+    rows = budget(reader, t, omega_z, r2, b2, args.step)
     with open(out + ".csv", "w") as f:
         f.write("# %s at t = %g s: half-planes through the axis at the impeller's theta (deg, about +z), r < %g m, "
                 "0 < z < %g m; relative flow (m^3/s) and its mass-averaged rothalpy p + w^2/2 - u^2/2 as a head (m)\n"
@@ -139,7 +196,10 @@ def main(argv):
     ax[1].legend()
     fig.tight_layout()
     fig.savefig(out + ".png", dpi=90)
-    print("pump_channel_budget.py: %s.csv, %s.png (%d half-planes, t = %g s)" % (out, out, len(rows), t))
+    plane = midplane(reader, t, omega_z, r2, 0.5 * b2)
+    if plane is not None:
+        draw_midplane(out + "_midplane.png", plane, t, r2, 0.5 * b2)
+    print("pump_channel_budget.py: %s.csv, %s.png, %s_midplane.png (%d half-planes, t = %g s)" % (out, out, out, len(rows), t))
     return 0
 
 
