@@ -36,6 +36,7 @@ ChannelLayout::ChannelLayout(const PumpDesign &design) {
   w2_ = sc.exit_width_m;
   cover_ = sc.eye_cover_thickness_m;
   drop_ = 0.5 * sc.disc_thickness_m;
+  roof0_ = sc.mouth_roof_height_m.value_or(b2_ + drop_);
   if (r_boss_ <= 0.0)
     throw std::invalid_argument("hub_diameter_m = 0: a single-channel impeller needs a boss (the leading edge runs "
                                 "from it to the eye's rim)");
@@ -51,6 +52,10 @@ ChannelLayout::ChannelLayout(const PumpDesign &design) {
     throw std::invalid_argument("leading_edge_radius_m = " + fixed(imp.leading_edge_radius_m) +
                                 " leaves no leading edge between the boss and the eye's rim (" +
                                 fixed(r_eye_ - r_boss_) + " m apart)");
+  if (sc.mouth_roof_height_m && !(drop_ < roof0_ && roof0_ < b2_))
+    throw std::invalid_argument("single_channel.mouth_roof_height_m = " + fixed(roof0_) +
+                                " must lie between the channel's floor in the mouth (" + fixed(-drop_) +
+                                " m) and the hub disc (outlet_width_m = " + fixed(b2_) + ")");
   if (cover_ + drop_ >= b2_)
     throw std::invalid_argument("single_channel.eye_cover_thickness_m = " + fixed(cover_) +
                                 " leaves no channel under the hub disc (outlet_width_m = " + fixed(b2_) + ")");
@@ -133,13 +138,24 @@ double ChannelLayout::floor_z(double phi) const {
   return -drop_;
 }
 
+double ChannelLayout::top_z(double phi) const {
+  if (phi >= phi_m_)
+    return b2_ + drop_;
+  return roof0_ + (b2_ + drop_ - roof0_) * phi / phi_m_;
+}
+
+double ChannelLayout::mouth_roof_angle_deg() const {
+  const double r_mean = 0.5 * (r_boss_ + r_eye_);
+  return std::atan((b2_ + drop_ - roof0_) / (r_mean * phi_m_)) / deg;
+}
+
 ChannelSection ChannelLayout::section(double phi) const {
   ChannelSection s;
   s.phi_rad = phi;
   s.inner_radius_m = inner_radius(phi);
   s.outer_radius_m = s.inner_radius_m + width(phi);
   s.floor_z_m = floor_z(phi);
-  s.top_z_m = b2_ + drop_;
+  s.top_z_m = top_z(phi);
   return s;
 }
 
@@ -163,7 +179,8 @@ double ChannelLayout::smallest_section_side_m() const {
   double smallest = 1e300;
   for (int i = 0; i <= 400; ++i) {
     const ChannelSection s = section(phi_a_ + (wrap_ - phi_a_) * i / 400.0);
-    smallest = std::min({smallest, s.outer_radius_m - s.inner_radius_m, b2_ - std::max(s.floor_z_m, 0.0)});
+    smallest = std::min({smallest, s.outer_radius_m - s.inner_radius_m,
+                         std::min(s.top_z_m, b2_) - std::max(s.floor_z_m, 0.0)});
   }
   return smallest;
 }

@@ -5,7 +5,9 @@
 // the channel from its back wall, in the channel's own sense (the solid maps it to the
 // backward-swept direction of the rotation). Along phi:
 //   - the mouth, phi in [0, phi_m]: the section spans the boss radius to inlet_width_m out, its
-//     floor below the shroud plane: the channel stands open to the eye below it;
+//     floor below the shroud plane: the channel stands open to the eye below it; its roof is the
+//     hub disc, or (mouth_roof_height_m) rises linearly from that height at the back wall to the
+//     hub disc at phi_m, a helical inlet;
 //   - the leading edge's ramp, phi in [phi_m, phi_a]: the floor rises at the inlet angle
 //     beta_1 (at the eye's mean radius) through the shroud plane, where it meets the vane's
 //     underside in the eye along a radial line from the boss to the eye's rim: the leading edge,
@@ -60,6 +62,9 @@ public:
   /// section's meridional area (width x outlet_width_m) times cos(beta_2), the channel running
   /// at beta_2 from the circumferential direction.
   double exit_area_m2() const;
+  /// The roof's angle from the circumferential direction at the eye's mean radius in the mouth
+  /// (deg): 0 when the roof is the hub disc.
+  double mouth_roof_angle_deg() const;
   /// The smallest of the channel's section widths and heights inside the impeller (m): an upper
   /// bound of the sphere that passes it.
   double smallest_section_side_m() const;
@@ -68,9 +73,10 @@ private:
   double inner_radius(double phi) const;
   double width(double phi) const;
   double floor_z(double phi) const;
+  double top_z(double phi) const;
 
   double r2_, b2_, r_eye_, r_boss_, wrap_, phi_m_, phi_a_, phi_le_, phi_r_, phi_x_;
-  double tan_beta2_, w1_, w2_, cover_, drop_;
+  double tan_beta2_, w1_, w2_, cover_, drop_, roof0_;
 };
 
 } // namespace fsi::pump

@@ -30,6 +30,7 @@ struct SingleChannelDesign {
   double inlet_width_m = 0.06;
   double exit_width_m = 0.07;
   double eye_cover_thickness_m = 0.012;
+  std::optional<double> mouth_roof_height_m;
   double disc_thickness_m = 0.008;
   double neck_length_m = 0.0;
   double wear_ring_clearance_m = 0.002;
@@ -47,6 +48,12 @@ struct SingleChannelDesign {
     v.number("eye_cover_thickness_m", eye_cover_thickness_m, common::Range::positive("m"),
              "Thickness of the vane's floor over the eye behind the leading edge (the channel's floor there is this "
              "high above the shroud plane).");
+    v.optional_number("mouth_roof_height_m", mouth_roof_height_m, common::Range::positive("m"),
+                      "Height above the shroud plane of the channel's roof at its back wall: the roof then rises "
+                      "linearly along the mouth to the hub disc, a helical inlet whose cross-section grows as the "
+                      "eye's water enters it, so that the water keeps its relative speed instead of meeting a "
+                      "channel that carries little yet (fsi-pump-design states the roof's angle at the eye's mean "
+                      "radius and the flow rate it matches). Absent: the roof is the hub disc over the whole mouth.");
     v.number("disc_thickness_m", disc_thickness_m, common::Range::positive("m"),
              "Thickness of the hub and shroud discs.");
     v.number("neck_length_m", neck_length_m, common::Range::non_negative("m"),

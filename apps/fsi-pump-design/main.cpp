@@ -59,6 +59,16 @@ void channel_report(const fsi::pump::PumpDesign &design, double duty_head_m) {
                layout.boss_radius_m(), layout.eye_radius_m(), layout.leading_edge_phi_rad() / deg, c1m, q, flow_angle,
                imp.inlet_blade_angle_deg, r_mean,
                std::tan(imp.inlet_blade_angle_deg * deg) * omega * r_mean * eye_area);
+  if (imp.single_channel->mouth_roof_height_m) {
+    // The eye's water enters through the mouth's part of the eye at c_m = Q / that area and
+    // keeps its relative speed along the channel where the roof's angle is atan(c_m / u).
+    const double mouth_area = eye_area * layout.mouth_end_rad() / (2.0 * M_PI), roof = layout.mouth_roof_angle_deg();
+    spdlog::info("  mouth: roof from {:.3g} m above the shroud plane at the back wall to the hub disc over {:.4g} deg, "
+                 "at {:.1f} deg at r = {:.3g} m; the eye's water through the mouth ({:.3g} cm^2) meets it at that "
+                 "angle at Q = {:.3g} m^3/s",
+                 *imp.single_channel->mouth_roof_height_m, layout.mouth_end_rad() / deg, roof, r_mean,
+                 1e4 * mouth_area, std::tan(roof * deg) * omega * r_mean * mouth_area);
+  }
   const double u2 = omega * 0.5 * imp.outer_diameter_m, a2 = layout.exit_area_m2();
   const double w2 = q / a2, cu2 = u2 - w2 * std::cos(imp.outlet_blade_angle_deg * deg);
   spdlog::info("  exit area {:.4g} cm^2 (normal to the channel), w2 = {:.3g} m/s, c_u2 = u2 - w2 cos beta_2 = {:.3g} "

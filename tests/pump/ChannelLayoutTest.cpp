@@ -76,6 +76,31 @@ TEST(ChannelLayout, TheLeadingEdgesRampRisesAtTheInletAngleThroughTheShroudPlane
   EXPECT_LT(layout.cover_end_rad(), layout.wrap_rad());
 }
 
+TEST(ChannelLayout, AMouthRoofRisesLinearlyFromTheBackWallToTheHubDisc) {
+  PumpDesign d = shipped_design();
+  const ChannelLayout flat(d);
+  EXPECT_DOUBLE_EQ(flat.mouth_roof_angle_deg(), 0.0);
+  EXPECT_DOUBLE_EQ(flat.section(0.0).top_z_m, flat.section(flat.mouth_end_rad()).top_z_m); // no roof: the disc
+  d.impeller.single_channel->mouth_roof_height_m = 0.006;
+  const ChannelLayout roof(d);
+  const double top = flat.section(0.0).top_z_m, phi_m = roof.mouth_end_rad();
+  EXPECT_DOUBLE_EQ(roof.section(0.0).top_z_m, 0.006);
+  EXPECT_NEAR(roof.section(0.5 * phi_m).top_z_m, 0.5 * (0.006 + top), 1e-12);
+  EXPECT_NEAR(roof.section(phi_m).top_z_m, top, 1e-12);
+  EXPECT_DOUBLE_EQ(roof.section(phi_m + 0.1).top_z_m, top);                 // past the mouth: the disc
+  EXPECT_DOUBLE_EQ(roof.section(0.3).floor_z_m, flat.section(0.3).floor_z_m); // the floor as without it
+  // Its angle at the eye's mean radius: the rise over the mean radius's arc.
+  const double r_mean = 0.5 * (roof.boss_radius_m() + roof.eye_radius_m());
+  EXPECT_NEAR(std::tan(roof.mouth_roof_angle_deg() * deg), (top - 0.006) / (r_mean * phi_m), 1e-12);
+  EXPECT_NEAR(roof.mouth_roof_angle_deg(), 35.8, 0.05); // the shipped channel with a 6 mm roof (fsi-pump-design)
+  EXPECT_NE(load_error("    eye_cover_thickness_m: 0.016\n", "    eye_cover_thickness_m: 0.016\n    mouth_roof_height_m: 0.08\n")
+                .find("mouth_roof_height_m = 0.08 must lie between"),
+            std::string::npos);
+  EXPECT_NE(load_error("    eye_cover_thickness_m: 0.016\n", "    eye_cover_thickness_m: 0.016\n    mouth_roof_height_m: 0.002\n")
+                .find("mouth_roof_height_m = 0.002 must lie between"),
+            std::string::npos);
+}
+
 TEST(ChannelLayout, TheInnerWallRisesMonotonicallyToD2AtTheOutletAngle) {
   const PumpDesign d = shipped_design();
   const ChannelLayout layout(d);
