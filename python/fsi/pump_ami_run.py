@@ -29,6 +29,7 @@ import time
 
 import yaml
 
+from fsi import ROOT, fsi_launch  # noqa: E402
 from fsi import pump_head_budget  # noqa: E402
 from fsi import pump_point  # noqa: E402
 from fsi import snap_quality, surface_engine  # noqa: E402
@@ -554,6 +555,14 @@ def main(argv):
     if not end:
         with open(os.path.join(pump_dir, "case.yaml")) as f:
             end = float(yaml.safe_load(f)["run"]["end_time_s"])
+    if pump_dir == args.case_dir and not args.restart:
+        # a pump case: its geometry and OpenFOAM folders generated from its pump.yaml when missing
+        # or stale (prepare.py, as ./fsi run does; quiet when there is nothing to do)
+        try:
+            fsi_launch.prepare_case(args.case_dir, os.environ.get("FSI_BIN_DIR") or os.path.join(ROOT, "build", "bin"),
+                                    args.resolution)
+        except fsi_launch.UserError as e:
+            sys.exit("pump-ami: %s" % e)
     run_ami_point(args.case_dir, q, args.output, end, args.resolution, args.initial_fields_from or None,
                   args.ranks, args.restart)
     return 0
