@@ -13,7 +13,8 @@ PUMP_YAML: the design (impeller.outer_diameter_m, outlet_width_m): the planes ar
 and 0 < z < b2, the channel between the discs. Angles are the impeller's, about +z from its +x
 axis (the mesh's turn at that time taken off). Writes OUT_PREFIX.csv and OUT_PREFIX.png (default
 FOAM_CASE/../channel_budget), and OUT_PREFIX_midplane.png: the rothalpy and the relative velocity on
-the plane z = b2 / 2 inside D2, in the impeller's frame (where the channel loses it, as a map). Exits 1 with a message for a case without fields or a design
+the plane z = b2 / 2 inside D2, in the impeller's frame (where the channel loses it, as a map).
+Exits 1 with a message for a case without fields or a design
 without those keys.
 """
 import argparse
@@ -72,25 +73,36 @@ def open_case(foam_case):
     return reader, times[-1]
 
 
-def midplane(reader, t, omega_z, r2, z):
-    """The cells cut by the plane at height z inside r2, in the impeller's frame: (x, y) of their
-    centres (m), the relative velocity's (w_x, w_y) (m/s) and the rothalpy as a head (m)."""
+def cut_cells(reader, t, origin, normal, triangulate):
+    """The cells a plane cuts at time t: the centres of their cut polygons (m), the polygons' areas
+    (m^2) and the cells' U and p, or None where the plane cuts none. Untriangulated, a cut hex's
+    polygon has the cell's own centre where the plane passes through it."""
     from paraview import servermanager
     from paraview import simple
     from vtk.util.numpy_support import vtk_to_numpy
     cut = simple.Slice(Input=reader)
-    cut.Triangulatetheslice = 0                               # a cut hex keeps its centre
-    cut.SliceType.Origin = [0.0, 0.0, z]
-    cut.SliceType.Normal = [0.0, 0.0, 1.0]
-    centres = simple.CellCenters(Input=simple.MergeBlocks(Input=cut))
+    cut.Triangulatetheslice = 1 if triangulate else 0
+    cut.SliceType.Origin = list(origin)
+    cut.SliceType.Normal = list(normal)
+    centres = simple.CellCenters(Input=simple.CellSize(Input=simple.MergeBlocks(Input=cut)))
+    centres.VertexCells = 1
     centres.UpdatePipeline(t)
     data = servermanager.Fetch(centres)
     simple.Delete(centres)
     if data.GetNumberOfPoints() == 0:
         return None
-    x = vtk_to_numpy(data.GetPoints().GetData())
-    u = vtk_to_numpy(data.GetPointData().GetArray("U"))
-    p = vtk_to_numpy(data.GetPointData().GetArray("p"))
+    arrays = data.GetPointData()
+    return (vtk_to_numpy(data.GetPoints().GetData()), vtk_to_numpy(arrays.GetArray("Area")),
+            vtk_to_numpy(arrays.GetArray("U")), vtk_to_numpy(arrays.GetArray("p")))
+
+
+def midplane(reader, t, omega_z, r2, z):
+    """The cells cut by the plane at height z inside r2, in the impeller's frame: (x, y) of their
+    centres (m), the relative velocity's (w_x, w_y) (m/s) and the rothalpy as a head (m)."""
+    cells = cut_cells(reader, t, (0.0, 0.0, z), (0.0, 0.0, 1.0), triangulate=False)
+    if cells is None:
+        return None
+    x, _, u, p = cells
     w = u - omega_z * np.column_stack([-x[:, 1], x[:, 0], np.zeros(len(x))])
     rothalpy = (p + 0.5 * (w ** 2).sum(axis=1) - 0.5 * omega_z ** 2 * (x[:, 0] ** 2 + x[:, 1] ** 2)) / G
     back = -omega_z * t                                       # the impeller's frame: the turn taken off
@@ -123,28 +135,15 @@ def draw_midplane(path, plane, t, r2, z):
 
 
 def budget(reader, t, omega_z, r2, b2, step_deg):
-    from paraview import servermanager
-    from paraview import simple
-    from vtk.util.numpy_support import vtk_to_numpy
     turned = omega_z * t
     rows = []
     for theta in np.arange(0.0, 360.0, step_deg):
         a = math.radians(theta) + turned                     # the impeller's theta in the lab at t
         er, et = np.array([math.cos(a), math.sin(a), 0.0]), np.array([-math.sin(a), math.cos(a), 0.0])
-        cut = simple.Slice(Input=reader)
-        cut.Triangulatetheslice = 1
-        cut.SliceType.Origin = [0.0, 0.0, 0.0]
-        cut.SliceType.Normal = list(et)
-        centres = simple.CellCenters(Input=simple.CellSize(Input=simple.MergeBlocks(Input=cut)))
-        centres.VertexCells = 1
-        centres.UpdatePipeline(t)
-        data = servermanager.Fetch(centres)
-        if data.GetNumberOfPoints() == 0:
+        cells = cut_cells(reader, t, (0.0, 0.0, 0.0), et, triangulate=True)
+        if cells is None:
             continue
-        x = vtk_to_numpy(data.GetPoints().GetData())
-        area = vtk_to_numpy(data.GetPointData().GetArray("Area"))
-        u = vtk_to_numpy(data.GetPointData().GetArray("U"))
-        p = vtk_to_numpy(data.GetPointData().GetArray("p"))
+        x, area, u, p = cells
         radius = x @ er
         keep = (radius > 0) & (radius < r2 - 5e-4) & (x[:, 2] > 5e-4) & (x[:, 2] < b2 - 5e-4)
         x, area, u, p, radius = x[keep], area[keep], u[keep], p[keep], radius[keep]
@@ -155,7 +154,6 @@ def budget(reader, t, omega_z, r2, b2, step_deg):
         rothalpy = (p + 0.5 * (w ** 2).sum(axis=1) - 0.5 * blade ** 2) / G
         rows.append((theta, net, flux[flux > 0].sum(), -flux[flux < 0].sum(),
                      (rothalpy * flux).sum() / net if abs(net) > 1e-5 else float("nan")))
-        simple.Delete(centres)
     return np.array(rows)
 
 
