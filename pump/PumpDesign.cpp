@@ -63,6 +63,29 @@ void PumpDesign::validate(common::ConfigReader &v) const {
   else
     validate_blades(v);
   validate_casing(v);
+  if (impeller.front_seal)
+    validate_front_seal(v);
+}
+
+void PumpDesign::validate_front_seal(common::ConfigReader &v) const {
+  const auto &seal = *impeller.front_seal;
+  if (!impeller.single_channel && !impeller.closed)
+    v.fail_value("impeller", "front_seal: an open impeller (closed: false) has no shroud to seal against the "
+                             "suction cover.");
+  if (impeller.single_channel && impeller.single_channel->neck_length_m > 0.0)
+    v.fail_value("impeller", "front_seal with a wear-ring neck (single_channel.neck_length_m = " +
+                                 std::to_string(impeller.single_channel->neck_length_m) +
+                                 "): the neck is the seal, meshed; give one or the other.");
+  const double r_in = 0.5 * inlet.suction_pipe_diameter_m, r2 = 0.5 * impeller.outer_diameter_m;
+  if (r_in + seal.length_m > r2)
+    v.fail_value("impeller", "front_seal.length_m = " + std::to_string(seal.length_m) +
+                                 " reaches past D2: the front side gap runs from the suction pipe's radius " +
+                                 std::to_string(r_in) + " m to " + std::to_string(r2) + " m.");
+  const double gap = -impeller.disc_thickness_m() - 0.5 * (impeller.outlet_width_m - volute.base_width_m);
+  if (seal.clearance_m >= gap)
+    v.fail_value("impeller", "front_seal.clearance_m = " + std::to_string(seal.clearance_m) +
+                                 " is not below the front side gap it models, " + std::to_string(gap) +
+                                 " m (the mesh resolves a clearance that wide: leave front_seal out).");
 }
 
 void PumpDesign::validate_single_channel(common::ConfigReader &v) const {

@@ -66,6 +66,25 @@ struct SingleChannelDesign {
   }
 };
 
+/// The seal between the shroud and the suction cover at the eye (a wear ring, or an axial wear
+/// plate as in waste-water pumps), whose clearance (tenths of a millimetre) no affordable mesh
+/// resolves: the flow sees it as a porous ring across the front side gap at the eye, in the
+/// penalized runs and the body-fitted reference alike, whose resistance is the seal's leakage law
+/// (python/fsi/front_seal.py; docs/pump-design.md, "The front seal").
+struct FrontSealDesign {
+  double clearance_m = 0.0004;
+  double length_m = 0.015;
+
+  template <class V> void visit(V &v) {
+    v.number("clearance_m", clearance_m, common::Range::positive("m"),
+             "The seal's running clearance s: the leak through it is mu pi D_s s sqrt(2 g H_s), "
+             "mu = (1.5 + lambda length_m / (2 s))^-1/2 with lambda = 0.04 (0.3-0.5 mm in waste-water pumps).");
+    v.number("length_m", length_m, common::Range::positive("m"),
+             "The seal's radial length from the suction pipe's radius outwards: the ring of cells that models it "
+             "spans this band of the front side gap.");
+  }
+};
+
 struct ImpellerDesign {
   double outer_diameter_m = 0.2;
   double outlet_width_m = 0.05;
@@ -80,6 +99,7 @@ struct ImpellerDesign {
   double leading_edge_radius_m = 0.004;
   bool closed = true;
   std::optional<SingleChannelDesign> single_channel;
+  std::optional<FrontSealDesign> front_seal;
 
   /// Thickness of the hub and shroud discs: the channel's own key, or the blades' thickness.
   double disc_thickness_m() const { return single_channel ? single_channel->disc_thickness_m : blade_thickness_m; }
@@ -107,6 +127,9 @@ struct ImpellerDesign {
     v.optional_section("single_channel", single_channel,
                        "A single-channel impeller instead of blades: one enclosed channel from the eye to D2 "
                        "(n_blades, blade_inlet_diameter_m, blade_thickness_m and closed do not apply and are refused).");
+    v.optional_section("front_seal", front_seal,
+                       "A seal of sub-millimetre clearance between the shroud and the suction cover at the eye, "
+                       "modelled as a porous ring across the front side gap (absent: the gap leaks as it is meshed).");
     if constexpr (std::is_same_v<V, common::ConfigReader>)
       if (v.has("single_channel"))
         for (const char *key : {"n_blades", "blade_inlet_diameter_m", "blade_thickness_m", "closed"})
@@ -242,6 +265,7 @@ private:
   void validate_blades(common::ConfigReader &v) const;
   void validate_single_channel(common::ConfigReader &v) const;
   void validate_casing(common::ConfigReader &v) const;
+  void validate_front_seal(common::ConfigReader &v) const;
 };
 
 } // namespace fsi::pump

@@ -192,6 +192,12 @@ std::filesystem::path prepare_openfoam_case(const std::filesystem::path &case_di
     else
       run_tool("blockMesh", target);
   }
+  if (fs::exists(target / "system" / "topoSetDict")) {
+    // Cell zones the case's fvOptions act on (a pump's front seal: python/fsi/front_seal.py),
+    // added to the mesh made or taken from the cache (which stays without them).
+    run_tool("topoSet", target);
+    spdlog::info("meshing: cell zones of system/topoSetDict added ({})", (target / "log.topoSet").string());
+  }
   return target;
 }
 

@@ -32,6 +32,7 @@ import sys
 import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+from fsi import front_seal  # noqa: E402
 from fsi.foam_case import TURBULENT_FV_SCHEMES, write_foam_file  # noqa: E402
 from fsi.pump_stations import function_objects as station_function_objects  # noqa: E402
 
@@ -416,6 +417,7 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control
     fields = dict(FIELDS, **TURBULENCE_FIELDS[turbulence])
     for path, (cls, body) in fields.items():
         write_foam_file(folder, path, cls, body % values if "%(" in body else body)
+    front_seal.write(folder, design)   # the seal's porous ring, or none
     return box
 
 

@@ -7,6 +7,7 @@
 #include "InterfaceFaces.H"
 
 #include "CorrectPhi.H"
+#include "fvOptions.H"
 
 namespace fsi::fluid {
 
@@ -59,7 +60,10 @@ Foam::tmp<Foam::fvVectorMatrix> OpenFoamFlow::momentum_equation() {
   // UEqn.H of pimpleFoam, with the FSI source of Eq. (1): +f_fsi / rho_f, and for rigid bodies
   // the penalization of Eq. (9), f_ibm / rho_f = -chi (u - u_rib) / tau, implicit in u (its
   // diagonal enters A(), so a tiny tau does not limit the time step).
-  tmp<fvVectorMatrix> tUEqn(fvm::ddt(U) + fvm::div(phi, U) + turbulence_->divDevReff(U) == *fsiAcceleration_);
+  // The case's momentum sources (constant/fvOptions: a pump's front seal as a porous ring), as pimpleFoam.
+  fv::options &options = fv::options::New(*mesh_);
+  tmp<fvVectorMatrix> tUEqn(fvm::ddt(U) + fvm::div(phi, U) + turbulence_->divDevReff(U) ==
+                            *fsiAcceleration_ + options(U));
   if (immersedWallFunction_ && penalizationRate_) {
     update_immersed_wall_viscosity();
     tUEqn.ref() -= fvm::laplacian(*immersedWallViscosity_, U);
@@ -68,8 +72,11 @@ Foam::tmp<Foam::fvVectorMatrix> OpenFoamFlow::momentum_equation() {
     tUEqn.ref() += fvm::Sp(*penalizationRate_, U) - (*penalizationRate_) * (*rigidVelocity_);
   fvVectorMatrix &UEqn = tUEqn.ref();
   UEqn.relax();
-  if (pimple_->momentumPredictor())
+  options.constrain(UEqn);
+  if (pimple_->momentumPredictor()) {
     solve(UEqn == -pressure_gradient());
+    options.correct(U);
+  }
   return tUEqn;
 }
 
@@ -120,6 +127,7 @@ void OpenFoamFlow::correct_pressure(Foam::fvVectorMatrix &UEqn, const Foam::labe
   p.relax();
   U = HbyA - rAtU * pressure_gradient();
   U.correctBoundaryConditions();
+  fv::options::New(mesh).correct(U);
   // A moving mesh: the face velocity follows, and the flux becomes relative to the mesh motion
   // (the convective flux of the next momentum equation). Nothing on a static mesh.
   fvc::correctUf(Uf_, U, phi);

@@ -457,6 +457,10 @@ def run_ami_point(case_dir, flow_rate, out_dir, end_time, resolution="coarse", i
     set_foam_entry(control, "writeInterval", repr(min(period / 4.0, float(end_time))))
     if not restart:
         mesh(foam_case, logs)
+        if os.path.exists(os.path.join(foam_case, "system", "topoSetDict")):
+            # cell zones the case's fvOptions act on (a pump's front seal: front_seal.py), added to the
+            # mesh made or cached (the cache stays without them), before the fields are mapped and decomposed
+            run_tool("topoSet", foam_case, logs)
         check_snap(foam_case, out_dir)
         if initial_fields_from:
             map_initial_fields(foam_case, logs, os.path.abspath(initial_fields_from))

@@ -174,5 +174,27 @@ TEST(ChannelLayout, ADesignThatCannotBeBuiltIsRefusedNamingItsKeys) {
   EXPECT_EQ(load_error("  wrap_angle_deg: 330\n", "  wrap_angle_deg: 330\n"), "");
 }
 
+TEST(ChannelLayout, AFrontSealIsRefusedWhereItCannotSealTheFrontSideGap) {
+  const std::string volute = "volute:\n";
+  auto seal = [](const std::string &keys) { return "  front_seal:\n" + keys + "volute:\n"; };
+  const std::string fits = "    clearance_m: 0.0004\n    length_m: 0.015\n";
+  EXPECT_EQ(load_error(volute, seal(fits)), "");
+  EXPECT_EQ(load_error(volute, "  front_seal: {}\n" + volute), ""); // the defaults
+  const PumpDesign design = PumpDesign::load(shipped);
+  EXPECT_FALSE(design.impeller.front_seal.has_value()); // the shipped design has none
+  // wider than the gap it models (5 mm: the chamber's floor at -0.013 m, the shroud's face at -0.008 m)
+  EXPECT_NE(load_error(volute, seal("    clearance_m: 0.005\n")).find("is not below the front side gap it models"),
+            std::string::npos);
+  EXPECT_EQ(load_error(volute, seal("    clearance_m: 0.0049\n")), "");
+  EXPECT_NE(load_error(volute, seal("    length_m: 0.05\n")).find("reaches past D2"), std::string::npos);
+  EXPECT_NE(load_error(volute, seal("    clearance_m: -0.0004\n")).find("clearance_m"), std::string::npos);
+  EXPECT_NE(load_error(volute, seal("    clerance_m: 0.0004\n")).find("clerance_m"), std::string::npos);
+  EXPECT_NE(load_error({{volute, seal(fits)},
+                        {"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"},
+                        {"  suction_pipe_diameter_m: 0.12\n", "  suction_pipe_diameter_m: 0.14\n"}})
+                .find("the neck is the seal"),
+            std::string::npos);
+}
+
 } // namespace
 } // namespace fsi::pump
