@@ -99,6 +99,10 @@ def main(argv, pump_curve_variants=True):
         made = subprocess.run([sys.executable, os.path.join(HERE, script)] + args, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT)
         if made.returncode != 0:
+            # the geometry is new but the cases' files are not: stamped as ours but from no inputs, so
+            # that the next run generates it again and writes them
+            with open(os.path.join(geometry, "generated-from"), "w") as f:
+                f.write(stl_lines({name: sha256(os.path.join(geometry, name)) for name in STLS}))
             sys.exit("prepare.py: %s failed:\n%s" % (script, made.stdout.decode(errors="replace").strip()))
     print("generated %s from %s in %.1f s (log: %s)"
           % (geometry, design, time.time() - start, os.path.join(geometry, "generate.log")))
