@@ -23,6 +23,8 @@ constexpr double deg = M_PI / 180.0;
 const std::string shipped = std::string(FSI_SOURCE_DIR) + "/pump/designs/single-channel.yaml";
 
 PumpDesign shipped_design() { return PumpDesign::load(shipped); }
+/// The shipped design's front seal, as its file writes it.
+const std::string seal_keys = "  front_seal:\n    clearance_m: 0.0004\n    length_m: 0.015\n";
 
 /// The shipped design with `edit` appended under impeller.single_channel's keys, or elsewhere.
 std::string load_error(const std::vector<std::pair<std::string, std::string>> &edits) {
@@ -48,17 +50,28 @@ std::string load_error(const std::vector<std::pair<std::string, std::string>> &e
 
 std::string load_error(const std::string &find, const std::string &replace) { return load_error({{find, replace}}); }
 
+/// The shipped design without its mouth's roof (the roof is the hub disc over the whole mouth).
+PumpDesign flat_roofed_design() {
+  PumpDesign d = shipped_design();
+  d.impeller.single_channel->mouth_roof_height_m.reset();
+  return d;
+}
+
 TEST(ChannelLayout, TheMouthIsOpenToTheEyeFromTheBossOutwards) {
   const PumpDesign d = shipped_design();
   const ChannelLayout layout(d);
   const auto &sc = *d.impeller.single_channel;
+  ASSERT_TRUE(sc.mouth_roof_height_m.has_value()); // the shipped mouth has its helical roof
   for (double phi = 0.0; phi <= layout.mouth_end_rad(); phi += 0.05) {
     const ChannelSection s = layout.section(phi);
     EXPECT_DOUBLE_EQ(s.inner_radius_m, 0.5 * d.impeller.hub_diameter_m);
     EXPECT_DOUBLE_EQ(s.outer_radius_m - s.inner_radius_m, sc.inlet_width_m);
     EXPECT_LT(s.floor_z_m, 0.0); // below the shroud plane: open to the eye
-    EXPECT_GT(s.top_z_m, d.impeller.outlet_width_m);
+    EXPECT_GE(s.top_z_m, *sc.mouth_roof_height_m - 1e-12); // the roof: from its height at the back wall
   }
+  const ChannelLayout flat(flat_roofed_design());
+  for (double phi = 0.0; phi <= flat.mouth_end_rad(); phi += 0.05)
+    EXPECT_GT(flat.section(phi).top_z_m, d.impeller.outlet_width_m); // without it: the hub disc
 }
 
 TEST(ChannelLayout, TheLeadingEdgesRampRisesAtTheInletAngleThroughTheShroudPlane) {
@@ -77,7 +90,7 @@ TEST(ChannelLayout, TheLeadingEdgesRampRisesAtTheInletAngleThroughTheShroudPlane
 }
 
 TEST(ChannelLayout, AMouthRoofRisesLinearlyFromTheBackWallToTheHubDisc) {
-  PumpDesign d = shipped_design();
+  PumpDesign d = flat_roofed_design();
   const ChannelLayout flat(d);
   EXPECT_DOUBLE_EQ(flat.mouth_roof_angle_deg(), 0.0);
   EXPECT_DOUBLE_EQ(flat.section(0.0).top_z_m, flat.section(flat.mouth_end_rad()).top_z_m); // no roof: the disc
@@ -92,11 +105,12 @@ TEST(ChannelLayout, AMouthRoofRisesLinearlyFromTheBackWallToTheHubDisc) {
   // Its angle at the eye's mean radius: the rise over the mean radius's arc.
   const double r_mean = 0.5 * (roof.boss_radius_m() + roof.eye_radius_m());
   EXPECT_NEAR(std::tan(roof.mouth_roof_angle_deg() * deg), (top - 0.006) / (r_mean * phi_m), 1e-12);
-  EXPECT_NEAR(roof.mouth_roof_angle_deg(), 35.8, 0.05); // the shipped channel with a 6 mm roof (fsi-pump-design)
-  EXPECT_NE(load_error("    eye_cover_thickness_m: 0.016\n", "    eye_cover_thickness_m: 0.016\n    mouth_roof_height_m: 0.08\n")
+  EXPECT_NEAR(roof.mouth_roof_angle_deg(), 35.8, 0.05); // the shipped channel's 6 mm roof (fsi-pump-design)
+  EXPECT_NEAR(ChannelLayout(shipped_design()).mouth_roof_angle_deg(), 35.8, 0.05);
+  EXPECT_NE(load_error("    mouth_roof_height_m: 0.006\n", "    mouth_roof_height_m: 0.08\n")
                 .find("mouth_roof_height_m = 0.08 must lie between"),
             std::string::npos);
-  EXPECT_NE(load_error("    eye_cover_thickness_m: 0.016\n", "    eye_cover_thickness_m: 0.016\n    mouth_roof_height_m: 0.002\n")
+  EXPECT_NE(load_error("    mouth_roof_height_m: 0.006\n", "    mouth_roof_height_m: 0.002\n")
                 .find("mouth_roof_height_m = 0.002 must lie between"),
             std::string::npos);
 }
@@ -158,15 +172,17 @@ TEST(ChannelLayout, ADesignThatCannotBeBuiltIsRefusedNamingItsKeys) {
             std::string::npos);
   const std::pair<std::string, std::string> pipe{"  suction_pipe_diameter_m: 0.12\n",
                                                  "  suction_pipe_diameter_m: 0.14\n"};
-  EXPECT_EQ(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"}, pipe}), ""); // the neck
-  EXPECT_NE(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"},
-                        {"    wear_ring_clearance_m: 0.002\n", "    wear_ring_clearance_m: 0.0005\n"}, pipe})
+  const std::pair<std::string, std::string> neck{"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"};
+  const std::pair<std::string, std::string> no_seal{seal_keys, ""}; // the neck is the seal
+  EXPECT_EQ(load_error({neck, pipe, no_seal}), "");
+  EXPECT_NE(load_error({neck, {"    wear_ring_clearance_m: 0.002\n", "    wear_ring_clearance_m: 0.0005\n"}, pipe,
+                        no_seal})
                 .find("below the 0.001000 m running clearance"),
             std::string::npos);
-  EXPECT_NE(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.005\n"}, pipe})
+  EXPECT_NE(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.005\n"}, pipe, no_seal})
                 .find("does not reach past the impeller chamber's floor"),
             std::string::npos);
-  EXPECT_NE(load_error("    neck_length_m: 0\n", "    neck_length_m: 0.02\n").find("the wear-ring neck's wall"),
+  EXPECT_NE(load_error({neck, no_seal}).find("the wear-ring neck's wall"),
             std::string::npos); // the pipe no wider than the eye: no room for the neck
   EXPECT_NE(load_error("  hub_diameter_m: 0.024\n", "  hub_diameter_m: 0.024\n  n_blades: 1\n")
                 .find("is a key of bladed impellers"),
@@ -175,22 +191,20 @@ TEST(ChannelLayout, ADesignThatCannotBeBuiltIsRefusedNamingItsKeys) {
 }
 
 TEST(ChannelLayout, AFrontSealIsRefusedWhereItCannotSealTheFrontSideGap) {
-  const std::string volute = "volute:\n";
-  auto seal = [](const std::string &keys) { return "  front_seal:\n" + keys + "volute:\n"; };
-  const std::string fits = "    clearance_m: 0.0004\n    length_m: 0.015\n";
-  EXPECT_EQ(load_error(volute, seal(fits)), "");
-  EXPECT_EQ(load_error(volute, "  front_seal: {}\n" + volute), ""); // the defaults
-  const PumpDesign design = PumpDesign::load(shipped);
-  EXPECT_FALSE(design.impeller.front_seal.has_value()); // the shipped design has none
+  const PumpDesign design = shipped_design();
+  ASSERT_TRUE(design.impeller.front_seal.has_value()); // the shipped design's: 0.4 mm, 15 mm long
+  EXPECT_DOUBLE_EQ(design.impeller.front_seal->clearance_m, 0.0004);
+  EXPECT_DOUBLE_EQ(design.impeller.front_seal->length_m, 0.015);
+  EXPECT_EQ(load_error(seal_keys, "  front_seal: {}\n"), ""); // the defaults
+  const std::string clearance = "    clearance_m: 0.0004\n", length = "    length_m: 0.015\n";
   // wider than the gap it models (5 mm: the chamber's floor at -0.013 m, the shroud's face at -0.008 m)
-  EXPECT_NE(load_error(volute, seal("    clearance_m: 0.005\n")).find("is not below the front side gap it models"),
+  EXPECT_NE(load_error(clearance, "    clearance_m: 0.005\n").find("is not below the front side gap it models"),
             std::string::npos);
-  EXPECT_EQ(load_error(volute, seal("    clearance_m: 0.0049\n")), "");
-  EXPECT_NE(load_error(volute, seal("    length_m: 0.05\n")).find("reaches past D2"), std::string::npos);
-  EXPECT_NE(load_error(volute, seal("    clearance_m: -0.0004\n")).find("clearance_m"), std::string::npos);
-  EXPECT_NE(load_error(volute, seal("    clerance_m: 0.0004\n")).find("clerance_m"), std::string::npos);
-  EXPECT_NE(load_error({{volute, seal(fits)},
-                        {"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"},
+  EXPECT_EQ(load_error(clearance, "    clearance_m: 0.0049\n"), "");
+  EXPECT_NE(load_error(length, "    length_m: 0.05\n").find("reaches past D2"), std::string::npos);
+  EXPECT_NE(load_error(clearance, "    clearance_m: -0.0004\n").find("clearance_m"), std::string::npos);
+  EXPECT_NE(load_error(clearance, "    clerance_m: 0.0004\n").find("clerance_m"), std::string::npos);
+  EXPECT_NE(load_error({{"    neck_length_m: 0\n", "    neck_length_m: 0.02\n"},
                         {"  suction_pipe_diameter_m: 0.12\n", "  suction_pipe_diameter_m: 0.14\n"}})
                 .find("the neck is the seal"),
             std::string::npos);

@@ -66,7 +66,10 @@ class SealLaw(unittest.TestCase):
         self.assertAlmostEqual(tight["f_per_m"] / seal["f_per_m"],
                                4.0 * tight["zeta"] / seal["zeta"], delta=1e-9)
         with open(SHIPPED) as f:
-            self.assertIsNone(front_seal.ring(yaml.safe_load(f)))
+            shipped = yaml.safe_load(f)
+        self.assertEqual(front_seal.ring(shipped), seal)       # the shipped design's seal: 0.4 mm, 15 mm
+        del shipped["impeller"]["front_seal"]
+        self.assertIsNone(front_seal.ring(shipped))
 
 
 class PorousRing(PenalizationTest):
