@@ -23,7 +23,7 @@ Equal for every Q_L when
     f = zeta (g / s)^2 / (r_s^2 (1 / r_in - 1 / r_out)),   r_s = (r_in + r_out) / 2.
 The side space's swirl crosses the ring too: the isotropic term stops it there (measured: -0.15
 m/s in the ring against 2.1 m/s outside it, AMI at 12 L/s), where a real seal's water turns at
-about half the shroud's speed. The friction this adds on the shroud over the ring's 66 cm^2 is an
+about half the shroud's speed. The friction this adds on the shroud over the ring's 64 cm^2 is an
 estimate, not measured: below a tenth of a newton metre.
 
     front_seal.py PUMP_YAML      prints the ring and its coefficient
