@@ -81,7 +81,9 @@ ChannelLayout::ChannelLayout(const PumpDesign &design) {
   const double past = r_eye_ + 0.5 * cover_;
   if (inner_radius(wrap_ - floor_fall_rad) < past)
     throw std::invalid_argument("the channel's inner wall reaches the eye's rim too late to let its floor fall back "
-                                "to the shroud before the exit: raise outlet_blade_angle_deg or lower mouth_angle_deg");
+                                "to the shroud before the exit (a steeper outlet angle bends the wall's end inwards): lower "
+                                "outlet_blade_angle_deg, mouth_angle_deg or single_channel.eye_cover_thickness_m, or "
+                                "raise inlet_blade_angle_deg or wrap_angle_deg");
   double lo = phi_a_, hi = wrap_ - floor_fall_rad;
   for (int i = 0; i < 60; ++i)
     (inner_radius(0.5 * (lo + hi)) < past ? lo : hi) = 0.5 * (lo + hi);

@@ -81,7 +81,7 @@ void PumpDesign::validate_front_seal(common::ConfigReader &v) const {
     v.fail_value("impeller", "front_seal.length_m = " + std::to_string(seal.length_m) +
                                  " reaches past D2: the front side gap runs from the suction pipe's radius " +
                                  std::to_string(r_in) + " m to " + std::to_string(r2) + " m.");
-  const double gap = -impeller.disc_thickness_m() - 0.5 * (impeller.outlet_width_m - volute.base_width_m);
+  const double gap = front_side_gap_m();
   if (seal.clearance_m >= gap)
     v.fail_value("impeller", "front_seal.clearance_m = " + std::to_string(seal.clearance_m) +
                                  " is not below the front side gap it models, " + std::to_string(gap) +
@@ -106,7 +106,7 @@ void PumpDesign::validate_single_channel(common::ConfigReader &v) const {
                                  "single_channel.wear_ring_clearance_m, " + std::to_string(neck_outer) +
                                  " m, is thinner than half a disc: widen inlet.suction_pipe_diameter_m (or set "
                                  "single_channel.neck_length_m: 0 for no neck).");
-  const double chamber_low = 0.5 * (impeller.outlet_width_m - volute.base_width_m);
+  const double chamber_low = chamber_floor_z_m();
   if (sc.neck_length_m > 0.0 && -sc.disc_thickness_m - sc.neck_length_m > chamber_low - min_axial_clearance_m)
     v.fail_value("impeller", "single_channel.neck_length_m = " + std::to_string(sc.neck_length_m) +
                                  " does not reach past the impeller chamber's floor (z = " + std::to_string(chamber_low) +
@@ -141,8 +141,7 @@ void PumpDesign::validate_casing(common::ConfigReader &v) const {
     v.fail_value("volute", "base_radius_m = " + std::to_string(volute.base_radius_m) +
                                " must exceed the impeller radius outer_diameter_m / 2 = " +
                                std::to_string(0.5 * i.outer_diameter_m) + " (the cut-water gap).");
-  const double chamber_low = 0.5 * (i.outlet_width_m - volute.base_width_m);
-  const double chamber_high = 0.5 * (i.outlet_width_m + volute.base_width_m);
+  const double chamber_low = chamber_floor_z_m(), chamber_high = chamber_roof_z_m();
   if (chamber_low > impeller_bottom_z_m() - min_axial_clearance_m ||
       chamber_high < impeller_top_z_m() + min_axial_clearance_m)
     v.fail_value("volute", "base_width_m = " + std::to_string(volute.base_width_m) +

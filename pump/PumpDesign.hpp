@@ -250,6 +250,11 @@ struct PumpDesign {
   /// and the hub disc's top (m; the channel spans z in [0, outlet_width_m]).
   double impeller_bottom_z_m() const;
   double impeller_top_z_m() const;
+  /// The impeller chamber's flat floor and roof (m): the volute's base width centred on the channel.
+  double chamber_floor_z_m() const { return 0.5 * (impeller.outlet_width_m - volute.base_width_m); }
+  double chamber_roof_z_m() const { return 0.5 * (impeller.outlet_width_m + volute.base_width_m); }
+  /// The front side gap's height (m): from the chamber's floor to the shroud's face.
+  double front_side_gap_m() const { return -impeller.disc_thickness_m() - chamber_floor_z_m(); }
   /// The hub's nose reaches hub_nose_depth outlet widths below the channel, into the eye.
   static constexpr double hub_nose_depth = 0.2;
   /// The smallest axial gap between the impeller and the chamber's flat walls.

@@ -157,6 +157,10 @@ TEST(ChannelLayout, ADesignThatCannotBeBuiltIsRefusedNamingItsKeys) {
   EXPECT_NE(load_error("  outlet_blade_angle_deg: 30\n", "  outlet_blade_angle_deg: 80\n")
                 .find("outlet_blade_angle_deg = 80 is too steep"),
             std::string::npos);
+  EXPECT_NE(load_error("  outlet_blade_angle_deg: 30\n", "  outlet_blade_angle_deg: 35\n")
+                .find("reaches the eye's rim too late to let its floor fall back to the shroud before the exit "
+                      "(a steeper outlet angle bends the wall's end inwards): lower outlet_blade_angle_deg"),
+            std::string::npos);
   EXPECT_NE(load_error("    inlet_width_m: 0.06\n", "    inlet_width_m: 0.03\n")
                 .find("inlet_width_m = 0.03 does not reach the eye's rim"),
             std::string::npos);
