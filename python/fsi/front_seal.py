@@ -38,6 +38,10 @@ import yaml
 LAMBDA = 0.04               # the seal's friction factor (turbulent leak)
 ZETA_ENDS = 1.5             # entry 0.5 + exit 1.0
 ZONE = "front_seal"
+# The defaults of pump/PumpDesign.hpp for the keys the ring reads (a pump.yaml may leave them
+# out; pump.SealLaw checks them against fsi-pump-design --schema).
+DEFAULTS = {"impeller.front_seal.clearance_m": 0.0004, "impeller.front_seal.length_m": 0.015,
+            "impeller.single_channel.disc_thickness_m": 0.008, "impeller.blade_thickness_m": 0.008}
 
 
 def ring(design):
@@ -47,11 +51,11 @@ def ring(design):
     seal = imp.get("front_seal")
     if seal is None:
         return None
-    s = float(seal.get("clearance_m", 0.0004))
-    length = float(seal.get("length_m", 0.015))
+    s = float(seal.get("clearance_m", DEFAULTS["impeller.front_seal.clearance_m"]))
+    length = float(seal.get("length_m", DEFAULTS["impeller.front_seal.length_m"]))
     channel = imp.get("single_channel")
-    disc = float(channel.get("disc_thickness_m", 0.008)) if channel is not None else float(
-        imp.get("blade_thickness_m", 0.008))
+    disc = float(channel.get("disc_thickness_m", DEFAULTS["impeller.single_channel.disc_thickness_m"])) \
+        if channel is not None else float(imp.get("blade_thickness_m", DEFAULTS["impeller.blade_thickness_m"]))
     z_floor = 0.5 * (float(imp["outlet_width_m"]) - float(design["volute"]["base_width_m"]))
     z_face = -disc
     gap = z_face - z_floor

@@ -5,7 +5,8 @@ SealLaw (no OpenFOAM): the ring's Forchheimer coefficient reproduces the seal's 
   every leak: the pressure drop across the annulus, integrated numerically from
   dp/dr = rho f / 2 u(r)^2 with u = Q / (2 pi r g), against zeta rho/2 (Q / (2 pi r_s s))^2; the
   ring's place from the shipped single-channel design's keys (the chamber's floor, the shroud's
-  face, the suction pipe's radius); the leak law inverted.
+  face, the suction pipe's radius); the leak law inverted; the ring's defaults for keys a pump.yaml
+  leaves out are fsi-pump-design's (its --schema).
 PorousRing (fsi-openfoam-fluid through the launcher): a straight channel across the ring's radii
   (x from 0.03 to 0.12 m on the line y = 0, z across the design's 5 mm front side gap), the
   water entering at x = 0.12 m towards the axis at 0.5 m/s, slip walls. front_seal.write's
@@ -19,6 +20,7 @@ PorousRing (fsi-openfoam-fluid through the launcher): a straight channel across 
 import math
 import os
 import re
+import subprocess
 import sys
 import unittest
 
@@ -26,7 +28,7 @@ import yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "support"))
-from penalization_support import (Block, PenalizationTest, SOURCE_DIR, bystander_sheet, latest_time_dir,  # noqa: E402
+from penalization_support import (BIN_DIR, Block, PenalizationTest, SOURCE_DIR, bystander_sheet, latest_time_dir,  # noqa: E402
                                   read_internal_field, write_case, write_openfoam_case, np)
 from fsi import front_seal  # noqa: E402
 
@@ -70,6 +72,16 @@ class SealLaw(unittest.TestCase):
         self.assertEqual(front_seal.ring(shipped), seal)       # the shipped design's seal: 0.4 mm, 15 mm
         del shipped["impeller"]["front_seal"]
         self.assertIsNone(front_seal.ring(shipped))
+
+    def test_the_rings_defaults_are_the_generators(self):
+        # A pump.yaml may leave the seal's and the discs' keys out: the ring must then sit where
+        # fsi-pump-design builds the gap, with the defaults of its schema.
+        schema = subprocess.run([os.path.join(BIN_DIR, "fsi-pump-design"), "--schema"], check=True,
+                                capture_output=True, text=True).stdout
+        for key, value in front_seal.DEFAULTS.items():
+            row = re.search(r"^\| `%s` \| number \| ([^ |]+) \|" % re.escape(key), schema, re.M)
+            self.assertIsNotNone(row, "%s is not in fsi-pump-design --schema" % key)
+            self.assertEqual(float(row.group(1)), value, key)
 
 
 class PorousRing(PenalizationTest):
