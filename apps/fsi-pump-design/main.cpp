@@ -29,6 +29,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <cstdlib>
@@ -76,6 +77,12 @@ void channel_report(const fsi::pump::PumpDesign &design, double duty_head_m) {
                "side {:.3g} m",
                1e4 * a2, w2, cu2, u2 * cu2 / fsi::pump::g_m_per_s2, duty_head_m / op.hydraulic_efficiency,
                layout.smallest_section_side_m());
+  // A sphere rising through the eye into the mouth passes between the boss and the eye's rim, and
+  // then through the channel's sections: neither bound can the generated free passage exceed.
+  const double annulus = layout.eye_radius_m() - layout.boss_radius_m();
+  spdlog::info("  free passage at most {:.3g} m: the eye's annulus from the boss to its rim ({:.3g} m) and the smallest "
+               "section side (the geometry checks measure it with a sphere)",
+               std::min(annulus, layout.smallest_section_side_m()), annulus);
 }
 
 int report(const fsi::pump::PumpDesign &design) {
