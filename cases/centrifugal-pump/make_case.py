@@ -397,7 +397,8 @@ def write_case(folder, design, h, turbulence, casing, refine_gaps=False, control
     omega = design["operation"]["rotation_rate_rad_per_s"]
     write_foam_file(folder, "system/controlDict", "dictionary",
                     CONTROL % dict(CONTROL_RUN, **(control or {}), write=round(10 * 2 * math.pi / omega, 6), rho=RHO,
-                                   stations=station_function_objects(interval=station_interval)))
+                                   stations=station_function_objects(interval=station_interval)
+                                   + front_seal.leak_function(design, interval=station_interval)))
     write_foam_file(folder, "system/fvSchemes", "dictionary", schemes)
     entries = dict(SOLUTION_RUN, **({"u": U_KRYLOV} if refine_gaps else {}), **(solution or {}))
     write_foam_file(folder, "system/fvSolution", "dictionary", SOLUTION % entries)

@@ -11,6 +11,10 @@ same seal:
                        (apps/fsi-openfoam-fluid/OpenFoamCase.cpp, python/fsi/pump_ami_run.py).
                        With the sharp body indicator no such cell is a penalized one.
   constant/fvOptions   an explicitPorositySource (DarcyForchheimer, Forchheimer term only) on it.
+  the faceZone `front_seal_exit` (topoSetDict too): the faces between the ring and the gap's
+                       cells inside r_in, oriented towards the eye; leak_function() sums the face
+                       flux phi through it (the leak as the solver conserves it: cell-centred
+                       velocities beside the ring's jump in resistance are not the flux).
 
 The seal's leakage law (Gulich, Centrifugal Pumps, section 3.7.1): a gap of clearance s at the
 mean radius r_s passes Q_L with the pressure drop
@@ -38,6 +42,8 @@ import yaml
 LAMBDA = 0.04               # the seal's friction factor (turbulent leak)
 ZETA_ENDS = 1.5             # entry 0.5 + exit 1.0
 ZONE = "front_seal"
+EXIT = "front_seal_exit"       # the faceZone of the ring's side towards the eye
+LEAK_FUNCTION_NAME = "frontSealLeak"
 # The defaults of pump/PumpDesign.hpp for the keys the ring reads (a pump.yaml may leave them
 # out; pump.SealLaw checks them against fsi-pump-design --schema).
 DEFAULTS = {"impeller.front_seal.clearance_m": 0.0004, "impeller.front_seal.length_m": 0.015,
@@ -88,7 +94,34 @@ actions
     { name %(zone)s; type cellSet; action new; source cylinderAnnulusToCell;
       sourceInfo { p1 (0 0 %(z_floor_m)r); p2 (0 0 %(z_face_m)r); outerRadius %(r_out_m)r; innerRadius %(r_in_m)r; } }
     { name %(zone)s; type cellZoneSet; action new; source setToCellZone; sourceInfo { set %(zone)s; } }
+    // Its exit: the faces between it and the cells of the gap's band just inside r_in (the eye's
+    // side), a faceZone oriented out of the ring, through which the leak's face flux is summed.
+    { name %(zone)s_eye_side; type cellSet; action new; source cylinderAnnulusToCell;
+      sourceInfo { p1 (0 0 %(z_floor_m)r); p2 (0 0 %(z_face_m)r); outerRadius %(r_in_m)r; innerRadius %(r_eye_side_m)r; } }
+    { name %(exit)s; type faceSet; action new; source cellToFace; sourceInfo { set %(zone)s; option all; } }
+    { name %(exit)s; type faceSet; action subset; source cellToFace; sourceInfo { set %(zone)s_eye_side; option all; } }
+    { name %(exit)s; type faceZoneSet; action new; source setsToFaceZone;
+      sourceInfo { faceSet %(exit)s; cellSet %(zone)s; } }
 );
+"""
+
+LEAK_FUNCTION = """    // The leak through the front seal (python/fsi/front_seal.py): the face flux phi summed over
+    // the ring's exit towards the eye (m^3/s, towards the eye positive), every %(every)s.
+    %(name)s
+    {
+        type            surfaceFieldValue;
+        libs            ("libfieldFunctionObjects.so");
+        regionType      faceZone;
+        name            %(exit)s;
+        operation       sum;
+        fields          (phi);
+        writeFields     false;
+        log             false;
+        executeControl  timeStep;
+        executeInterval %(interval)d;
+        writeControl    timeStep;
+        writeInterval   %(interval)d;
+    }
 """
 
 FV_OPTIONS = """// The front seal (python/fsi/front_seal.py): clearance %(clearance_m).6g m, length %(length_m).6g m,
@@ -125,10 +158,19 @@ def write(folder, design):
             if os.path.exists(path):
                 os.remove(path)
         return None
-    values = dict(seal, zone=ZONE)
+    values = dict(seal, zone=ZONE, exit=EXIT, r_eye_side_m=max(seal["r_in_m"] - seal["length_m"], 0.0))
     write_foam_file(folder, "system/topoSetDict", "dictionary", TOPO_SET % values)
     write_foam_file(folder, "constant/fvOptions", "dictionary", FV_OPTIONS % values)
     return seal
+
+
+def leak_function(design, interval=1):
+    """The controlDict entry (inside `functions { }`) that sums the face flux through the ring's
+    exit every `interval` steps (postProcessing/frontSealLeak), or "" without a front seal."""
+    if ring(design) is None:
+        return ""
+    return LEAK_FUNCTION % {"name": LEAK_FUNCTION_NAME, "exit": EXIT, "interval": interval,
+                            "every": "step" if interval == 1 else "%d steps" % interval}
 
 
 def main(argv):

@@ -230,10 +230,15 @@ def penalized_cost(folder, period):
 
 def summary(folder, design, omega, axis, flow_rate, revolutions):
     """The operating point over all revolutions but the first, with the leak through the front
-    side space: averaged over the same revolutions from the stations' function objects
-    (pump_stations.py) when the run has them, else from its last fields (pump_head_budget)."""
+    side space: averaged over the same revolutions from the face flux through a front seal's ring
+    (front_seal.py) or else the stations' function objects (pump_stations.py) when the run has
+    them, else from its last fields (pump_head_budget)."""
     point = pump_point.operating_point(folder, omega, axis, 0.5 * design["impeller"]["outer_diameter_m"],
                                        flow_rate, average_revolutions=revolutions, settle_revolutions=1)
+    if "front_seal_leak_m3_per_s" in point:   # the face flux through the seal's ring: both methods alike
+        point["front_side_space_leak_m3_per_s"] = point["front_seal_leak_m3_per_s"]
+        point["front_side_space_leak_from"] = "seal faces"
+        return point
     if point.get("stations"):
         leak = {row["station"]: row for row in point["stations"]}["front_side_space"]["flow_rate_m3_per_s"]
         point["front_side_space_leak_m3_per_s"], point["front_side_space_leak_from"] = leak, "window"

@@ -40,6 +40,7 @@ import os
 import numpy as np
 import yaml
 
+from fsi.front_seal import LEAK_FUNCTION_NAME
 from fsi.pump_stations import STATIONS
 from fsi.time_means import window_mean
 
@@ -118,6 +119,18 @@ def station_budget(folder, window, rho):
     for row in rows:
         row["head_above_suction_m"] = (row["total_pressure_pa"] - rows[0]["total_pressure_pa"]) / (rho * G)
     return rows
+
+
+def seal_leak(folder, window):
+    """The mean leak through the front seal's porous ring over the averaging window (m^3/s,
+    towards the eye positive: the face flux through its exit, python/fsi/front_seal.py), or None
+    for a run without one."""
+    try:
+        t, leak = read_dat(folder, LEAK_FUNCTION_NAME)
+    except FileNotFoundError:
+        return None
+    _, lw = window(t, leak[:, 0])
+    return float(np.mean(lw)) if len(lw) else None
 
 
 def rotor_budget(folder, window, shaft_power_w):
@@ -260,6 +273,9 @@ def operating_point(folder, omega, axis, radius_m, flow_rate, rho=1000.0, averag
     stations = station_budget(folder, window, rho)
     if stations:
         point["stations"] = stations
+    leak = seal_leak(folder, window)
+    if leak is not None:
+        point["front_seal_leak_m3_per_s"] = leak
     rotor = rotor_budget(folder, window, power)
     if rotor:
         point["rotor"] = rotor

@@ -12,7 +12,8 @@ PorousRing (fsi-openfoam-fluid through the launcher): a straight channel across 
   water entering at x = 0.12 m towards the axis at 0.5 m/s, slip walls. front_seal.write's
   topoSetDict and fvOptions, topoSet run by the fluid after blockMesh, the fvOptions applied by its
   momentum equation: the ring holds the 15 x 5 cells between r = 0.06 and 0.075 m, and the
-  pressure drops across it by rho f / 2 u^2 (r_out - r_in) (0.5 in OpenFOAM's Forchheimer term).
+  pressure drops across it by rho f / 2 u^2 (r_out - r_in) (0.5 in OpenFOAM's Forchheimer term);
+  the face flux through the ring's exit (front_seal.leak_function's faceZone) is the inflow.
 
     test_front_seal.py [SealLaw|PorousRing]
 """
@@ -30,7 +31,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "support"))
 from penalization_support import (BIN_DIR, Block, PenalizationTest, SOURCE_DIR, bystander_sheet, latest_time_dir,  # noqa: E402
                                   read_internal_field, write_case, write_openfoam_case, np)
-from fsi import front_seal  # noqa: E402
+from fsi import front_seal, pump_point  # noqa: E402
 
 SHIPPED = os.path.join(SOURCE_DIR, "pump", "designs", "single-channel.yaml")
 
@@ -109,6 +110,8 @@ class PorousRing(PenalizationTest):
                             {"inlet": "type zeroGradient;", "outlet": "type fixedValue; value uniform 0;",
                              "walls": "type zeroGradient;"})
         self.assertIsNotNone(front_seal.write(foam, design))
+        with open(os.path.join(foam, "system", "controlDict"), "a") as f:
+            f.write("functions\n{\n%s}\n" % front_seal.leak_function(design))
         sheet = bystander_sheet([0.035, -0.001, seal["z_floor_m"] + 0.0015], [0, 1, 0], [0, 0, 1], size=0.001)
         write_case(case, self.DT, self.END, sheet, [], 1e-6)
         wall = self.run_case(case, out, timeout=240)
@@ -146,6 +149,16 @@ class PorousRing(PenalizationTest):
         # pump's 2 mm cells: a leak 7 % above the law's, less than the law's own spread in lambda and zeta).
         self.assertLess(abs(dp - expected), per_cell)
         self.assertLess(dp, expected)
+        # The leak through the ring's exit from the face fluxes: the faceZone holds the n_z faces
+        # at r_in, oriented towards the eye, and carries the inflow to the solver's tolerance.
+        with open(os.path.join(out, "openfoam", "log.topoSet")) as f:
+            exit_faces = re.findall(r"faceZoneSet %s now size (\d+)" % front_seal.EXIT, f.read())
+        self.assertEqual([int(n) for n in exit_faces], [n_z])
+        t, leak = pump_point.read_dat(out, front_seal.LEAK_FUNCTION_NAME)
+        inflow = self.U_IN * self.WIDTH * seal["gap_m"]
+        print("the ring's exit: %d faces; the face flux towards the eye %.8g m^3/s at the end against the "
+              "inflow %.8g" % (int(exit_faces[0]), leak[-1, 0], inflow))
+        self.assertAlmostEqual(leak[-1, 0] / inflow, 1.0, delta=1e-6)
 
 if __name__ == "__main__":
     unittest.main()
