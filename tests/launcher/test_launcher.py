@@ -34,6 +34,13 @@ def note(event):
     with open(os.path.join(record, ROLE + ".events"), "a") as f:
         f.write(event + "\n")
 
+def open_events(role):
+    try:
+        with open(os.path.join(record, role + ".events")) as f:
+            return f.read().split("\n")
+    except OSError:
+        return []
+
 def log(level, message):
     print("[21:10:00.123] [%s] [%s] %s" % (ROLE, level, message), file=sys.stderr, flush=True)
 
@@ -80,6 +87,9 @@ if ROLE == "coupler" and me.get("endpoint"):
 
 for level, message in me.get("lines", []):
     log(level, message)
+if me.get("after_exit_of"):   # the sleep counts from another fake's exit, not from this one's start
+    while not any(line.startswith("exit") for line in open_events(me["after_exit_of"])):
+        time.sleep(0.01)
 deadline = time.monotonic() + me.get("sleep", 0)
 while time.monotonic() < deadline:
     time.sleep(0.01)
@@ -324,7 +334,10 @@ class LauncherTest(unittest.TestCase):
     def test_exit_code_is_that_of_the_first_process_that_failed(self):
         with open(os.path.join(self.out, "structure.log"), "w") as f:
             f.write("written by the structure\n")
-        self.configure(coupler={"endpoint": ENDPOINT, "sleep": 0.6, "exit": 1},
+        # The coupler fails 0.5 s after the structure (within the launcher's 1 s grace), counted
+        # from the structure's exit: from the fakes' starts, a loaded machine's start-up skew
+        # (over 0.5 s with two MPI ranks beside the tests) reversed the order.
+        self.configure(coupler={"endpoint": ENDPOINT, "sleep": 0.5, "exit": 1, "after_exit_of": "structure"},
                        structure={"sleep": 0.1, "exit": 3},
                        fluid={"sleep": 0.6})
         code, _, err, elapsed = self.launch(self.case)
