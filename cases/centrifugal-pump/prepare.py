@@ -5,8 +5,9 @@ it is missing or was made from another pump.yaml or another build of the generat
 geometry/generated-from, holds the hashes of both and of the STL files written. STL files the
 stamp does not name (your own: docs/pump-own-geometry.md) are never overwritten. The generator
 is deterministic: a regenerated geometry has the same bytes, and the cached snappyHexMesh meshes
-stay valid. After a generation it rewrites the OpenFOAM cases' files (make_case.py,
-make_ami_case.py), which follow the geometry. It takes about 5 s.
+stay valid. The OpenFOAM cases' files (make_case.py, make_ami_case.py), which follow the
+geometry, are rewritten after a generation and whenever the scripts, the modules they take files
+from, pump.yaml or case.yaml changed (a second stamp, geometry/openfoam-from). It takes about 5 s.
 
     prepare.py CASE_DIR BIN_DIR     (python/fsi/fsi_launch.py runs it before every run of the case)
 
@@ -22,6 +23,8 @@ import sys
 import time
 
 STLS = ("impeller.stl", "casing.stl")
+# The python/fsi modules make_case.py and make_ami_case.py take OpenFOAM files from.
+OPENFOAM_MODULES = ("foam_case.py", "front_seal.py", "pump_stations.py")
 
 
 def sha256(path):
@@ -69,7 +72,8 @@ def main(argv, pump_curve_variants=True):
     if any(stamped.get(name) != digest for name, digest in present.items()):
         return ensure_stations(case_dir)  # files this script did not write: the user's own geometry, left alone
     if stamp == inputs + stl_lines(present) and len(present) == len(STLS):
-        return ensure_stations(case_dir)  # up to date
+        ensure_openfoam_files(case_dir, geometry, pump_curve_variants)  # the geometry is up to date
+        return ensure_stations(case_dir)
     # Written next to geometry/ and swapped in whole: a failed or interrupted run leaves the old one.
     partial = geometry + ".partial-%d" % os.getpid()
     shutil.rmtree(partial, ignore_errors=True)
@@ -90,8 +94,32 @@ def main(argv, pump_curve_variants=True):
         os.rename(geometry, old)
     os.rename(partial, geometry)
     shutil.rmtree(old, ignore_errors=True)
+    ensure_openfoam_files(case_dir, geometry, pump_curve_variants)
+    print("generated %s from %s in %.1f s (log: %s)"
+          % (geometry, design, time.time() - start, os.path.join(geometry, "generate.log")))
+    return ensure_stations(case_dir)
+
+
+def ensure_openfoam_files(case_dir, geometry, pump_curve_variants):
+    """The OpenFOAM cases' files (make_case.py, make_ami_case.py) when the geometry or anything
+    that writes them changed since they were written: the scripts, the modules they take files
+    from, pump.yaml and case.yaml. A stamp, geometry/openfoam-from, holds those hashes; it is
+    written last, so a failed script leaves none and the next run writes the files again. The
+    scripts write unchanged bytes for unchanged inputs."""
+    import fsi   # python/fsi, on the path (main): also for a copy of the case elsewhere
+    python = os.path.dirname(os.path.abspath(fsi.__file__))
+    sources = [os.path.join(geometry, "generated-from"), os.path.join(case_dir, "pump.yaml"),
+               os.path.join(case_dir, "case.yaml"), os.path.join(HERE, "make_case.py"),
+               os.path.join(HERE, "make_ami_case.py")] + [os.path.join(python, name) for name in OPENFOAM_MODULES]
+    inputs = "".join("%s sha256 %s\n" % (os.path.relpath(path, case_dir), sha256(path))
+                     for path in sources if os.path.isfile(path)) + "variants %s\n" % pump_curve_variants
+    stamp_file = os.path.join(geometry, "openfoam-from")
+    if os.path.isfile(stamp_file) and open(stamp_file).read() == inputs:
+        return
+    if os.path.exists(stamp_file):
+        os.remove(stamp_file)
     # The OpenFOAM cases' files follow the geometry (the background box around the casing, the
-    # rotor cylinder of the AMI reference): unchanged bytes when the geometry is.
+    # rotor cylinder of the AMI reference).
     scripts = [["make_case.py", case_dir] + ([] if pump_curve_variants else ["--resolutions-only"])]
     if pump_curve_variants:
         scripts.append(["make_ami_case.py"])
@@ -99,14 +127,9 @@ def main(argv, pump_curve_variants=True):
         made = subprocess.run([sys.executable, os.path.join(HERE, script)] + args, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT)
         if made.returncode != 0:
-            # the geometry is new but the cases' files are not: stamped as ours but from no inputs, so
-            # that the next run generates it again and writes them
-            with open(os.path.join(geometry, "generated-from"), "w") as f:
-                f.write(stl_lines({name: sha256(os.path.join(geometry, name)) for name in STLS}))
             sys.exit("prepare.py: %s failed:\n%s" % (script, made.stdout.decode(errors="replace").strip()))
-    print("generated %s from %s in %.1f s (log: %s)"
-          % (geometry, design, time.time() - start, os.path.join(geometry, "generate.log")))
-    return ensure_stations(case_dir)
+    with open(stamp_file, "w") as f:
+        f.write(inputs)
 
 
 def ensure_stations(case_dir):

@@ -21,11 +21,12 @@ import shutil
 import tempfile
 import subprocess
 import sys
+import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-from coupled_support import (BIN_DIR, LAUNCHER, PYTHON, STRUCTURE, TempDirTest,  # noqa: E402
+from coupled_support import (BIN_DIR, LAUNCHER, PYTHON, SOURCE_DIR, STRUCTURE, TempDirTest,  # noqa: E402
                              case_dir, load_case, np, reference, write_case)
 
 import h5py  # noqa: E402  (coupled_support has checked that it is installed)
@@ -553,6 +554,48 @@ class PumpOperatingPoint(CaseTest):
         self.assertEqual(code, 2, text)
         self.assertIn("fluid.openfoam.operating_point is absent", text)
         self.assertIn(os.path.join("openfoam-coarse", "0", "U"), text)
+
+
+class CentrifugalPumpPrepare(CaseTest):
+    """The launcher's prepare hook keeps a pump case's OpenFOAM folders in step with what writes
+    them, not only with the geometry: a change to make_case.py (or the modules it takes files
+    from, pump.yaml, case.yaml) rewrites them without generating the geometry again, nothing is
+    rewritten when nothing changed, and a script that fails leaves no stamp, so the next run
+    writes them again (a user who pulls a fix to the case's files gets it on the next run)."""
+
+    def prepare(self, case):
+        result = subprocess.run([PYTHON, os.path.join(case, "prepare.py"), case, BIN_DIR], stdin=subprocess.DEVNULL,
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=300,
+                                env=dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "python")))
+        return result.returncode, result.stdout.decode(errors="replace")
+
+    def test_the_openfoam_folders_follow_the_scripts_that_write_them(self):
+        case = self.copy_case("centrifugal-pump")
+        self.assertEqual(self.prepare(case)[0], 0)                       # the geometry, generated anew
+        geometry_stamp = os.path.join(case, "geometry", "generated-from")
+        stamp = os.path.join(case, "geometry", "openfoam-from")
+        control = os.path.join(case, "openfoam-coarse", "system", "controlDict")
+        self.assertTrue(os.path.isfile(stamp))
+        generated, written = os.path.getmtime(geometry_stamp), os.path.getmtime(control)
+        time.sleep(0.05)
+        self.assertEqual(self.prepare(case), (0, ""))                    # nothing to do: quiet
+        self.assertEqual(os.path.getmtime(control), written)
+        # A change to the script that writes the folders: they are written again, the geometry not.
+        with open(os.path.join(case, "make_case.py"), "a") as f:
+            f.write("\n# a change\n")
+        self.assertEqual(self.prepare(case)[0], 0)
+        self.assertGreater(os.path.getmtime(control), written)
+        self.assertEqual(os.path.getmtime(geometry_stamp), generated)
+        # A script that fails: refused with its output, no stamp, and the next run tries again.
+        with open(os.path.join(case, "make_ami_case.py"), "a") as f:
+            f.write("\nraise SystemExit('make_ami_case.py: broken on purpose')\n")
+        code, text = self.prepare(case)
+        self.assertNotEqual(code, 0)
+        self.assertIn("broken on purpose", text)
+        self.assertFalse(os.path.exists(stamp))
+        code, text = self.prepare(case)
+        self.assertNotEqual(code, 0)
+        self.assertIn("broken on purpose", text)
 
 
 class CentrifugalPumpTwoBlades(CaseTest):
