@@ -59,6 +59,27 @@ snGradSchemes   { default limited 0.5; }
 wallDist        { method meshWave; }
 """
 
+def field_value_function(entry, region_type, region, operation, field, interval):
+    """A controlDict `functions` entry: a surfaceFieldValue of `field` over a region (a patch, a
+    faceZone, a sampled surface), computed and written every `interval` steps, not logged."""
+    return """    %s
+    {
+        type            surfaceFieldValue;
+        libs            ("libfieldFunctionObjects.so");
+        regionType      %s;
+        name            %s;
+        operation       %s;
+        fields          (%s);
+        writeFields     false;
+        log             false;
+        executeControl  timeStep;
+        executeInterval %d;
+        writeControl    timeStep;
+        writeInterval   %d;
+    }
+""" % (entry, region_type, region, operation, field, interval, interval)
+
+
 def foam_header(cls, obj):
     """The FoamFile header of a dictionary or field file: class cls, object obj."""
     return FOAM_HEADER % {"cls": cls, "obj": obj}

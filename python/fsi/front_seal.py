@@ -105,24 +105,6 @@ actions
 );
 """
 
-LEAK_FUNCTION = """    // The leak through the front seal (python/fsi/front_seal.py): the face flux phi summed over
-    // the ring's exit towards the eye (m^3/s, towards the eye positive), every %(every)s.
-    %(name)s
-    {
-        type            surfaceFieldValue;
-        libs            ("libfieldFunctionObjects.so");
-        regionType      faceZone;
-        name            %(exit)s;
-        operation       sum;
-        fields          (phi);
-        writeFields     false;
-        log             false;
-        executeControl  timeStep;
-        executeInterval %(interval)d;
-        writeControl    timeStep;
-        writeInterval   %(interval)d;
-    }
-"""
 
 FV_OPTIONS = """// The front seal (python/fsi/front_seal.py): clearance %(clearance_m).6g m, length %(length_m).6g m,
 // zeta = %(zeta).4g, across a gap of %(gap_m).6g m: f = zeta (g/s)^2 / (r_s^2 (1/r_in - 1/r_out)).
@@ -169,8 +151,11 @@ def leak_function(design, interval=1):
     exit every `interval` steps (postProcessing/frontSealLeak), or "" without a front seal."""
     if ring(design) is None:
         return ""
-    return LEAK_FUNCTION % {"name": LEAK_FUNCTION_NAME, "exit": EXIT, "interval": interval,
-                            "every": "step" if interval == 1 else "%d steps" % interval}
+    from fsi.foam_case import field_value_function   # noqa: E402  (here: the module's maths need no OpenFOAM)
+    every = "step" if interval == 1 else "%d steps" % interval
+    return ("    // The leak through the front seal (python/fsi/front_seal.py): the face flux phi summed over\n"
+            "    // the ring's exit towards the eye (m^3/s, towards the eye positive), every %s.\n" % every
+            + field_value_function(LEAK_FUNCTION_NAME, "faceZone", EXIT, "sum", "phi", interval))
 
 
 def main(argv):

@@ -31,6 +31,8 @@ import sys
 import numpy as np
 import yaml
 
+from fsi.foam_case import field_value_function
+
 SPACING_M = 0.003   # the triangles' size: under the 4 mm cells round the impeller, so that each cell is seen
 
 STATIONS = ("suction_pipe", "impeller_outlet", "volute", "discharge_pipe", "front_side_space")
@@ -126,22 +128,7 @@ FUNCTIONS = """    // The head budget's stations (python/fsi/pump_stations.py): 
 SURFACE = """            %(name)s { type sampledTriSurfaceMesh; surface %(name)s; file "stations/%(name)s.stl"; source insideCells; interpolate false; }
 """
 
-VALUES = """    stationFlowRate_%(name)s
-    {
-        type            surfaceFieldValue;
-        libs            ("libfieldFunctionObjects.so");
-        regionType      functionObjectSurface;
-        name            stations.%(name)s;
-        operation       areaNormalIntegrate;
-        fields          (U);
-        writeFields     false;
-        log             false;
-        executeControl  timeStep;
-        executeInterval %(interval)d;
-        writeControl    timeStep;
-        writeInterval   %(interval)d;
-    }
-    stationTotalPressure_%(name)s
+VALUES = """%(flow_rate)s    stationTotalPressure_%(name)s
     {
         $stationFlowRate_%(name)s;
         operation       weightedAreaAverage;
@@ -158,7 +145,9 @@ def function_objects(stations=STATIONS, interval=1):
     step, that was a third of a turning case's step (measured with perf on the pump's coarse
     turning mesh, penalized and AMI alike)."""
     return FUNCTIONS % {"surfaces": "".join(SURFACE % {"name": s} for s in stations),
-                        "values": "".join(VALUES % {"name": s, "interval": interval} for s in stations),
+                        "values": "".join(VALUES % {"name": s, "flow_rate": field_value_function(
+                            "stationFlowRate_" + s, "functionObjectSurface", "stations." + s, "areaNormalIntegrate",
+                            "U", interval)} for s in stations),
                         "interval": interval, "every": "step" if interval == 1 else "%d steps" % interval}
 
 
