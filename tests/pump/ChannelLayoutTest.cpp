@@ -54,9 +54,8 @@ std::string load_error(const std::vector<std::pair<std::string, std::string>> &e
 
 std::string load_error(const std::string &find, const std::string &replace) { return load_error({{find, replace}}); }
 
-/// The reference design without its mouth's roof (the roof is the hub disc over the whole mouth).
-PumpDesign flat_roofed_design() {
-  PumpDesign d = reference_design();
+/// A design without its mouth's roof (the roof is the hub disc over the whole mouth).
+PumpDesign without_roof(PumpDesign d) {
   d.impeller.single_channel->mouth_roof_height_m.reset();
   return d;
 }
@@ -73,9 +72,7 @@ TEST(ChannelLayout, TheMouthIsOpenToTheEyeFromTheBossOutwards) {
     EXPECT_LT(s.floor_z_m, 0.0); // below the shroud plane: open to the eye
     EXPECT_GE(s.top_z_m, *sc.mouth_roof_height_m - 1e-12); // the roof: from its height at the back wall
   }
-  PumpDesign flat_roofed = d;
-  flat_roofed.impeller.single_channel->mouth_roof_height_m.reset();
-  const ChannelLayout flat(flat_roofed);
+  const ChannelLayout flat(without_roof(d));
   for (double phi = 0.0; phi <= flat.mouth_end_rad(); phi += 0.05)
     EXPECT_GT(flat.section(phi).top_z_m, d.impeller.outlet_width_m); // without it: the hub disc
 }
@@ -96,7 +93,7 @@ TEST(ChannelLayout, TheLeadingEdgesRampRisesAtTheInletAngleThroughTheShroudPlane
 }
 
 TEST(ChannelLayout, AMouthRoofRisesLinearlyFromTheBackWallToTheHubDisc) {
-  PumpDesign d = flat_roofed_design();
+  PumpDesign d = without_roof(reference_design());
   const ChannelLayout flat(d);
   EXPECT_DOUBLE_EQ(flat.mouth_roof_angle_deg(), 0.0);
   EXPECT_DOUBLE_EQ(flat.section(0.0).top_z_m, flat.section(flat.mouth_end_rad()).top_z_m); // no roof: the disc

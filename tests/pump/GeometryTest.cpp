@@ -194,7 +194,7 @@ void TheWaterAtThePipesMouthIsFluidForTheCollisions(const Built &b) {
   geometry::TriangleMeshSurface casing((b.dir / "casing.stl").string(), geometry::TriangleMeshSurface::FluidSide::inside);
   casing.prepare_culling(0.004);
   const InletDesign &in = b.design.inlet;
-  const double z_low = 0.5 * (b.design.impeller.outlet_width_m - b.design.volute.base_width_m);
+  const double z_low = b.design.chamber_floor_z_m();
   const double pipe_r = 0.5 * in.suction_pipe_diameter_m;
   int wrong = 0, checked = 0;
   for (double z = z_low - 0.03; z <= z_low + 0.005; z += 0.00037)
